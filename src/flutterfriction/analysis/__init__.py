@@ -1,0 +1,1 @@
+"""Numerical solvers that work on any model given by its matrices."""
