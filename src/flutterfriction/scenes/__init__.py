@@ -1,0 +1,35 @@
+"""Scene builders: each returns exactly the data one figure or table shows, as a JSON-able dict.
+
+A scene builder takes the scene's parameters (a section of ``workflow/config.yaml``, SI units)
+and returns plain data. Workflow scripts, notebooks and the regression test all call
+:func:`build_scene`, so the numbers checked in CI are the numbers drawn in the figures.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
+
+from flutterfriction.errors import ParameterError
+from flutterfriction.scenes import ziegler
+
+SceneBuilder = Callable[[dict[str, Any]], dict[str, Any]]
+
+SCENES: dict[str, SceneBuilder] = {
+    "eq25": ziegler.eq25,
+    "eq46": ziegler.follower_load_scene,
+    "eq47": ziegler.follower_load_scene,
+    "eq48": ziegler.follower_load_scene,
+    "fig02": ziegler.fig02,
+    "fig03": ziegler.fig03,
+    "fig04": ziegler.fig04,
+    "errata_ziegler": ziegler.errata,
+}
+
+
+def build_scene(name: str, params: dict[str, Any]) -> dict[str, Any]:
+    """Compute scene ``name`` from its parameters; the result records the parameters it used."""
+    if name not in SCENES:
+        raise ParameterError(f"unknown scene {name!r}; known scenes: {sorted(SCENES)}")
+    data = SCENES[name](dict(params))
+    return {"scene": name, "params": params, **data}
