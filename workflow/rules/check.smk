@@ -1,0 +1,15 @@
+# The last target: every quoted number against workflow/reference.yaml.
+
+
+rule check:
+    input:
+        reference="workflow/reference.yaml",
+        data=expand("results/data/{scene}.json", scene=ZIEGLER_SCENES),
+        figures=expand("results/figures/{scene}.{ext}", scene=ZIEGLER_FIGURES,
+                       ext=["pdf", "png"]),
+        reports=["results/reports/ziegler.html"],
+    output:
+        json="results/checks/summary.json",
+        md="results/checks/summary.md",
+    script:
+        "../scripts/check.py"

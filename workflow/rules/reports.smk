@@ -1,0 +1,14 @@
+# Notebooks (jupytext percent format) executed into HTML reports.
+
+
+rule report_ziegler:
+    input:
+        notebook="notebooks/ziegler.py",
+        data=expand("results/data/{scene}.json", scene=ZIEGLER_SCENES),
+        figures=expand("results/figures/{scene}.png", scene=ZIEGLER_FIGURES),
+    output:
+        "results/reports/ziegler.html",
+    benchmark:
+        "results/benchmarks/report_ziegler.tsv"
+    script:
+        "../scripts/execute_notebook.py"

@@ -1,0 +1,34 @@
+# Chapter §2.1–2.3: the Ziegler double pendulum. Each scene: a solver rule writing
+# results/data/<scene>.json, then a plot rule writing results/figures/<scene>.{pdf,png}.
+
+ZIEGLER_FIGURES = ["eq25", "eq46", "eq47", "eq48", "fig02", "fig03", "fig04"]
+ZIEGLER_SCENES = ZIEGLER_FIGURES + ["errata_ziegler"]
+
+
+rule ziegler_solve:
+    input:
+        SOLVER_SOURCES,
+    output:
+        "results/data/{scene}.json",
+    params:
+        # The resolved parameters: editing one scene's config reruns that scene only.
+        cfg=lambda w: scene_params(config, w.scene),
+    wildcard_constraints:
+        scene="|".join(ZIEGLER_SCENES),
+    benchmark:
+        "results/benchmarks/{scene}.solve.tsv"
+    script:
+        "../scripts/solve_scene.py"
+
+
+rule ziegler_plot:
+    input:
+        PLOT_SOURCES,
+        data="results/data/{scene}.json",
+    output:
+        pdf="results/figures/{scene}.pdf",
+        png="results/figures/{scene}.png",
+    wildcard_constraints:
+        scene="|".join(ZIEGLER_FIGURES),
+    script:
+        "../scripts/plot_scene.py"

@@ -1,0 +1,16 @@
+"""Execute a jupytext notebook from the repository root and write it as HTML (atomically)."""
+
+from pathlib import Path
+
+import jupytext
+import nbformat
+from nbclient import NotebookClient
+from nbconvert import HTMLExporter
+
+from flutterfriction.io import write_text
+
+nb = jupytext.read(snakemake.input.notebook)
+NotebookClient(nb, timeout=600, kernel_name="python3",
+               resources={"metadata": {"path": str(Path.cwd())}}).execute()
+html, _ = HTMLExporter().from_notebook_node(nbformat.from_dict(nb))
+write_text(snakemake.output[0], html)
