@@ -23,7 +23,7 @@ from enum import StrEnum
 import numpy as np
 import scipy.linalg as sla
 from numpy.typing import ArrayLike, NDArray
-from scipy.optimize import brentq
+from scipy.optimize import brentq, minimize_scalar
 
 from flutterfriction.errors import ConvergenceError
 
@@ -117,18 +117,31 @@ def discriminant(mu: NDArray) -> NDArray:
     return out.real
 
 
+def _brent(f: Callable[[float], float], a: float, b: float) -> float:
+    xtol = 4 * np.finfo(float).eps * max(abs(a), abs(b), np.finfo(float).tiny)
+    root, info = brentq(f, a, b, xtol=xtol, full_output=True, disp=False)
+    if not info.converged:
+        raise ConvergenceError(f"Brent's method did not converge in [{a}, {b}]")
+    return float(root)
+
+
 def _refine_roots(f: Callable[[float], float], grid: NDArray, values: NDArray) -> list[float]:
-    roots = []
-    for a, b, fa, fb in zip(grid[:-1], grid[1:], values[:-1], values[1:], strict=True):
-        if fa == 0.0:
-            roots.append(float(a))
-        elif fa * fb < 0.0:
-            xtol = 4 * np.finfo(float).eps * max(abs(a), abs(b))
-            root, info = brentq(f, a, b, xtol=xtol, full_output=True, disp=False)
-            if not info.converged:
-                raise ConvergenceError(f"Brent's method did not converge in [{a}, {b}]")
-            roots.append(float(root))
-    return roots
+    """Roots of ``f`` from samples: every sign change is refined with Brent's method, and every
+    sampled local minimum that stays positive is minimised on its bracket, so that a pair of
+    roots closer than the sampling step (a narrow flutter interval) is found too."""
+    roots = [float(x) for x, v in zip(grid, values, strict=True) if v == 0.0]
+    for i in range(len(grid) - 1):
+        if values[i] * values[i + 1] < 0.0:
+            roots.append(_brent(f, grid[i], grid[i + 1]))
+    for i in range(1, len(grid) - 1):
+        v = values[i - 1:i + 2]
+        if v.min() > 0.0 and v[1] <= v[0] and v[1] <= v[2]:
+            lo, hi = grid[i - 1], grid[i + 1]
+            res = minimize_scalar(f, bounds=(lo, hi), method="bounded",
+                                  options={"xatol": 4 * np.finfo(float).eps * abs(hi)})
+            if res.fun < 0.0:
+                roots += [_brent(f, lo, res.x), _brent(f, res.x, hi)]
+    return sorted(roots)
 
 
 def coalescence_loads(K0: ArrayLike, K1: ArrayLike, M: ArrayLike, load_max: float,
@@ -138,8 +151,9 @@ def coalescence_loads(K0: ArrayLike, K1: ArrayLike, M: ArrayLike, load_max: floa
     For a follower load these are the flutter load (a pair of real ``Omega^2`` merges and leaves
     the real axis) and the divergence load (the complex pair returns to the real axis, negative).
     Sign changes of :func:`discriminant` on a uniform scan are refined to machine precision with
-    Brent's method. Two coalescences closer than ``load_max / n_scan`` can be missed; callers that
-    know how many to expect (the pendulum: two) check the count.
+    Brent's method; positive local minima of the samples are minimised to catch two coalescences
+    closer than the scan step. Callers that know how many to expect (the pendulum: two) check
+    the count.
     """
     grid = np.linspace(0.0, float(load_max), int(n_scan) + 1)
     values = discriminant(pencil_eigenvalues(K0, K1, M, grid))

@@ -13,6 +13,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
 
+from flutterfriction.io import make_readable  # noqa: E402
+
 plt.rcParams.update({
     "font.size": 9, "axes.titlesize": 9, "axes.labelsize": 9, "legend.fontsize": 8,
     "figure.dpi": 150, "savefig.dpi": 200, "axes.grid": True, "grid.alpha": 0.3,
@@ -32,6 +34,7 @@ def save_figure(fig: Figure, *paths: str | os.PathLike) -> None:
         os.close(fd)
         try:
             fig.savefig(tmp, format=fmt, metadata=meta, bbox_inches="tight")
+            make_readable(tmp)
             os.replace(tmp, path)
         finally:
             if os.path.exists(tmp):

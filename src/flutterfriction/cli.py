@@ -1,0 +1,99 @@
+"""The ``flutterfriction`` command: the stable surface for users and external checks.
+
+``flutterfriction ziegler --l1 L1 --l2 L2 --d D --h H --m1 M1 --m2 M2 --m3 M3 --k1 K1 --k2 K2
+[--c1 0 --c2 0] [--json]`` prints the critical follower loads (flutter ``P_flu``, divergence
+``P_div``) and dead loads (``H_cr``, ``H_sup``) in newtons. Bad input: one line naming the
+parameter on stderr, exit code 2, no traceback.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+from collections.abc import Sequence
+
+from flutterfriction.errors import ConvergenceError, ParameterError
+
+ZIEGLER_PARAMS = {
+    "l1": "length of rod AB [m], > 0",
+    "l2": "length of rod BC [m], > 0",
+    "d": "position of m1 on AB from A [m], 0 < d <= l1",
+    "h": "position of m3 on BC from B [m], 0 <= h <= l2",
+    "m1": "mass at D [kg], > 0",
+    "m2": "mass at the loaded end C [kg], > 0",
+    "m3": "mass at E [kg], >= 0",
+    "k1": "rotational spring at A [N m/rad], > 0",
+    "k2": "rotational spring at B [N m/rad], > 0",
+}
+
+
+class _Parser(argparse.ArgumentParser):
+    def error(self, message: str) -> None:  # one line, exit code 2 (argparse's convention)
+        self.exit(2, f"{self.prog}: error: {message}\n")
+
+
+def _number(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"must be finite, got {text!r}")
+    return value
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog="flutterfriction",
+                     description="Flutter from friction: reproducible stability analyses.")
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
+    z = sub.add_parser(
+        "ziegler", help="critical loads of a Ziegler double pendulum (SI units)",
+        description="Critical loads of the Ziegler double pendulum (chapter §2.1-2.3): flutter "
+                    "and divergence under a follower load, buckling under a dead load.")
+    for name, text in ZIEGLER_PARAMS.items():
+        z.add_argument(f"--{name}", type=_number, required=True, help=text)
+    z.add_argument("--c1", type=_number, default=0.0, help="hinge viscosity at A [N m s/rad]")
+    z.add_argument("--c2", type=_number, default=0.0, help="hinge viscosity at B [N m s/rad]")
+    z.add_argument("--json", action="store_true", help="print one JSON object")
+    return parser
+
+
+def _ziegler(args: argparse.Namespace) -> dict:
+    from flutterfriction.analysis.ziegler import critical_loads
+    from flutterfriction.models.ziegler import ZieglerPendulum
+
+    pendulum = ZieglerPendulum(**{k: getattr(args, k) for k in (*ZIEGLER_PARAMS, "c1", "c2")})
+    if pendulum.c1 > 0 or pendulum.c2 > 0:
+        raise ParameterError("--c1/--c2 > 0 (viscous hinges) is not supported yet: the damped "
+                             "critical loads arrive with the viscosity issue; use 0")
+    loads = critical_loads(pendulum)
+    return {"P_flu": loads.P_flu, "P_div": loads.P_div, "H_cr": loads.H_cr,
+            "H_sup": loads.H_sup, "units": "N", "parameters": pendulum.as_dict()}
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        result = _ziegler(args)
+    except ParameterError as exc:
+        print(f"flutterfriction: error: {exc}", file=sys.stderr)
+        return 2
+    except ConvergenceError as exc:
+        print(f"flutterfriction: solver did not converge: {exc}", file=sys.stderr)
+        return 1
+    if args.json:
+        print(json.dumps(result))
+    else:
+        names = {"P_flu": "flutter load (follower)", "P_div": "divergence load (follower)",
+                 "H_cr": "critical dead load", "H_sup": "second dead buckling load"}
+        for key, label in names.items():
+            value = result[key]
+            print(f"{key:6s} = {'none' if value is None else f'{value:.10g} N':>18s}  {label}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

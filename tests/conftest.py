@@ -1,0 +1,44 @@
+"""Shared fixtures and hypothesis strategies: random but physical pendulums."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import pytest
+from hypothesis import HealthCheck, settings
+from hypothesis import strategies as st
+
+from flutterfriction import ZieglerPendulum
+
+ROOT = Path(__file__).resolve().parents[1]
+
+settings.register_profile("default", max_examples=200, deadline=None,
+                          suppress_health_check=[HealthCheck.too_slow])
+settings.register_profile("ci", max_examples=300, deadline=None, derandomize=True,
+                          suppress_health_check=[HealthCheck.too_slow])
+settings.load_profile("ci" if os.environ.get("CI") else "default")
+
+LIST47 = dict(l1=0.1, l2=0.1, d=0.1 / 3, h=0.1 / 3, m1=0.552, m2=0.046, m3=0.138, k1=0.189,
+              k2=0.189)
+
+
+def _logu(lo: float, hi: float) -> st.SearchStrategy[float]:
+    """Log-uniform floats: ratios spanning several decades, as physical parameters do."""
+    import math
+    return st.floats(math.log(lo), math.log(hi)).map(math.exp)
+
+
+@st.composite
+def pendulums(draw, three_masses: bool = True) -> ZieglerPendulum:
+    l1, l2 = draw(_logu(0.05, 2.0)), draw(_logu(0.05, 2.0))
+    m3 = draw(st.one_of(st.just(0.0), _logu(0.01, 10.0))) if three_masses else 0.0
+    return ZieglerPendulum(
+        l1=l1, l2=l2, d=draw(st.floats(0.05, 1.0)) * l1, h=draw(st.floats(0.0, 1.0)) * l2,
+        m1=draw(_logu(0.01, 10.0)), m2=draw(_logu(0.01, 10.0)), m3=m3,
+        k1=draw(_logu(0.01, 10.0)), k2=draw(_logu(0.01, 10.0)))
+
+
+@pytest.fixture
+def list47() -> ZieglerPendulum:
+    return ZieglerPendulum(**LIST47)
