@@ -39,4 +39,14 @@ def scene_params(config: dict[str, Any], scene: str) -> dict[str, Any]:
         raise ParameterError(f"fidelity must be one of {sorted(presets)}, got {fidelity!r}")
     params = dict(scenes[scene])
     params.update({k: v for k, v in presets[fidelity].items() if k in params})
-    return params
+    return _canonical(params)
+
+
+def _canonical(value: Any) -> Any:
+    """Recursively key-sorted copy: Snakemake's params rerun trigger compares representations,
+    so the same parameters written in another key order must not look changed."""
+    if isinstance(value, dict):
+        return {k: _canonical(value[k]) for k in sorted(value)}
+    if isinstance(value, list):
+        return [_canonical(v) for v in value]
+    return value

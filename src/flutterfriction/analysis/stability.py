@@ -75,7 +75,7 @@ def classify(s: ArrayLike, rtol: float = 1e-8) -> Regime:
 
 
 def _cholesky_reduction(M: Matrix) -> Matrix:
-    """``L^{-1}`` with ``M = L L^T``: turns the pencil (K, M) into the matrix ``L^{-1} K L^{-T}``."""
+    """``L^{-1}`` with ``M = L L^T``: the pencil (K, M) becomes the matrix ``L^{-1} K L^{-T}``."""
     L = np.linalg.cholesky(M)
     return sla.solve_triangular(L, np.eye(M.shape[0]), lower=True)
 

@@ -86,7 +86,7 @@ def omega2_follower(g: PendulumGroups, gamma: ArrayLike) -> NDArray:
 
 
 def follower_line_and_parabola(g: PendulumGroups, gamma: ArrayLike) -> tuple[NDArray, NDArray]:
-    """Fig. 3: the line ``beta1 - gamma beta2`` and the parabola ``(beta1 - gamma beta2)^2 - 4ka``."""
+    """Fig. 3: the line ``beta1 - gamma beta2`` and the parabola ``(...)^2 - 4ka`` of eq. (34)."""
     line = coefficient_beta1(g) - np.asarray(gamma, dtype=float) * coefficient_beta2(g)
     return line, line**2 - 4 * g.k * coefficient_a(g)
 
@@ -122,7 +122,7 @@ def two_mass_gammas(lam: float, y: float, rho: float, k: float) -> tuple[float, 
 
 
 def optimal_two_mass_loads(l1: float, l2: float, k1: float, k2: float) -> tuple[float, float]:
-    """Eqs. (44), (45) [N]: ``P_flu``, ``P_div`` when eq. (43), ``sqrt k = lam y sqrt rho``, holds."""
+    """Eqs. (44), (45) [N]: ``P_flu``, ``P_div`` when eq. (43) (sqrt k = lam y sqrt rho) holds."""
     p_flu = k2 * (1 / l1 + 1 / l2)
     return p_flu, p_flu + 4 * k1 * (l2 / l1) / (l1 + l2)
 

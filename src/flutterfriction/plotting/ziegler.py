@@ -34,7 +34,8 @@ def plot_dead_load_spectrum(data: dict[str, Any], title: str) -> Figure:
     fig, ax = plt.subplots(figsize=(5.2, 3.4))
     _shade_regimes(ax, [e_cr, e_sup], ["stable", "divergence", "divergence"], eta[-1])
     for i, branch in enumerate(re):
-        ax.plot(eta, branch, color="C0", lw=1.6, label="eigenvalues of (K+G, M)" if i == 0 else None)
+        ax.plot(eta, branch, color="C0", lw=1.6,
+                label="eigenvalues of (K+G, M)" if i == 0 else None)
     step = max(1, len(eta) // 25)
     for i, branch in enumerate(closed):
         ax.plot(eta[::step], branch[::step], "o", ms=3, mfc="none", color="C1",
@@ -87,7 +88,8 @@ def plot_follower_spectrum(data: dict[str, Any], title: str, in_newtons: bool = 
     ax1.legend(loc="lower left")
     ax1.set_title(title)
     ax2.set_xlim(x[0], x[-1])
-    ax2.set_xlabel(r"follower load $P$ [N]" if in_newtons else r"follower load $\gamma = P l_1/k_2$")
+    ax2.set_xlabel(r"follower load $P$ [N]" if in_newtons
+                   else r"follower load $\gamma = P l_1/k_2$")
     return fig
 
 
@@ -121,9 +123,9 @@ def plot_fig03(data: dict[str, Any]) -> Figure:
     top = ax.secondary_xaxis("top", functions=(lambda g: g * unit, lambda P: P / unit))
     top.set_xlabel("P [N]")
     ax.legend(loc="lower left", bbox_to_anchor=(0.0, 0.1))
-    ax.set_title(r"Eq. (34) for list (47): $a$ = %.4f, $\beta_1$ = %.4f, $\beta_2$ = %.4f"
-                 % (data["coefficients"]["a"], data["coefficients"]["beta1"],
-                    data["coefficients"]["beta2"]), pad=28)
+    co = data["coefficients"]
+    ax.set_title(rf"Eq. (34) for list (47): $a$ = {co['a']:.4f}, $\beta_1$ = {co['beta1']:.4f}, "
+                 rf"$\beta_2$ = {co['beta2']:.4f}", pad=28)
     return fig
 
 

@@ -1,0 +1,66 @@
+"""The `flutterfriction` command: JSON surface, exit codes, one-line errors."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import pytest
+from conftest import LIST47
+
+from flutterfriction.analysis.ziegler import critical_loads
+from flutterfriction.cli import main
+from flutterfriction.models.ziegler import ZieglerPendulum
+
+
+def _args(**over):
+    params = {**LIST47, **over}
+    return ["ziegler", *[f"--{k}={v}" for k, v in params.items()]]
+
+
+def test_json_output(capsys):
+    assert main([*_args(), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    expected = critical_loads(ZieglerPendulum(**LIST47))
+    for key in ("P_flu", "P_div", "H_cr", "H_sup"):
+        assert out[key] == pytest.approx(getattr(expected, key), rel=1e-14)
+    assert out["P_flu"] == pytest.approx(4.8038120088, rel=1e-10)
+
+
+def test_text_output(capsys):
+    assert main(_args()) == 0
+    out = capsys.readouterr().out
+    assert "P_flu" in out and "4.803812009 N" in out
+
+
+@pytest.mark.parametrize(("over", "name"), [
+    ({"m1": -1}, "m1"), ({"k2": 0}, "k2"), ({"l1": "nan"}, "l1"), ({"l2": "inf"}, "l2"),
+    ({"d": 0.5}, "d"), ({"h": 0.5}, "h"), ({"m3": "abc"}, "m3"), ({"c1": 0.1}, "c1"),
+])
+def test_bad_input_exits_2_naming_the_parameter(capsys, over, name):
+    with pytest.raises(SystemExit) as exc:
+        code = main(_args(**over))
+        raise SystemExit(code)
+    assert exc.value.code == 2
+    err = capsys.readouterr().err
+    assert name in err and "Traceback" not in err
+    assert len(err.strip().splitlines()) == 1
+
+
+def test_missing_argument_exits_2(capsys):
+    with pytest.raises(SystemExit) as exc:
+        main(["ziegler", "--l1", "0.1"])
+    assert exc.value.code == 2
+    assert "--k2" in capsys.readouterr().err
+
+
+def test_console_script_runs_as_a_process():
+    """The installed entry point, end to end, as an external checker would call it."""
+    proc = subprocess.run([sys.executable, "-m", "flutterfriction.cli", *_args(m1=-1)],
+                          capture_output=True, text=True)
+    assert proc.returncode == 2
+    assert "m1" in proc.stderr and "Traceback" not in proc.stderr
+    proc = subprocess.run([sys.executable, "-m", "flutterfriction.cli", *_args(), "--json"],
+                          capture_output=True, text=True, check=True)
+    assert set(json.loads(proc.stdout)) >= {"P_flu", "P_div", "H_cr", "H_sup"}

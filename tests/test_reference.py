@@ -1,0 +1,71 @@
+"""Regression against workflow/reference.yaml: the scenes, built from workflow/config.yaml,
+reproduce every quoted number; and the check itself can fail."""
+
+from __future__ import annotations
+
+import copy
+
+import pytest
+from conftest import ROOT
+
+from flutterfriction.config import load_config, scene_params
+from flutterfriction.reference import failed, load_reference, run_check, summary_markdown
+from flutterfriction.scenes import build_scene
+
+
+@pytest.fixture(scope="module")
+def reference():
+    return load_reference(ROOT / "workflow" / "reference.yaml")
+
+
+@pytest.fixture(scope="module")
+def scene_data(reference):
+    config = load_config(ROOT / "workflow" / "config.yaml")
+    names = {e["scene"] for section in ("quantities", "errata") for e in reference[section]}
+    return {n: build_scene(n, scene_params(config, n)) for n in names}
+
+
+def test_every_reference_entry_passes(reference, scene_data):
+    rows = run_check(reference, scene_data)
+    assert not failed(rows), summary_markdown(rows)
+    assert sum(r.status == "verified erratum" for r in rows) == len(reference["errata"])
+
+
+def test_every_entry_documents_its_tolerance(reference):
+    for entry in reference["quantities"]:
+        if isinstance(entry["quoted"], str):
+            continue
+        for key in ("tolerance", "agreement"):
+            assert entry[key].get("why"), f"{entry['id']}: {key} needs a 'why'"
+    for entry in reference["errata"]:
+        for key in ("printed", "corrected", "evidence"):
+            assert entry.get(key), f"{entry['id']} lacks {key}"
+
+
+def test_check_fails_on_a_wrong_value(reference, scene_data):
+    data = copy.deepcopy(scene_data)
+    data["eq46"]["quantities"]["gamma_flu"]["value"] = 2.0 * (1 + 1e-9)
+    rows = {r.id: r for r in run_check(reference, data)}
+    assert rows["eq46_P_flu"].status == "FAIL"
+
+
+def test_check_fails_when_the_methods_disagree(reference, scene_data):
+    data = copy.deepcopy(scene_data)
+    data["eq47"]["quantities"]["P_flu"]["independent"] = 4.81  # still within the quoted digits
+    rows = {r.id: r for r in run_check(reference, data)}
+    assert rows["eq47_P_flu"].status == "FAIL"
+
+
+def test_erratum_unverified_when_printed_form_is_right(reference, scene_data):
+    data = copy.deepcopy(scene_data)
+    e = data["errata_ziegler"]["errata"]["eq39_flutter_sqrt_ka"]
+    e["printed"] = e["independent"]
+    rows = {r.id: r for r in run_check(reference, data)}
+    assert rows["erratum_eq39_flutter_half_width"].status == "UNVERIFIED erratum"
+
+
+def test_categorical_statement_fails_when_regime_differs(reference, scene_data):
+    data = copy.deepcopy(scene_data)
+    data["eq47"]["quantities"]["regime_at_6.8N"]["value"] = "stable"
+    rows = {r.id: r for r in run_check(reference, data)}
+    assert rows["fig04_flutter_load_in_flutter_region"].status == "FAIL"
