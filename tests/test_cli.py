@@ -28,6 +28,17 @@ def test_json_output(capsys):
     assert out["P_flu"] == pytest.approx(4.8038120088, rel=1e-10)
 
 
+def test_viscous_hinges(capsys):
+    """Issue 3: with c1 = c2 = 0.006 N m s (§2.9) the loads are the damped ones (Fig. 19)."""
+    assert main([*_args(c1=0.006, c2=0.006), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["P_flu_undamped"] == pytest.approx(4.8038120088, rel=1e-10)
+    assert out["P_div_undamped"] == pytest.approx(8.8041879912, rel=1e-10)
+    assert out["P_flu"] / out["P_flu_undamped"] == pytest.approx(0.70, abs=0.005)
+    assert out["P_div"] / out["P_div_undamped"] == pytest.approx(1.49, abs=0.005)
+    assert out["H_cr"] == pytest.approx(critical_loads(ZieglerPendulum(**LIST47)).H_cr)
+
+
 def test_text_output(capsys):
     assert main(_args()) == 0
     out = capsys.readouterr().out
@@ -36,7 +47,7 @@ def test_text_output(capsys):
 
 @pytest.mark.parametrize(("over", "name"), [
     ({"m1": -1}, "m1"), ({"k2": 0}, "k2"), ({"l1": "nan"}, "l1"), ({"l2": "inf"}, "l2"),
-    ({"d": 0.5}, "d"), ({"h": 0.5}, "h"), ({"m3": "abc"}, "m3"), ({"c1": 0.1}, "c1"),
+    ({"d": 0.5}, "d"), ({"h": 0.5}, "h"), ({"m3": "abc"}, "m3"), ({"c1": -0.1}, "c1"),
 ])
 def test_bad_input_exits_2_naming_the_parameter(capsys, over, name):
     with pytest.raises(SystemExit) as exc:

@@ -2,8 +2,9 @@
 
 ``flutterfriction ziegler --l1 L1 --l2 L2 --d D --h H --m1 M1 --m2 M2 --m3 M3 --k1 K1 --k2 K2
 [--c1 0 --c2 0] [--json]`` prints the critical follower loads (flutter ``P_flu``, divergence
-``P_div``) and dead loads (``H_cr``, ``H_sup``) in newtons. Bad input: one line naming the
-parameter on stderr, exit code 2, no traceback.
+``P_div``) for the given hinge viscosities, the same without viscosity (``P_flu_undamped``,
+``P_div_undamped``) and the dead loads (``H_cr``, ``H_sup``, unaffected by viscosity) in newtons.
+Bad input: one line naming the parameter on stderr, exit code 2, no traceback.
 """
 
 from __future__ import annotations
@@ -54,8 +55,10 @@ def build_parser() -> argparse.ArgumentParser:
                     "and divergence under a follower load, buckling under a dead load.")
     for name, text in ZIEGLER_PARAMS.items():
         z.add_argument(f"--{name}", type=_number, required=True, help=text)
-    z.add_argument("--c1", type=_number, default=0.0, help="hinge viscosity at A [N m s/rad]")
-    z.add_argument("--c2", type=_number, default=0.0, help="hinge viscosity at B [N m s/rad]")
+    z.add_argument("--c1", type=_number, default=0.0,
+                   help="hinge viscosity at A [N m s/rad], >= 0 (default 0)")
+    z.add_argument("--c2", type=_number, default=0.0,
+                   help="hinge viscosity at B [N m s/rad], >= 0 (default 0)")
     z.add_argument("--json", action="store_true", help="print one JSON object")
     return parser
 
@@ -65,12 +68,8 @@ def _ziegler(args: argparse.Namespace) -> dict:
     from flutterfriction.models.ziegler import ZieglerPendulum
 
     pendulum = ZieglerPendulum(**{k: getattr(args, k) for k in (*ZIEGLER_PARAMS, "c1", "c2")})
-    if pendulum.c1 > 0 or pendulum.c2 > 0:
-        raise ParameterError("--c1/--c2 > 0 (viscous hinges) is not supported yet: the damped "
-                             "critical loads arrive with the viscosity issue; use 0")
-    loads = critical_loads(pendulum)
-    return {"P_flu": loads.P_flu, "P_div": loads.P_div, "H_cr": loads.H_cr,
-            "H_sup": loads.H_sup, "units": "N", "parameters": pendulum.as_dict()}
+    return {**critical_loads(pendulum).as_dict(), "units": "N",
+            "parameters": pendulum.as_dict()}
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -84,15 +83,26 @@ def main(argv: Sequence[str] | None = None) -> int:
     except ConvergenceError as exc:
         print(f"flutterfriction: solver did not converge: {exc}", file=sys.stderr)
         return 1
-    if args.json:
+    try:
+        _print(result, args.json)
+    except BrokenPipeError:  # e.g. piped into `head`: not an error of ours
+        sys.stderr.close()
+    return 0
+
+
+def _print(result: dict, as_json: bool) -> None:
+    if as_json:
         print(json.dumps(result))
     else:
-        names = {"P_flu": "flutter load (follower)", "P_div": "divergence load (follower)",
-                 "H_cr": "critical dead load", "H_sup": "second dead buckling load"}
+        names = {"P_flu": "flutter load (follower, given viscosity)",
+                 "P_div": "divergence load (follower, given viscosity)",
+                 "P_flu_undamped": "flutter load, viscosity absent",
+                 "P_div_undamped": "divergence load, viscosity absent",
+                 "H_cr": "critical dead load (any viscosity)",
+                 "H_sup": "second dead buckling load"}
         for key, label in names.items():
             value = result[key]
-            print(f"{key:6s} = {'none' if value is None else f'{value:.10g} N':>18s}  {label}")
-    return 0
+            print(f"{key:14s} = {'none' if value is None else f'{value:.10g} N':>18s}  {label}")
 
 
 if __name__ == "__main__":

@@ -4,10 +4,9 @@
 rule check:
     input:
         reference="workflow/reference.yaml",
-        data=expand("results/data/{scene}.json", scene=ZIEGLER_SCENES),
-        figures=expand("results/figures/{scene}.{ext}", scene=ZIEGLER_FIGURES,
-                       ext=["pdf", "png"]),
-        reports=["results/reports/ziegler.html"],
+        data=expand("results/data/{scene}.json", scene=ALL_SCENES),
+        figures=expand("results/figures/{scene}.{ext}", scene=ALL_FIGURES, ext=["pdf", "png"]),
+        reports=["results/reports/ziegler.html", "results/reports/ziegler_paradox.html"],
     output:
         json="results/checks/summary.json",
         md="results/checks/summary.md",

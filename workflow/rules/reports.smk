@@ -12,3 +12,16 @@ rule report_ziegler:
         "results/benchmarks/report_ziegler.tsv"
     script:
         "../scripts/execute_notebook.py"
+
+
+rule report_ziegler_paradox:
+    input:
+        notebook="notebooks/ziegler_paradox.py",
+        data=expand("results/data/{scene}.json", scene=PARADOX_SCENES),
+        figures=expand("results/figures/{scene}.png", scene=PARADOX_FIGURES),
+    output:
+        "results/reports/ziegler_paradox.html",
+    benchmark:
+        "results/benchmarks/report_ziegler_paradox.tsv"
+    script:
+        "../scripts/execute_notebook.py"

@@ -1,8 +1,13 @@
 # Chapter §2.1–2.3: the Ziegler double pendulum. Each scene: a solver rule writing
 # results/data/<scene>.json, then a plot rule writing results/figures/<scene>.{pdf,png}.
 
+# §2.1–2.3 (undamped) and §2.2/2.4/2.10 (viscous hinges, the Ziegler paradox).
 ZIEGLER_FIGURES = ["eq25", "eq46", "eq47", "eq48", "fig02", "fig03", "fig04"]
 ZIEGLER_SCENES = ZIEGLER_FIGURES + ["errata_ziegler"]
+PARADOX_FIGURES = ["fig05", "paradox_limit", "fig19_theory", "paradox_map"]
+PARADOX_SCENES = PARADOX_FIGURES + ["damped_dead_load", "errata_damped"]
+ALL_FIGURES = ZIEGLER_FIGURES + PARADOX_FIGURES
+ALL_SCENES = ZIEGLER_SCENES + PARADOX_SCENES
 
 
 rule ziegler_solve:
@@ -14,7 +19,7 @@ rule ziegler_solve:
         # The resolved parameters: editing one scene's config reruns that scene only.
         cfg=lambda w: scene_params(config, w.scene),
     wildcard_constraints:
-        scene="|".join(ZIEGLER_SCENES),
+        scene="|".join(ALL_SCENES),
     benchmark:
         "results/benchmarks/{scene}.solve.tsv"
     script:
@@ -29,6 +34,6 @@ rule ziegler_plot:
         pdf="results/figures/{scene}.pdf",
         png="results/figures/{scene}.png",
     wildcard_constraints:
-        scene="|".join(ZIEGLER_FIGURES),
+        scene="|".join(ALL_FIGURES),
     script:
         "../scripts/plot_scene.py"

@@ -2,7 +2,7 @@
 
 from flutterfriction.io import read_json
 from flutterfriction.plotting import save_figure
-from flutterfriction.plotting.ziegler import PLOTS
+from flutterfriction.plotting.registry import PLOTS
 
 fig = PLOTS[snakemake.wildcards.scene](read_json(snakemake.input.data))
 save_figure(fig, snakemake.output.pdf, snakemake.output.png)

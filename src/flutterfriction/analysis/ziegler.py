@@ -12,6 +12,7 @@ import numpy as np
 import scipy.linalg as sla
 from numpy.typing import ArrayLike, NDArray
 
+from flutterfriction.analysis.damped import divergence_onset, flutter_onset
 from flutterfriction.analysis.stability import (
     Regime,
     classify,
@@ -26,12 +27,20 @@ from flutterfriction.models.ziegler import ZieglerPendulum
 
 @dataclass(frozen=True)
 class CriticalLoads:
-    """Critical loads of the undamped pendulum [N]; ``None`` when a load does not exist."""
+    """Critical loads of the pendulum [N]; ``None`` when a load does not exist.
+
+    ``P_flu``, ``P_div`` are for the pendulum's own hinge viscosities (damped flutter is the
+    Hopf crossing, damped divergence the load where the unstable pair becomes real);
+    ``P_flu_undamped``, ``P_div_undamped`` for viscosity absent "from the beginning". The dead
+    loads ``H_cr``, ``H_sup`` are quasi-static and do not depend on viscosity (§2.2, after eq. 31).
+    """
 
     P_flu: float | None
     P_div: float | None
     H_cr: float | None
     H_sup: float | None
+    P_flu_undamped: float | None = None
+    P_div_undamped: float | None = None
 
     def as_dict(self) -> dict[str, float | None]:
         return asdict(self)
@@ -72,11 +81,48 @@ def dead_critical_loads(pendulum: ZieglerPendulum) -> tuple[float, float]:
     return float(loads[0]), float(loads[1])
 
 
+def is_damped(pendulum: ZieglerPendulum) -> bool:
+    return pendulum.c1 > 0 or pendulum.c2 > 0
+
+
+def _damped_args(pendulum: ZieglerPendulum, dead: bool = False) -> tuple:
+    K1 = pendulum.dead_load_matrix() if dead else pendulum.follower_load_matrix()
+    return (pendulum.mass_matrix(), pendulum.viscosity_matrix(), pendulum.stiffness_matrix(), K1)
+
+
+def damped_flutter_load(pendulum: ZieglerPendulum, method: str = "routh") -> float:
+    """Flutter load [N] with viscous hinges (eq. 27): the follower load at which a pair of
+    eigenvalues crosses the imaginary axis. ``method``: ``"routh"`` (exact Routh–Hurwitz on the
+    characteristic polynomial, the accurate one at small viscosity) or ``"eigenvalues"``."""
+    return flutter_onset(*_damped_args(pendulum), method=method,
+                         load_max=4 * max(pendulum.k1, pendulum.k2) / pendulum.l1)
+
+
+def damped_divergence_load(pendulum: ZieglerPendulum, method: str = "eigenvalues") -> float:
+    """Divergence load [N] with viscous hinges: the follower load at which the unstable pair
+    becomes real. ``method``: ``"eigenvalues"`` or ``"algebraic"`` (Routh/Sturm root counts and
+    the resultant of the characteristic polynomial)."""
+    start = damped_flutter_load(pendulum, "eigenvalues" if method == "eigenvalues" else "routh")
+    return divergence_onset(*_damped_args(pendulum), method=method, start=start,
+                            load_max=2 * start)
+
+
+def damped_dead_load_onset(pendulum: ZieglerPendulum, method: str = "routh") -> float:
+    """First dead load [N] at which the damped pendulum loses stability (it is H_cr: §2.2)."""
+    return flutter_onset(*_damped_args(pendulum, dead=True), method=method,
+                         load_max=4 * max(pendulum.k1, pendulum.k2) / pendulum.l1)
+
+
 def critical_loads(pendulum: ZieglerPendulum) -> CriticalLoads:
-    """All critical loads of the undamped pendulum, computed numerically."""
-    P_flu, P_div = follower_critical_loads(pendulum)
+    """All critical loads of the pendulum, computed numerically from its matrices."""
+    P_flu0, P_div0 = follower_critical_loads(pendulum)
     H_cr, H_sup = dead_critical_loads(pendulum)
-    return CriticalLoads(P_flu=P_flu, P_div=P_div, H_cr=H_cr, H_sup=H_sup)
+    if is_damped(pendulum):
+        P_flu, P_div = damped_flutter_load(pendulum), damped_divergence_load(pendulum)
+    else:
+        P_flu, P_div = P_flu0, P_div0
+    return CriticalLoads(P_flu=P_flu, P_div=P_div, H_cr=H_cr, H_sup=H_sup,
+                         P_flu_undamped=P_flu0, P_div_undamped=P_div0)
 
 
 def spectrum(pendulum: ZieglerPendulum, P: float = 0.0, H: float = 0.0) -> NDArray:

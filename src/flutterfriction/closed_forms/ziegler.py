@@ -128,9 +128,10 @@ def optimal_two_mass_loads(l1: float, l2: float, k1: float, k2: float) -> tuple[
 
 
 def critical_loads_closed_form(pendulum: ZieglerPendulum) -> CriticalLoads:
-    """All critical loads [N] from eqs. (22), (39), (41)."""
+    """Critical loads [N] of the undamped pendulum from eqs. (22), (39), (41)."""
     g = pendulum.groups()
     g_flu, g_div = flutter_divergence_gammas(g)
     e_cr, e_sup = buckling_etas(g)
     u = pendulum.load_unit
-    return CriticalLoads(P_flu=g_flu * u, P_div=g_div * u, H_cr=e_cr * u, H_sup=e_sup * u)
+    return CriticalLoads(P_flu=g_flu * u, P_div=g_div * u, H_cr=e_cr * u, H_sup=e_sup * u,
+                         P_flu_undamped=g_flu * u, P_div_undamped=g_div * u)

@@ -11,7 +11,7 @@ from collections.abc import Callable
 from typing import Any
 
 from flutterfriction.errors import ParameterError
-from flutterfriction.scenes import ziegler
+from flutterfriction.scenes import ziegler, ziegler_damped
 
 SceneBuilder = Callable[[dict[str, Any]], dict[str, Any]]
 
@@ -24,6 +24,12 @@ SCENES: dict[str, SceneBuilder] = {
     "fig03": ziegler.fig03,
     "fig04": ziegler.fig04,
     "errata_ziegler": ziegler.errata,
+    "fig05": ziegler_damped.fig05,
+    "paradox_limit": ziegler_damped.paradox_limit,
+    "fig19_theory": ziegler_damped.fig19_theory,
+    "paradox_map": ziegler_damped.paradox_map,
+    "damped_dead_load": ziegler_damped.damped_dead_load,
+    "errata_damped": ziegler_damped.errata_damped,
 }
 
 

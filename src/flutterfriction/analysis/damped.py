@@ -1,0 +1,165 @@
+"""Critical loads of damped systems ``M q'' + C q' + (K0 + p K1) q = 0`` (chapter §2.2, §2.4).
+
+With damping, flutter is the load where a pair of eigenvalues ``s`` crosses the imaginary axis
+(Hopf), and divergence the load where the unstable pair meets on the positive real axis and
+becomes real. Each is found two independent ways:
+
+- ``method="eigenvalues"``: the spectrum of the first-order form. Flutter: Brent's method on
+  ``max Re s(p)``, smooth at a simple crossing. Divergence: Brent's method on the discriminant
+  ``prod (s_i - s_j)^2`` of the spectrum, across the flutter/divergence change of regime.
+- ``method="routh"`` (flutter) / ``"algebraic"`` (divergence): the characteristic polynomial
+  only (:mod:`.polynomial`, no eigenvalues). Flutter: bisection to machine precision on the
+  exact Routh–Hurwitz verdict (:mod:`.routh`). Divergence: regimes from exact Routh and Sturm
+  root counts, refined with Brent's method on the resultant ``Res(p, p')``.
+
+Both scan ``[start, load_max]`` first and double the window until the change is bracketed.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+from scipy.optimize import brentq
+
+from flutterfriction.analysis.polynomial import (
+    characteristic_polynomial,
+    discriminant_from_coefficients,
+    regime_from_coefficients,
+)
+from flutterfriction.analysis.routh import routh_hurwitz
+from flutterfriction.analysis.stability import Regime, classify, discriminant
+from flutterfriction.errors import ConvergenceError, ParameterError
+
+Matrix = NDArray[np.float64]
+
+
+def _state_spectra(M: Matrix, C: Matrix, K0: Matrix, K1: Matrix, loads: ArrayLike) -> NDArray:
+    """Spectra of the first-order form for many loads in one batched call, shape (m, 2n)."""
+    p = np.atleast_1d(np.asarray(loads, dtype=float))
+    n = M.shape[0]
+    Minv = np.linalg.inv(M)
+    A = np.zeros((p.size, 2 * n, 2 * n))
+    A[:, :n, n:] = np.eye(n)
+    A[:, n:, :n] = -(Minv @ K0)[None] - p[:, None, None] * (Minv @ K1)[None]
+    A[:, n:, n:] = -Minv @ C
+    return np.linalg.eigvals(A)
+
+
+class _System:
+    def __init__(self, M: ArrayLike, C: ArrayLike, K0: ArrayLike, K1: ArrayLike) -> None:
+        self.M, self.C, self.K0, self.K1 = (np.asarray(x, dtype=float) for x in (M, C, K0, K1))
+        if not np.any(self.C):
+            raise ParameterError("C must be non-zero: use the coalescence solver when undamped")
+
+    def spectra(self, loads: ArrayLike) -> NDArray:
+        return _state_spectra(self.M, self.C, self.K0, self.K1, loads)
+
+    def coefficients(self, load: float) -> NDArray:
+        return characteristic_polynomial(self.M, self.C, self.K0 + load * self.K1)
+
+    def regime_eigen(self, load: float) -> Regime:
+        return classify(self.spectra([load])[0])
+
+    def regime_algebraic(self, load: float) -> Regime | None:
+        try:
+            return regime_from_coefficients(self.coefficients(load))
+        except ConvergenceError:  # exactly on a boundary: no verdict at this load
+            return None
+
+
+def _scan(regime_of: Callable[[float], Regime | None], target: Callable[[Regime], bool],
+          start: float, load_max: float, n_scan: int, max_doublings: int) -> tuple[float, float]:
+    """First bracket ``[a, b]`` with ``not target(regime(a))`` and ``target(regime(b))``."""
+    lo = start
+    hi = load_max
+    for _ in range(max_doublings):
+        previous = lo
+        for p in np.linspace(lo, hi, n_scan + 1)[1:]:
+            r = regime_of(float(p))
+            if r is None:
+                continue
+            if target(r):
+                return previous, float(p)
+            previous = float(p)
+        lo, hi = hi, 2 * hi
+    raise ConvergenceError(f"no change of regime found up to load {hi:g}")
+
+
+def _bisect(is_after: Callable[[float], bool], a: float, b: float) -> float:
+    """Bisection to adjacent floats: the transition of a boolean verdict, to machine precision."""
+    for _ in range(200):
+        mid = 0.5 * (a + b)
+        if mid <= a or mid >= b:
+            return b
+        if is_after(mid):
+            b = mid
+        else:
+            a = mid
+    return b
+
+
+def flutter_onset(M: ArrayLike, C: ArrayLike, K0: ArrayLike, K1: ArrayLike, *,
+                  method: str = "eigenvalues", start: float = 0.0, load_max: float = 1.0,
+                  n_scan: int = 256, max_doublings: int = 60) -> float:
+    """Smallest load above ``start`` where the damped system loses stability."""
+    sys_ = _System(M, C, K0, K1)
+    if method == "eigenvalues":
+        def growth(p: float) -> float:
+            return float(sys_.spectra([p])[0].real.max())
+
+        # Bracket on the raw sign of max Re s (a tolerance-based classification would bias the
+        # bracket when fast, strongly damped modes set the spectral scale), then Brent.
+        lo, hi = start, load_max
+        for _ in range(max_doublings):
+            grid = np.linspace(lo, hi, n_scan + 1)
+            g = sys_.spectra(grid).real.max(axis=1)
+            up = np.nonzero(g > 0)[0]
+            if up.size:
+                i = int(up[0])
+                if i == 0:
+                    raise ConvergenceError(f"already unstable at the start load {lo:g}")
+                return float(brentq(growth, grid[i - 1], grid[i],
+                                    xtol=4 * np.finfo(float).eps * abs(grid[i])))
+            lo, hi = hi, 2 * hi
+        raise ConvergenceError(f"no loss of stability found up to load {hi:g}")
+    if method == "routh":
+        def unstable(p: float) -> bool:
+            return not routh_hurwitz(sys_.coefficients(p)).stable
+
+        a, b = _scan(lambda p: Regime.FLUTTER if unstable(p) else Regime.STABLE,
+                     lambda r: r != Regime.STABLE, start, load_max, n_scan, max_doublings)
+        return _bisect(unstable, a, b)
+    raise ParameterError(f"method must be 'eigenvalues' or 'routh', got {method!r}")
+
+
+def divergence_onset(M: ArrayLike, C: ArrayLike, K0: ArrayLike, K1: ArrayLike, *,
+                     method: str = "eigenvalues", start: float = 0.0, load_max: float = 1.0,
+                     n_scan: int = 256, max_doublings: int = 60) -> float:
+    """Smallest load above ``start`` where the motion is divergence (unstable roots all real)."""
+    sys_ = _System(M, C, K0, K1)
+    if method == "eigenvalues":
+        regime_of = sys_.regime_eigen
+
+        def disc(p: float) -> float:
+            return float(discriminant(sys_.spectra([p]))[0])
+    elif method == "algebraic":
+        regime_of = sys_.regime_algebraic
+
+        def disc(p: float) -> float:
+            return discriminant_from_coefficients(sys_.coefficients(p))
+    else:
+        raise ParameterError(f"method must be 'eigenvalues' or 'algebraic', got {method!r}")
+    a, b = _scan(regime_of, lambda r: r == Regime.DIVERGENCE, start, load_max, n_scan,
+                 max_doublings)
+    # Narrow the bracket on the verdict first, so that it holds this one coalescence only.
+    for _ in range(20):
+        mid = 0.5 * (a + b)
+        r = regime_of(mid)
+        if r is None:
+            break
+        a, b = (a, mid) if r == Regime.DIVERGENCE else (mid, b)
+    if disc(a) * disc(b) < 0:
+        return float(brentq(disc, a, b, xtol=4 * np.finfo(float).eps * abs(b)))
+    return _bisect(lambda p: regime_of(p) == Regime.DIVERGENCE, a, b)

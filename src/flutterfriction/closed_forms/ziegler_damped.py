@@ -1,0 +1,144 @@
+"""The pendulum with viscous hinges (chapter §2.2 after eq. 26, and §2.4): closed forms.
+
+Dimensionless groups (eq. 29): ``c = c1/c2`` and ``epsilon = c2 / (l2 sqrt(k2 m2))``; the
+eigenvalue ``omega~ = -i omega = s l2 sqrt(m2/k2)`` (eq. 30), ``s`` the growth rate [1/s].
+
+- :func:`characteristic_coefficients`: ``p0 ... p4`` of eq. (30) for any dead and follower
+  load, **derived with sympy** from the dimensionless matrices ``M^ omega~^2 + C^ omega~ + K^ + G^``
+  at first use, not copied from the text (eq. 31 as printed has misprints, in
+  :func:`coefficients_as_printed_eq31` for the erratum).
+- :func:`eq52_coefficients`, :func:`eq54_flutter_gamma`: the symmetric case of eqs. (50)–(54).
+- :func:`damped_flutter_gamma`: our generalisation of eq. (54) to any pendulum. With
+  ``p1 = epsilon q1`` and ``p3 = epsilon q3`` the Hurwitz determinant is
+  ``Delta3 = epsilon^2 [q1 q3 p2 - a q3^2 - k q1^2]`` and
+  ``p2 = beta1 - gamma beta2 + c epsilon^2``, so stability is lost at
+  ``gamma* = (beta1 + c epsilon^2 - (a q3^2 + k q1^2)/(q1 q3)) / beta2``.
+  By the AM-GM inequality ``(a q3^2 + k q1^2)/(q1 q3) >= 2 sqrt(k a)``: as epsilon -> 0 the
+  damped flutter load never exceeds the undamped one (eq. 39), with equality only when
+  ``q1/q3 = sqrt(a/k)`` (:func:`paradox_free_damping_ratio`). This is the Ziegler paradox in
+  closed form (cf. Kirillov 2005, 2013). For the symmetric case it gives eq. (54).
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+
+import numpy as np
+import sympy as sp
+from numpy.typing import NDArray
+
+from flutterfriction.closed_forms.ziegler import (
+    coefficient_a,
+    coefficient_beta1,
+    coefficient_beta2,
+)
+from flutterfriction.errors import ParameterError
+from flutterfriction.models.ziegler import PendulumGroups, ZieglerPendulum
+
+_SYMBOLS = sp.symbols("rho1 rho2 y1 y2 lam k c epsilon gamma eta")
+
+
+@functools.cache
+def symbolic_coefficients() -> tuple[sp.Expr, ...]:
+    """``(p0, ..., p4)`` of eq. (30) as sympy expressions, from the matrices of eqs. (11), (26).
+
+    The dimensionless matrices follow from dividing ``M s^2 + C s + K + G`` by ``k2`` with the
+    groups of eqs. (17), (29) and ``omega~ = s l2 sqrt(m2/k2)``.
+    """
+    r1, r2, y1, y2, lam, k, c, eps, gam, eta = _SYMBOLS
+    w = sp.Symbol("omega_tilde")
+    M = sp.Matrix([[(r1 * y1**2 + r2 + 1) * lam**2, lam * (1 + r2 * y2)],
+                   [lam * (1 + r2 * y2), 1 + r2 * y2**2]])
+    C = eps * sp.Matrix([[1 + c, -1], [-1, 1]])
+    K = sp.Matrix([[1 + k, -1], [-1, 1]])
+    G = sp.Matrix([[-gam - eta, gam], [0, -eta / lam]])
+    poly = sp.Poly(sp.expand((M * w**2 + C * w + K + G).det()), w)
+    coeffs = poly.all_coeffs()
+    if len(coeffs) != 5:
+        raise RuntimeError("the damped pendulum must have a quartic characteristic polynomial")
+    return tuple(sp.factor(x) for x in coeffs)
+
+
+@functools.cache
+def _numeric_coefficients():
+    return sp.lambdify(_SYMBOLS, list(symbolic_coefficients()), "math")
+
+
+def _eps_c(pendulum: ZieglerPendulum) -> tuple[float, float]:
+    """``(epsilon, c)`` of eq. (29); needs c2 > 0 (c = c1/c2)."""
+    if pendulum.c2 <= 0:
+        raise ParameterError("the dimensionless form of eq. (29) needs c2 > 0 (c = c1/c2)")
+    eps = pendulum.c2 / (pendulum.l2 * math.sqrt(pendulum.k2 * pendulum.m2))
+    return eps, pendulum.c1 / pendulum.c2
+
+
+def viscosity_groups(pendulum: ZieglerPendulum) -> tuple[float, float]:
+    """``(epsilon, c)`` of eq. (29)."""
+    return _eps_c(pendulum)
+
+
+def characteristic_coefficients(g: PendulumGroups, eps: float, c: float, gamma: float = 0.0,
+                                eta: float = 0.0) -> NDArray[np.float64]:
+    """``[p0, p1, p2, p3, p4]`` of eq. (30) (derived, see :func:`symbolic_coefficients`)."""
+    return np.array(_numeric_coefficients()(g.rho1, g.rho2, g.y1, g.y2, g.lam, g.k, c, eps,
+                                            gamma, eta), dtype=float)
+
+
+def coefficients_as_printed_eq31(g: PendulumGroups, eps: float, c: float,
+                                 eta: float) -> NDArray[np.float64]:
+    """Eq. (31) exactly as printed (dead load). Evidence for the erratum only: p0, p1 and p2
+    carry ``rho2 y2`` where the expansion has ``rho2 y2^2``."""
+    r1, r2, y1, y2, lam, k = g.rho1, g.rho2, g.y1, g.y2, g.lam, g.k
+    p0 = lam**2 * (r2 + r1 * y1**2 - r2 * y2 + r2**2 * y2 + r1 * r2 * y1**2 * y2 - r2**2 * y2**2)
+    p1 = eps * (1 + c + 2 * lam + lam**2 + lam**2 * r2 + lam**2 * r1 * y1**2 + r2 * y2
+                + c * r2 * y2 + 2 * lam * r2 * y2)
+    p2 = (1 + c * eps**2 - eta + k + lam * (2 - eta + lam - (eta - lam) * (r2 + r1 * y1**2))
+          + r2 * y2 * (1 - eta + k + 2 * lam))
+    p3 = eps * (c - eta + k - eta * (1 + c) / lam)
+    p4 = -eta + k + eta / lam * (eta - 1 - k)
+    return np.array([p0, p1, p2, p3, p4])
+
+
+def eq52_coefficients(eps: float, gamma: float) -> NDArray[np.float64]:
+    """Eq. (52): ``p = [1, 6 eps, 6 + eps^2 - 2 gamma, 2 eps, 1]`` (l1 = l2, k1 = k2, m1 = m2,
+    d = l1, m3 = 0, c1 = c2)."""
+    return np.array([1.0, 6 * eps, 6 + eps**2 - 2 * gamma, 2 * eps, 1.0])
+
+
+def eq54_flutter_gamma(eps: float) -> float:
+    """Eq. (54): ``P*_flu L/K = 4/3 + eps^2/2``."""
+    return 4.0 / 3.0 + eps**2 / 2.0
+
+
+def _q1_q3(g: PendulumGroups, c: float) -> tuple[float, float]:
+    """``p1 = eps q1`` and ``p3 = eps q3`` (follower load), from the derived coefficients."""
+    q1 = (c * (1 + g.rho2 * g.y2**2) + g.lam**2 * (1 + g.rho1 * g.y1**2 + g.rho2)
+          + 2 * g.lam * (1 + g.rho2 * g.y2) + 1 + g.rho2 * g.y2**2)
+    return q1, c + g.k
+
+
+def damped_flutter_gamma(g: PendulumGroups, eps: float, c: float) -> float:
+    """Damped flutter load ``gamma* = P*_flu l1/k2`` for any pendulum (generalises eq. 54)."""
+    q1, q3 = _q1_q3(g, c)
+    a, k = coefficient_a(g), g.k
+    return (coefficient_beta1(g) + c * eps**2 - (a * q3**2 + k * q1**2) / (q1 * q3)) \
+        / coefficient_beta2(g)
+
+
+def vanishing_viscosity_flutter_gamma(g: PendulumGroups, c: float) -> float:
+    """``lim_{eps -> 0} gamma*``: the flutter load of a vanishingly viscous pendulum."""
+    return damped_flutter_gamma(g, 0.0, c)
+
+
+def paradox_free_damping_ratio(g: PendulumGroups) -> float | None:
+    """The ``c = c1/c2`` for which the vanishing-viscosity flutter load equals the undamped one
+    (``sqrt(a) q3 = sqrt(k) q1``); ``None`` when no positive ratio exists."""
+    a, k = coefficient_a(g), g.k
+    q1_0, _ = _q1_q3(g, 0.0)
+    Cm = 1 + g.rho2 * g.y2**2  # dq1/dc
+    den = math.sqrt(a) - math.sqrt(k) * Cm
+    if den == 0:
+        return None
+    c = (math.sqrt(k) * q1_0 - math.sqrt(a) * k) / den
+    return c if c > 0 else None

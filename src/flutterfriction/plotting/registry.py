@@ -1,0 +1,5 @@
+"""All figure functions by scene name (the plot rule looks a scene up here)."""
+
+from flutterfriction.plotting import ziegler, ziegler_damped
+
+PLOTS = {**ziegler.PLOTS, **ziegler_damped.PLOTS}

@@ -1,0 +1,153 @@
+"""Figures of §2.4 and §2.10: Fig. 5, the paradox limit, Fig. 19 (theory) and the paradox map."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.colors import Normalize
+from matplotlib.figure import Figure
+
+COLOURS = ["black", "C0", "C3", "C2", "C1"]
+
+
+def plot_fig05(data: dict[str, Any]) -> Figure:
+    """Fig. 5: Re and Im of omega~ against gamma, undamped and for each epsilon (eq. 51)."""
+    gamma = np.array(data["gamma"])
+    fig, (ax_re, ax_im) = plt.subplots(2, 1, figsize=(5.4, 5.4), sharex=True)
+    for colour, case in zip(COLOURS, data["cases"].values(), strict=False):
+        label = "undamped" if case["eps"] == 0 else rf"$\epsilon$ = {case['eps']:g}"
+        for i, branch in enumerate(case["re"]):
+            ax_re.plot(gamma, branch, color=colour, lw=1.3, label=label if i == 0 else None)
+        for branch in case["im"]:
+            ax_im.plot(gamma, branch, color=colour, lw=1.3)
+        for ax in (ax_re, ax_im):
+            ax.axvline(case["gamma_flu"], color=colour, ls="--", lw=0.8)
+        ax_re.annotate(rf"$\gamma_{{flu}}$ = {case['gamma_flu']:.3f}", (case["gamma_flu"], 0.98),
+                       xycoords=("data", "axes fraction"), rotation=90, va="top", ha="right",
+                       fontsize=7, color=colour)
+    ax_re.axhline(0, color="k", lw=0.6)
+    ax_re.set_ylabel(r"Re $\tilde\omega$")
+    ax_im.set_ylabel(r"Im $\tilde\omega$")
+    ax_im.set_xlabel(r"$\gamma = P L/K$")
+    ax_im.set_xlim(gamma[0], gamma[-1])
+    ax_re.legend(loc="lower left")
+    ax_re.set_title(r"Fig. 5: $l_1=l_2=L$, $k_1=k_2=K$, $m_1=m_2$, $d=L$, $c_1=c_2$ (eq. 51); "
+                    "dashed: flutter loads", fontsize=8)
+    return fig
+
+
+def plot_paradox_limit(data: dict[str, Any]) -> Figure:
+    """The damped flutter load against epsilon on a log axis: the Ziegler paradox."""
+    eps = np.array(data["eps"])
+    fig, ax = plt.subplots(figsize=(5.4, 3.6))
+    ax.semilogx(eps, data["gamma_flu_routh"], "o", ms=3.5, mfc="none", color="C0",
+                label="Routh–Hurwitz (exact verdict) on the matrices")
+    ax.semilogx(eps, data["gamma_flu_eq54"], color="C3", lw=1.2,
+                label=r"eq. (54): $4/3 + \epsilon^2/2$")
+    ax.axhline(data["gamma_flu_undamped"], color="k", ls="--", lw=1.0,
+               label=f"undamped (eq. 46): {data['gamma_flu_undamped']:.4g} K/L")
+    ax.axhline(data["gamma_flu_limit"], color="0.4", ls=":", lw=1.0,
+               label=rf"$\epsilon \to 0$: {data['gamma_flu_limit']:.4f} K/L")
+    ax.annotate("", (eps[0] * 1.5, data["gamma_flu_limit"]),
+                (eps[0] * 1.5, data["gamma_flu_undamped"]),
+                arrowprops={"arrowstyle": "<->", "color": "C3"})
+    ax.annotate("the Ziegler paradox:\nthe limit is not the\nundamped value",
+                (eps[0] * 2.2, 0.5 * (data["gamma_flu_limit"] + data["gamma_flu_undamped"])),
+                va="center", fontsize=8, color="C3")
+    ax.set_xlabel(r"viscosity $\epsilon = c_2/(l_2\sqrt{k_2 m_2})$")
+    ax.set_ylabel(r"flutter load $P_{flu}\,L/K$")
+    ax.set_ylim(1.2, 2.6)
+    ax.legend(loc="upper right", fontsize=7)
+    ax.set_title("Flutter load with vanishing hinge viscosity (symmetric pendulum)")
+    return fig
+
+
+def plot_fig19_theory(data: dict[str, Any]) -> Figure:
+    """Fig. 19, theory: the critical loads with and without viscosity, and how the quoted ratios
+    (0.70, 1.49) fix the hinge viscosity."""
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(8.4, 3.6),
+                                   gridspec_kw={"width_ratios": [1, 1.35]})
+    b = data["bars"]
+    x = np.arange(2)
+    w = 0.36
+    ax1.bar(x - w / 2, [b["P_flu_undamped"], b["P_div_undamped"]], w, color="0.6",
+            label="viscosity absent")
+    ax1.bar(x + w / 2, [b["P_flu_damped"], b["P_div_damped"]], w, color="C0",
+            label=f"$c_1=c_2$ = {data['c_reference']:g} N m s")
+    for xi, (u, d) in enumerate([(b["P_flu_undamped"], b["P_flu_damped"]),
+                                 (b["P_div_undamped"], b["P_div_damped"])]):
+        ax1.annotate(f"{u:.2f}", (xi - w / 2, u), ha="center", va="bottom", fontsize=7)
+        ax1.annotate(f"{d:.2f}\n(×{d / u:.3f})", (xi + w / 2, d), ha="center", va="bottom",
+                     fontsize=7)
+    ax1.set_xticks(x, ["flutter", "divergence"])
+    ax1.set_ylabel("critical follower load P [N]")
+    ax1.set_ylim(0, 1.25 * max(b.values()))
+    ax1.legend(loc="upper left", fontsize=7)
+    ax1.set_title("List (47): theoretical bars of Fig. 19", fontsize=8)
+    c = np.array(data["c"])
+    ax2.semilogx(c, data["flutter_ratio"], color="C0", label="flutter ratio")
+    ax2.semilogx(c, data["divergence_ratio"], color="C3", label="divergence ratio")
+    q = data["quantities"]
+    for ratio, key, colour in ((data["quoted_ratios"][0], "c_from_flutter_ratio", "C0"),
+                               (data["quoted_ratios"][1], "c_from_divergence_ratio", "C3")):
+        ax2.axhline(ratio, color=colour, ls=":", lw=0.8)
+        ax2.plot(q[key]["value"], ratio, "o", color=colour, ms=5)
+        ax2.annotate(f"quoted {ratio:g}\n→ c = {q[key]['value'] * 1e3:.2f}e-3 N m s",
+                     (q[key]["value"], ratio), xytext=(-118, 8),
+                     textcoords="offset points", fontsize=7, color=colour)
+    ax2.axvline(data["c_reference"], color="k", ls="--", lw=0.8)
+    ax2.annotate("§2.9: 0.006 N m s", (data["c_reference"], 0.02), rotation=90,
+                 xycoords=("data", "axes fraction"), ha="right", fontsize=7)
+    ax2.axhline(1.0, color="k", lw=0.6)
+    ax2.set_xlabel(r"hinge viscosity $c_1 = c_2$ [N m s]")
+    ax2.set_ylabel("damped / undamped critical load")
+    ax2.legend(loc="upper left", fontsize=7)
+    ax2.set_title("Ratios against viscosity", fontsize=8)
+    fig.tight_layout()
+    return fig
+
+
+def plot_paradox_map(data: dict[str, Any]) -> Figure:
+    """Vanishing-viscosity flutter load over the undamped one, against c1/c2 and the masses."""
+    lc = np.array(data["log10_c"])
+    fig, axes = plt.subplots(1, 2, figsize=(8.6, 3.8), sharex=True)
+    panels = ((axes[0], np.array(data["log10_mass_ratio"]), data["ratio_mass"],
+               data["paradox_free_c_mass"], r"$\log_{10}(m_1/m_2)$   ($d = l_1$)"),
+              (axes[1], np.array(data["d_ratio"]), data["ratio_d"], data["paradox_free_c_d"],
+               r"$d/l_1$   ($m_1 = m_2$)"))
+    norm = Normalize(vmin=0.0, vmax=1.0)
+    for ax, y, z, free, ylabel in panels:
+        im = ax.pcolormesh(lc, y, np.array(z), cmap="viridis", norm=norm, shading="auto")
+        cs = ax.contour(lc, y, np.array(z), levels=[0.25, 0.5, 0.75, 0.9, 0.99], colors="w",
+                        linewidths=0.6)
+        ax.clabel(cs, fontsize=6, fmt="%.2f")
+        pts = [(np.log10(c), yy) for c, yy in zip(free, y, strict=True) if c is not None]
+        if pts:
+            px, py = np.array(pts).T
+            inside = (px >= lc[0]) & (px <= lc[-1])
+            ax.plot(px[inside], py[inside], color="C3", lw=1.8,
+                    label="no paradox (closed form)")
+            ax.legend(loc="lower left", fontsize=7)
+        on_panel = [pt for pt in data["check_points"]
+                    if (ax is axes[0] and pt["d_over_l1"] == 1.0)
+                    or (ax is axes[1] and pt["m1_over_m2"] == 1.0)]
+        for pt in on_panel:
+            yy = np.log10(pt["m1_over_m2"]) if ax is axes[0] else pt["d_over_l1"]
+            ax.plot(np.log10(pt["c_ratio"]), yy, "x", color="w", ms=7, mew=1.8)
+        ax.set_xlabel(r"damping distribution $\log_{10}(c_1/c_2)$")
+        ax.set_ylabel(ylabel)
+    fig.colorbar(im, ax=axes, label=r"$\lim_{\epsilon\to 0} P^*_{flu} / P_{flu}$(undamped)")
+    fig.suptitle("Where the Ziegler paradox is strong (dark) and where it vanishes (ratio 1); "
+                 r"$l_1=l_2$, $k_1=k_2$, $m_3=0$; × = checked by Routh–Hurwitz at small "
+                 r"$\epsilon$", fontsize=8)
+    return fig
+
+
+PLOTS = {
+    "fig05": plot_fig05,
+    "paradox_limit": plot_paradox_limit,
+    "fig19_theory": plot_fig19_theory,
+    "paradox_map": plot_paradox_map,
+}

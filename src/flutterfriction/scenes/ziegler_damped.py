@@ -1,0 +1,286 @@
+"""Scenes of chapter §2.2 (viscosity, dead load), §2.4 (the Ziegler paradox) and §2.10 (Fig. 19).
+
+Damped flutter loads: exact Routh–Hurwitz on the characteristic polynomial (primary) and the
+eigenvalue crossing (independent). Damped divergence loads: eigenvalue coalescence (primary)
+and Routh/Sturm root counts with the resultant (independent). Closed forms: eq. (54) and its
+generalisation :func:`~flutterfriction.closed_forms.ziegler_damped.damped_flutter_gamma`.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+from scipy.optimize import brentq
+
+from flutterfriction.analysis.damped import _state_spectra
+from flutterfriction.analysis.ziegler import (
+    damped_dead_load_onset,
+    damped_divergence_load,
+    damped_flutter_load,
+    follower_critical_loads,
+)
+from flutterfriction.closed_forms import ziegler as cf
+from flutterfriction.closed_forms import ziegler_damped as cfd
+from flutterfriction.errors import ParameterError, check_positive
+from flutterfriction.models.ziegler import ZieglerPendulum
+from flutterfriction.scenes.ziegler import _n_points, _pendulum, _quantity, _take
+
+RH = "exact Routh-Hurwitz on the characteristic polynomial (bisection on the verdict)"
+EIG_CROSS = "eigenvalues: Re s = 0 crossing (Brent)"
+EIG_COAL = "eigenvalues: coalescence on the real axis (Brent on the discriminant)"
+ALGEBRAIC = "Routh/Sturm root counts + resultant Res(p, p') (no eigenvalues)"
+
+
+def with_viscosity(p: ZieglerPendulum, eps: float, c: float = 1.0) -> ZieglerPendulum:
+    """The pendulum with ``epsilon = c2/(l2 sqrt(k2 m2))`` and ``c = c1/c2`` (eq. 29)."""
+    c2 = eps * p.l2 * math.sqrt(p.k2 * p.m2)
+    return p.with_(c1=c * c2, c2=c2)
+
+
+def _eps_list(params: dict[str, Any], key: str = "eps_values") -> list[float]:
+    values = params.get(key)
+    if not isinstance(values, list) or not values:
+        raise ParameterError(f"{key} must be a non-empty list of numbers > 0")
+    return [check_positive(key, v) for v in values]
+
+
+# ---------------------------------------------------------------------- Fig. 5
+def fig05(params: dict[str, Any]) -> dict[str, Any]:
+    """Re and Im of omega~ against gamma, undamped and for each epsilon (eqs. 33, 51)."""
+    _take(params, {"pendulum", "eps_values", "gamma_max", "n_points"})
+    p0 = _pendulum(params)
+    u = p0.load_unit
+    T = p0.l2 * math.sqrt(p0.m2 / p0.k2)  # omega~ = s T (eq. 30)
+    gamma = np.linspace(0.0, check_positive("gamma_max", params.get("gamma_max", 5.0)),
+                        _n_points(params))
+    g_flu0, g_div0 = (x / u for x in follower_critical_loads(p0))
+    quantities = {
+        "gamma_flu_undamped": _quantity(g_flu0, cf.flutter_divergence_gammas(p0.groups())[0],
+                                        "eigenvalue coalescence", "closed form eq. (39)", "K/L")}
+    cases = {}
+    for eps in [0.0, *_eps_list(params)]:
+        p = with_viscosity(p0, eps) if eps > 0 else p0
+        s = _state_spectra(p.mass_matrix(), p.viscosity_matrix(), p.stiffness_matrix(),
+                           p.follower_load_matrix(), gamma * u) * T
+        case: dict[str, Any] = {"eps": eps, "re": np.sort(s.real, axis=1).T.tolist(),
+                                "im": np.sort(s.imag, axis=1).T.tolist()}
+        if eps > 0:
+            gf_rh = damped_flutter_load(p, "routh") / u
+            gf_eig = damped_flutter_load(p, "eigenvalues") / u
+            gd_eig = damped_divergence_load(p, "eigenvalues") / u
+            gd_alg = damped_divergence_load(p, "algebraic") / u
+            quantities[f"gamma_flu_eps{eps:g}"] = _quantity(gf_rh, gf_eig, RH, EIG_CROSS, "K/L")
+            quantities[f"eq54_eps{eps:g}"] = _quantity(cfd.eq54_flutter_gamma(eps), gf_rh,
+                                                       "closed form eq. (54)", RH, "K/L")
+            quantities[f"gamma_div_eps{eps:g}"] = _quantity(gd_eig, gd_alg, EIG_COAL,
+                                                            ALGEBRAIC, "K/L")
+            case.update(gamma_flu=gf_rh, gamma_div=gd_eig)
+        else:
+            case.update(gamma_flu=g_flu0, gamma_div=g_div0)
+        cases[f"{eps:g}"] = case
+    return {"gamma": gamma.tolist(), "cases": cases, "quantities": quantities}
+
+
+# ---------------------------------------------------------------------- the paradox limit
+def paradox_limit(params: dict[str, Any]) -> dict[str, Any]:
+    """P*_flu against epsilon -> 0 (log axis): the jump from 2 K/L to 4/3 K/L (eq. 54)."""
+    _take(params, {"pendulum", "eps_min", "eps_max", "n_points"})
+    p0 = _pendulum(params)
+    u = p0.load_unit
+    g = p0.groups()
+    eps_min = check_positive("eps_min", params.get("eps_min", 1e-4))
+    eps_max = check_positive("eps_max", params.get("eps_max", 2.0))
+    n = max(11, _n_points(params) // 20)
+    eps = np.geomspace(eps_min, eps_max, n)
+    numeric = np.array([damped_flutter_load(with_viscosity(p0, e), "routh") / u for e in eps])
+    closed = np.array([cfd.damped_flutter_gamma(g, e, 1.0) for e in eps])
+    eq54 = np.array([cfd.eq54_flutter_gamma(e) for e in eps])
+    g_flu0 = follower_critical_loads(p0)[0] / u
+    limit = cfd.vanishing_viscosity_flutter_gamma(g, 1.0)
+    return {
+        "eps": eps.tolist(), "gamma_flu_routh": numeric.tolist(),
+        "gamma_flu_closed_form": closed.tolist(), "gamma_flu_eq54": eq54.tolist(),
+        "gamma_flu_undamped": g_flu0, "gamma_flu_limit": limit,
+        "quantities": {
+            "limit": _quantity(limit, float(numeric[0]), "closed form, eps -> 0",
+                               f"Routh-Hurwitz at eps = {eps_min:g}", "K/L"),
+            "undamped": _quantity(g_flu0, cf.flutter_divergence_gammas(g)[0],
+                                  "eigenvalue coalescence", "closed form eq. (39)", "K/L"),
+            "max_closed_vs_numeric": _quantity(
+                float(np.max(np.abs(closed / numeric - 1))), 0.0,
+                "max relative difference, closed form vs Routh-Hurwitz over the curve",
+                "zero", ""),
+        },
+    }
+
+
+# ---------------------------------------------------------------------- Fig. 19 (theory)
+def fig19_theory(params: dict[str, Any]) -> dict[str, Any]:
+    """Flutter and divergence loads with and without hinge viscosity for list (47), c1 = c2 = c;
+    the viscosity inferred from the quoted ratios 0.70 (flutter) and 1.49 (divergence)."""
+    _take(params, {"pendulum", "c_reference", "flutter_ratio", "divergence_ratio",
+                   "c_min", "c_max", "n_points"})
+    p0 = _pendulum(params)
+    u = p0.load_unit
+    g = p0.groups()
+    c_ref = check_positive("c_reference", params["c_reference"], "N m s")
+    r_flu = check_positive("flutter_ratio", params["flutter_ratio"])
+    r_div = check_positive("divergence_ratio", params["divergence_ratio"])
+    c_min = check_positive("c_min", params.get("c_min", 1e-5), "N m s")
+    c_max = check_positive("c_max", params.get("c_max", 3e-2), "N m s")
+    P_flu0, P_div0 = follower_critical_loads(p0)
+    scale = p0.l2 * math.sqrt(p0.k2 * p0.m2)  # epsilon = c2 / scale
+
+    def hinge(c: float) -> ZieglerPendulum:
+        return p0.with_(c1=c, c2=c)
+
+    def flutter_ratio_closed(c: float) -> float:
+        return cfd.damped_flutter_gamma(g, c / scale, 1.0) * u / P_flu0
+
+    def divergence_ratio(c: float, method: str = "eigenvalues") -> float:
+        return damped_divergence_load(hinge(c), method) / P_div0
+
+    n = max(11, _n_points(params) // 20)
+    cs = np.geomspace(c_min, c_max, n)
+    curve_flu = [flutter_ratio_closed(c) for c in cs]
+    curve_div = [divergence_ratio(c) for c in cs]
+    # Inferred viscosities: the flutter ratio from the closed form (checked by Routh-Hurwitz),
+    # the divergence ratio from the eigenvalues (checked algebraically).
+    c_flu = brentq(lambda c: flutter_ratio_closed(c) - r_flu, c_min, c_max, xtol=1e-15)
+    c_div = brentq(lambda c: divergence_ratio(c) - r_div, c_min, c_max, xtol=1e-12)
+    c_div_alg = brentq(lambda c: divergence_ratio(c, "algebraic") - r_div, 0.5 * c_div,
+                       2 * c_div, xtol=1e-12)
+    ref = hinge(c_ref)
+    P_flu_c = damped_flutter_load(ref, "routh")
+    P_div_c = damped_divergence_load(ref, "eigenvalues")
+    return {
+        "c": cs.tolist(), "flutter_ratio": curve_flu, "divergence_ratio": curve_div,
+        "c_reference": c_ref, "quoted_ratios": [r_flu, r_div],
+        "bars": {"P_flu_undamped": P_flu0, "P_div_undamped": P_div0,
+                 "P_flu_damped": P_flu_c, "P_div_damped": P_div_c},
+        "quantities": {
+            "flutter_ratio_at_c_ref": _quantity(
+                P_flu_c / P_flu0, flutter_ratio_closed(c_ref),
+                RH, "closed form (generalised eq. 54)", ""),
+            "divergence_ratio_at_c_ref": _quantity(
+                P_div_c / P_div0, divergence_ratio(c_ref, "algebraic"), EIG_COAL, ALGEBRAIC, ""),
+            "c_from_flutter_ratio": _quantity(
+                c_flu, brentq(lambda c: damped_flutter_load(hinge(c), "routh") / P_flu0 - r_flu,
+                              0.5 * c_flu, 2 * c_flu, xtol=1e-12),
+                "closed form ratio = quoted ratio (Brent)",
+                "Routh-Hurwitz ratio = quoted ratio (Brent)", "N m s"),
+            "c_from_divergence_ratio": _quantity(
+                c_div, c_div_alg, "eigenvalue ratio = quoted ratio (Brent)",
+                "algebraic ratio = quoted ratio (Brent)", "N m s"),
+        },
+    }
+
+
+# ---------------------------------------------------------------------- paradox map
+def paradox_map(params: dict[str, Any]) -> dict[str, Any]:
+    """lim_{eps->0} P*_flu / P_flu(undamped) over the damping ratio c1/c2 and the mass
+    distribution (m1/m2 with d = l1; d/l1 with m1 = m2), from the closed form, verified by
+    Routh–Hurwitz at small epsilon at a few points."""
+    _take(params, {"pendulum", "log10_c_range", "log10_mass_ratio_range", "d_ratio_range",
+                   "n_grid", "check_points", "eps_check"})
+    p0 = _pendulum(params)
+    n = int(params.get("n_grid", 81))
+    if n < 5:
+        raise ParameterError(f"n_grid must be >= 5, got {n}")
+    lc = np.linspace(*params.get("log10_c_range", [-2.0, 2.0]), n)
+    lm = np.linspace(*params.get("log10_mass_ratio_range", [-1.0, 1.0]), n)
+    yd = np.linspace(*params.get("d_ratio_range", [0.1, 1.0]), n)
+
+    def ratio(p: ZieglerPendulum, c: float) -> float:
+        g = p.groups()
+        return cfd.vanishing_viscosity_flutter_gamma(g, c) / cf.flutter_divergence_gammas(g)[0]
+
+    def pend_mass(log_m: float) -> ZieglerPendulum:
+        return p0.with_(m1=p0.m2 * 10**log_m)
+
+    def pend_d(y: float) -> ZieglerPendulum:
+        return p0.with_(d=y * p0.l1)
+
+    mass_map = [[ratio(pend_mass(m), 10**c) for c in lc] for m in lm]
+    d_map = [[ratio(pend_d(y), 10**c) for c in lc] for y in yd]
+    free_mass = [cfd.paradox_free_damping_ratio(pend_mass(m).groups()) for m in lm]
+    free_d = [cfd.paradox_free_damping_ratio(pend_d(y).groups()) for y in yd]
+    eps = check_positive("eps_check", params.get("eps_check", 1e-4))
+    quantities = {}
+    for i, pt in enumerate(params.get("check_points", [])):
+        _take(pt, {"c_ratio", "m1_over_m2", "d_over_l1"})
+        p = p0.with_(m1=p0.m2 * pt["m1_over_m2"], d=pt["d_over_l1"] * p0.l1)
+        pd = with_viscosity(p, eps, pt["c_ratio"])
+        numeric = damped_flutter_load(pd, "routh") / follower_critical_loads(p)[0]
+        quantities[f"check_{i}"] = _quantity(
+            ratio(p, pt["c_ratio"]), numeric, "closed form, eps -> 0",
+            f"Routh-Hurwitz at eps = {eps:g} over eigenvalue coalescence", "")
+    return {"log10_c": lc.tolist(), "log10_mass_ratio": lm.tolist(), "d_ratio": yd.tolist(),
+            "check_points": params.get("check_points", []),
+            "ratio_mass": mass_map, "ratio_d": d_map,
+            "paradox_free_c_mass": free_mass, "paradox_free_c_d": free_d,
+            "quantities": quantities}
+
+
+# ---------------------------------------------------------------------- dead load + viscosity
+def damped_dead_load(params: dict[str, Any]) -> dict[str, Any]:
+    """§2.2 after eq. (31): viscosity leaves the dead-load critical load at H_cr (eq. 22)."""
+    _take(params, {"pendulum", "eps_values"})
+    p0 = _pendulum(params)
+    u = p0.load_unit
+    e_cr = cf.buckling_etas(p0.groups())[0]
+    quantities = {}
+    for eps in _eps_list(params):
+        p = with_viscosity(p0, eps)
+        quantities[f"eta_cr_eps{eps:g}"] = _quantity(
+            damped_dead_load_onset(p, "routh") / u, damped_dead_load_onset(p, "eigenvalues") / u,
+            RH, EIG_CROSS, "K/L")
+        quantities[f"eta_cr_eps{eps:g}_vs_eq22"] = _quantity(
+            damped_dead_load_onset(p, "routh") / u, e_cr, RH, "closed form eq. (22), undamped",
+            "K/L")
+    return {"quantities": quantities}
+
+
+# ---------------------------------------------------------------------- errata of eq. (31)
+def errata_damped(params: dict[str, Any]) -> dict[str, Any]:
+    """Eq. (31) as printed vs derived (sympy) vs the coefficients of det(M s^2 + C s + K + G)
+    expanded numerically from the matrices; eq. (52) vs the derivation."""
+    from flutterfriction.analysis.polynomial import characteristic_polynomial
+
+    _take(params, {"pendulum", "H", "eq52_eps", "eq52_gamma"})
+    p = _pendulum(params)
+    eps, c = cfd.viscosity_groups(p)
+    H = float(params.get("H", 1.0))
+    eta = H * p.l1 / p.k2
+    g = p.groups()
+    printed = cfd.coefficients_as_printed_eq31(g, eps, c, eta)
+    derived = cfd.characteristic_coefficients(g, eps, c, eta=eta)
+    # det(M s^2 + C s + K + G) = k2^2 det(M^ w^2 + C^ w + K^ + G^) with w = s T.
+    T = p.l2 * math.sqrt(p.m2 / p.k2)
+    si = characteristic_polynomial(p.mass_matrix(), p.viscosity_matrix(),
+                                   p.stiffness_matrix() + p.geometric_matrix(0.0, H))
+    numeric = si / (p.k2**2 * T ** np.arange(4, -1, -1))
+    errata = {}
+    for i in range(3):
+        errata[f"eq31_p{i}"] = {
+            "quantity": f"p{i} of eq. (31), list (47) with c1 = c2 = {p.c2:g} N m s, "
+                        f"H = {H:g} N",
+            "printed": float(printed[i]), "corrected": float(derived[i]),
+            "independent": float(numeric[i]),
+            "independent_method": "coefficients of det(M s^2 + C s + K + G) from the matrices"}
+    e52, g52 = float(params.get("eq52_eps", 0.1)), float(params.get("eq52_gamma", 1.2))
+    sym = ZieglerPendulum(l1=1.0, l2=1.0, d=1.0, h=0.0, m1=1.0, m2=1.0, m3=0.0, k1=1.0, k2=1.0,
+                          c1=e52, c2=e52)
+    num52 = characteristic_polynomial(sym.mass_matrix(), sym.viscosity_matrix(),
+                                      sym.stiffness_matrix() + sym.geometric_matrix(g52))
+    der52 = cfd.characteristic_coefficients(sym.groups(), e52, 1.0, gamma=g52)
+    quantities = {
+        f"eq52_p{i}": _quantity(float(der52[i]), float(num52[i]), "sympy derivation",
+                                "coefficients from the matrices", "")
+        for i in range(5)}
+    return {"errata": errata, "quantities": quantities,
+            "eq52_printed": cfd.eq52_coefficients(e52, g52).tolist(),
+            "eq31_terms_check": {"printed": printed.tolist(), "derived": derived.tolist(),
+                                 "numeric": numeric.tolist()}}

@@ -1,0 +1,138 @@
+"""The damped pendulum (§2.2, §2.4): closed forms against Routh–Hurwitz and eigenvalues."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+import sympy as sp
+from conftest import pendulums
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
+
+from flutterfriction import ZieglerPendulum
+from flutterfriction.analysis.polynomial import characteristic_polynomial
+from flutterfriction.analysis.ziegler import (
+    damped_dead_load_onset,
+    damped_divergence_load,
+    damped_flutter_load,
+    dead_critical_loads,
+    follower_critical_loads,
+)
+from flutterfriction.closed_forms import ziegler as cf
+from flutterfriction.closed_forms import ziegler_damped as cfd
+from flutterfriction.scenes.ziegler_damped import with_viscosity
+
+SYMMETRIC = dict(l1=1.0, l2=1.0, d=1.0, h=0.0, m1=1.0, m2=1.0, m3=0.0, k1=1.0, k2=1.0)
+
+
+def _damped(p, eps, c):
+    return with_viscosity(p, eps, c)
+
+
+@settings(max_examples=40)
+@given(pendulums(), st.floats(0.0, 4.0), st.floats(-1.0, 5.0), st.floats(0.01, 2.0),
+       st.floats(0.1, 10.0))
+def test_derived_coefficients_vs_matrices(p, gamma, eta, eps, c):
+    """The sympy-derived p0..p4 = coefficients of det(M s^2 + C s + K + G) from the matrices."""
+    pd = _damped(p, eps, c)
+    u = p.load_unit
+    T = p.l2 * math.sqrt(p.m2 / p.k2)
+    si = characteristic_polynomial(pd.mass_matrix(), pd.viscosity_matrix(),
+                                   pd.stiffness_matrix() + pd.geometric_matrix(gamma * u, eta * u))
+    numeric = si / (p.k2**2 * T ** np.arange(4, -1, -1))
+    derived = cfd.characteristic_coefficients(p.groups(), eps, c, gamma, eta)
+    scale = np.abs(derived).max()
+    assert np.allclose(derived, numeric, rtol=1e-9, atol=1e-11 * scale)
+
+
+@settings(max_examples=40)
+@given(pendulums(), st.floats(0.01, 1.0), st.floats(0.1, 10.0))
+def test_damped_flutter_closed_form_vs_routh_vs_eigenvalues(p, eps, c):
+    """Our generalisation of eq. (54) against both numerical methods on random pendulums."""
+    pd = _damped(p, eps, c)
+    closed = cfd.damped_flutter_gamma(p.groups(), eps, c) * p.load_unit
+    rh = damped_flutter_load(pd, "routh")
+    eig = damped_flutter_load(pd, "eigenvalues")
+    assert rh == pytest.approx(closed, rel=1e-9)
+    assert eig == pytest.approx(rh, rel=1e-7)
+
+
+@given(pendulums(), st.floats(0.1, 10.0))
+def test_paradox_inequality(p, c):
+    """Vanishing viscosity never raises the flutter load above the undamped one (AM-GM)."""
+    g = p.groups()
+    assert cfd.vanishing_viscosity_flutter_gamma(g, c) <= \
+        cf.flutter_divergence_gammas(g)[0] * (1 + 1e-12)
+
+
+@settings(max_examples=40)
+@given(pendulums(three_masses=False))
+def test_paradox_free_damping_ratio(p):
+    g = p.groups()
+    c = cfd.paradox_free_damping_ratio(g)
+    assume(c is not None and 1e-3 < c < 1e3)
+    assert cfd.vanishing_viscosity_flutter_gamma(g, c) == pytest.approx(
+        cf.flutter_divergence_gammas(g)[0], rel=1e-9)
+    numeric = damped_flutter_load(_damped(p, 1e-5, c), "routh") / follower_critical_loads(p)[0]
+    assert numeric == pytest.approx(1.0, rel=1e-6)
+
+
+@pytest.mark.parametrize("eps", [0.05, 0.1, 0.5, 1.0])
+def test_eq54(eps):
+    p = _damped(ZieglerPendulum(**SYMMETRIC), eps, 1.0)
+    assert damped_flutter_load(p, "routh") == pytest.approx(cfd.eq54_flutter_gamma(eps), rel=1e-13)
+
+
+def test_eq54_follows_symbolically_from_eq52():
+    eps, gamma = sp.symbols("epsilon gamma", positive=True)
+    p0, p1, p2, p3, p4 = 1, 6 * eps, 6 + eps**2 - 2 * gamma, 2 * eps, 1
+    delta3 = p3 * (p1 * p2 - p0 * p3) - p1**2 * p4
+    assert sp.solve(sp.Eq(delta3, 0), gamma) == [eps**2 / 2 + sp.Rational(4, 3)]
+
+
+def test_general_flutter_closed_form_is_the_hurwitz_root():
+    coeffs = cfd.symbolic_coefficients()
+    r1, r2, y1, y2, lam, k, c, eps, gam, eta = cfd._SYMBOLS
+    p0, p1, p2, p3, p4 = (x.subs(eta, 0) for x in coeffs)
+    delta3 = sp.expand(p3 * (p1 * p2 - p0 * p3) - p1**2 * p4)
+    g = {"rho1": 2.0, "rho2": 0.7, "y1": 0.6, "y2": 0.3, "lam": 1.3, "k": 0.8}
+    groups = cf.PendulumGroups(**g)
+    for e, cc in ((0.3, 2.0), (0.05, 0.5)):
+        gs = cfd.damped_flutter_gamma(groups, e, cc)
+        val = delta3.subs({r1: 2.0, r2: 0.7, y1: 0.6, y2: 0.3, lam: 1.3, k: 0.8, c: cc,
+                           eps: e, gam: gs})
+        assert abs(float(val)) < 1e-12
+
+
+@settings(max_examples=40)
+@given(pendulums(), st.floats(0.05, 1.0))
+def test_viscosity_keeps_dead_load_buckling(p, eps):
+    """§2.2 after eq. (31): p4 = c(eta) has no viscosity; the damped onset is H_cr."""
+    pd = _damped(p, eps, 1.0)
+    H_cr = dead_critical_loads(p)[0]
+    assert damped_dead_load_onset(pd, "routh") == pytest.approx(H_cr, rel=1e-10)
+    assert damped_dead_load_onset(pd, "eigenvalues") == pytest.approx(H_cr, rel=1e-9)
+
+
+@settings(max_examples=40)
+@given(pendulums(), st.floats(0.05, 1.0), st.floats(0.3, 3.0))
+def test_damped_divergence_two_ways(p, eps, c):
+    pd = _damped(p, eps, c)
+    eig = damped_divergence_load(pd, "eigenvalues")
+    alg = damped_divergence_load(pd, "algebraic")
+    assert eig == pytest.approx(alg, rel=1e-8)
+    assert eig > damped_flutter_load(pd, "routh")
+
+
+def test_eq31_printed_coefficients_disagree_only_with_interior_m3():
+    g = cf.PendulumGroups(rho1=12.0, rho2=3.0, y1=1 / 3, y2=1 / 3, lam=1.0, k=1.0)
+    printed = cfd.coefficients_as_printed_eq31(g, 0.5, 1.0, 0.4)
+    derived = cfd.characteristic_coefficients(g, 0.5, 1.0, eta=0.4)
+    assert not np.allclose(printed[:3], derived[:3])
+    assert np.allclose(printed[3:], derived[3:], rtol=1e-14)
+    for y2, rho2 in ((0.0, 3.0), (1.0, 3.0), (0.4, 0.0)):
+        g2 = cf.PendulumGroups(rho1=12.0, rho2=rho2, y1=1 / 3, y2=y2, lam=1.3, k=0.7)
+        assert np.allclose(cfd.coefficients_as_printed_eq31(g2, 0.5, 2.0, 0.4),
+                           cfd.characteristic_coefficients(g2, 0.5, 2.0, eta=0.4), rtol=1e-13)

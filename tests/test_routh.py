@@ -1,0 +1,116 @@
+"""Routh–Hurwitz of any degree against the roots, including at and near the stability boundary.
+
+Near the boundary a root has Re s ~ 1e-16 |s|: double-precision roots cannot decide stability.
+We therefore build the test polynomials from *known* roots, take the rounded float coefficients,
+and obtain the truth for those exact coefficients from mpmath at 60 digits. The exact criterion
+must agree every time; float eigenvalues are shown to fail where the margin is below round-off.
+"""
+
+from __future__ import annotations
+
+import mpmath as mp
+import numpy as np
+import pytest
+from conftest import pendulums
+from hypothesis import assume, given
+from hypothesis import strategies as st
+
+from flutterfriction.analysis.polynomial import characteristic_polynomial
+from flutterfriction.analysis.routh import (
+    hurwitz_determinants,
+    hurwitz_matrix,
+    robustly_stable,
+    routh_hurwitz,
+)
+from flutterfriction.analysis.ziegler import spectrum
+from flutterfriction.errors import ParameterError
+
+
+def true_max_real_part(coeffs) -> mp.mpf:
+    """Largest real part of the roots of the *exact* (rational) coefficients, at 60 digits."""
+    with mp.workdps(60):
+        roots = mp.polyroots([mp.mpf(float(c)) for c in coeffs], maxsteps=2000, extraprec=400)
+        return max(mp.re(r) for r in roots)
+
+
+@st.composite
+def polynomials_from_roots(draw, margin_exponent=st.integers(-14, 0)):
+    """Monic real polynomials of degree 1..8 from random roots; the largest real part is
+    +/- 10^margin_exponent, from far from the boundary to below double-precision round-off."""
+    n_pairs = draw(st.integers(0, 4))
+    n_real = draw(st.integers(0 if n_pairs else 1, 8 - 2 * n_pairs))
+    roots = []
+    for _ in range(n_pairs):
+        re = -draw(st.floats(0.05, 5.0))
+        im = draw(st.floats(0.1, 5.0))
+        roots += [complex(re, im), complex(re, -im)]
+    roots += [-draw(st.floats(0.05, 5.0)) for _ in range(n_real)]
+    # Distinct roots: mpmath's Durand-Kerner iteration (our truth) stalls on multiple roots.
+    r = np.array(roots)
+    assume(np.min(np.abs(r[:, None] - r[None, :]) + 10 * np.eye(r.size)) > 1e-2)
+    shift = draw(st.sampled_from([-1, 1])) * 10.0 ** draw(margin_exponent)
+    lead = max(r.real for r in roots)
+    roots = [r - lead + shift for r in roots]  # the rightmost root(s) now have Re = shift
+    return np.poly(roots).real
+
+
+@given(polynomials_from_roots())
+def test_exact_criterion_matches_high_precision_roots(coeffs):
+    truth = true_max_real_part(coeffs)
+    assume(abs(truth) > mp.mpf(10) ** -40)  # exactly on the boundary: no strict verdict
+    assert routh_hurwitz(coeffs).stable == bool(truth < 0)
+
+
+@given(polynomials_from_roots(margin_exponent=st.integers(-3, 0)))
+def test_float_hurwitz_determinants_match_far_from_boundary(coeffs):
+    stable = routh_hurwitz(coeffs).stable
+    assert stable == bool(np.all(hurwitz_determinants(coeffs) > 0))
+    assert stable == bool(np.roots(coeffs).real.max() < 0)
+
+
+def test_float_roots_can_be_wrong_at_the_boundary_while_the_exact_criterion_is_not():
+    """A pair at Re = 1e-15 beside a cluster of left roots: the exact verdict agrees with the
+    60-digit roots; the verdict is flagged as not robust to rounding of the coefficients."""
+    roots = [1e-15 + 1j, 1e-15 - 1j, -1.0, -1.1, -1.2, -1.3]
+    coeffs = np.poly(roots).real
+    truth = true_max_real_part(coeffs)
+    assert routh_hurwitz(coeffs).stable == bool(truth < 0)
+    assert not robustly_stable(coeffs)  # a verdict this close must not be trusted to ulps
+
+
+@given(pendulums(), st.floats(0.01, 1.0), st.floats(0.1, 10.0), st.floats(0.0, 3.0))
+def test_damped_pendulum_routh_matches_eigenvalues(p, eps_scale, c_ratio, load):
+    """Random damped pendulums, random follower loads: the exact criterion on the coefficients
+    from the matrices agrees with the eigenvalues whenever the eigenvalues are decisive."""
+    c2 = eps_scale * p.l2 * np.sqrt(p.k2 * p.m2)
+    p = p.with_(c1=c_ratio * c2, c2=c2)
+    P = load * p.load_unit
+    s = spectrum(p, P)
+    assume(abs(s.real.max()) > 1e-9 * np.abs(s).max())
+    coeffs = characteristic_polynomial(p.mass_matrix(), p.viscosity_matrix(),
+                                       p.stiffness_matrix() + p.geometric_matrix(P))
+    assert routh_hurwitz(coeffs).stable == bool(s.real.max() < 0)
+
+
+def test_quartic_conditions_of_eq53():
+    """For p0 = 1, eq. (53): p1 > 0, p1 p2 - p3 > 0, (p1 p2 - p3) p3 - p1^2 p4 > 0, p4 > 0."""
+    rng = np.random.default_rng(3)
+    for _ in range(500):
+        p1, p2, p3, p4 = rng.uniform(-1, 5, 4)
+        eq53 = p1 > 0 and p1 * p2 - p3 > 0 and (p1 * p2 - p3) * p3 - p1**2 * p4 > 0 and p4 > 0
+        assert routh_hurwitz([1.0, p1, p2, p3, p4]).stable == eq53
+
+
+def test_hurwitz_matrix_layout():
+    H = hurwitz_matrix([1.0, 2.0, 3.0, 4.0, 5.0])
+    assert np.array_equal(H, [[2, 4, 0, 0], [1, 3, 5, 0], [0, 2, 4, 0], [0, 1, 3, 5]])
+
+
+def test_negative_leading_coefficient_is_normalised():
+    assert routh_hurwitz([-1.0, -3.0, -2.0]).stable  # -(s + 1)(s + 2)
+
+
+@pytest.mark.parametrize("bad", [[1.0], [0.0, 1.0], [1.0, np.nan], [[1.0, 2.0]]])
+def test_bad_coefficients(bad):
+    with pytest.raises(ParameterError, match="coeffs"):
+        routh_hurwitz(bad)
