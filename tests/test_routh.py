@@ -33,8 +33,11 @@ def true_max_real_part(coeffs) -> mp.mpf:
         return max(mp.re(r) for r in roots)
 
 
+ANY_MARGIN = st.integers(-14, 0)
+
+
 @st.composite
-def polynomials_from_roots(draw, margin_exponent=st.integers(-14, 0)):
+def polynomials_from_roots(draw, margin_exponent=ANY_MARGIN):
     """Monic real polynomials of degree 1..8 from random roots; the largest real part is
     +/- 10^margin_exponent, from far from the boundary to below double-precision round-off."""
     n_pairs = draw(st.integers(0, 4))
