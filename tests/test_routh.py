@@ -12,7 +12,7 @@ import mpmath as mp
 import numpy as np
 import pytest
 from conftest import pendulums
-from hypothesis import assume, given
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from flutterfriction.analysis.polynomial import characteristic_polynomial
@@ -117,3 +117,19 @@ def test_negative_leading_coefficient_is_normalised():
 def test_bad_coefficients(bad):
     with pytest.raises(ParameterError, match="coeffs"):
         routh_hurwitz(bad)
+
+
+@settings(max_examples=60)
+@given(pendulums(), st.floats(0.01, 1.0), st.floats(0.1, 10.0), st.sampled_from([-1, 1]))
+def test_damped_pendulum_just_across_the_boundary(p, eps, c, side):
+    """At P = P*(1 -/+ 1e-12), with P* the closed-form flutter load (exact to ~1e-16), the exact
+    criterion on coefficients from the matrices gives the right verdict on both sides; the
+    largest real part of the eigenvalues there is ~1e-12 |s|, close to its own round-off."""
+    from flutterfriction.closed_forms.ziegler_damped import damped_flutter_gamma
+
+    c2 = eps * p.l2 * np.sqrt(p.k2 * p.m2)
+    pd = p.with_(c1=c * c2, c2=c2)
+    P = damped_flutter_gamma(p.groups(), eps, c) * p.load_unit * (1 + side * 1e-12)
+    coeffs = characteristic_polynomial(pd.mass_matrix(), pd.viscosity_matrix(),
+                                       pd.stiffness_matrix() + pd.geometric_matrix(P))
+    assert routh_hurwitz(coeffs).stable == (side < 0)
