@@ -11,7 +11,7 @@ validate(config, "workflow/schemas/config.schema.yaml")
 
 
 include: "workflow/rules/common.smk"
-include: "workflow/rules/ziegler.smk"
+include: "workflow/rules/scenes.smk"
 include: "workflow/rules/reports.smk"
 include: "workflow/rules/check.smk"
 

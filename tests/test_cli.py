@@ -75,3 +75,31 @@ def test_console_script_runs_as_a_process():
     proc = subprocess.run([sys.executable, "-m", "flutterfriction.cli", *_args(), "--json"],
                           capture_output=True, text=True, check=True)
     assert set(json.loads(proc.stdout)) >= {"P_flu", "P_div", "H_cr", "H_sup"}
+
+
+def test_rod_json(capsys):
+    assert main(["rod", "--mass-ratio", "0", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["p_flu"] == pytest.approx(20.0509536190, rel=1e-10)
+    assert out["p_div"] is None and out["omega_flu"] > 0
+
+
+def test_rod_si(capsys):
+    args = ["rod", "--length", "0.35", "--B", "0.0332", "--rho", "0.0546", "--D", "7.078e-6",
+            "--json"]
+    assert main(args) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["p_flu"] == pytest.approx(10.9393514864, rel=1e-9)
+    assert out["P_flu_N"] == pytest.approx(out["p_flu"] * 0.0332 / 0.35**2)
+
+
+@pytest.mark.parametrize(("args", "name"), [
+    (["--mass-ratio", "-1"], "--mass-ratio"), (["--eta", "nan"], "--eta"),
+    (["--length", "1", "--B", "1"], "--rho"), (["--mass-ratio", "1", "--length", "1"], "either"),
+    (["--length", "-1", "--B", "1", "--rho", "1"], "length")])
+def test_rod_bad_input(capsys, args, name):
+    with pytest.raises(SystemExit) as exc:
+        raise SystemExit(main(["rod", *args]))
+    assert exc.value.code == 2
+    err = capsys.readouterr().err
+    assert name in err and "Traceback" not in err

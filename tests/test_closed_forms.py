@@ -61,8 +61,11 @@ def test_omega2_follower_eq34(p, s):
     # Sum and product of the roots are well conditioned everywhere ...
     assert num.sum() == pytest.approx(closed.sum(), rel=1e-10, abs=1e-10 * scale)
     assert np.prod(num) == pytest.approx(np.prod(closed), rel=1e-10, abs=1e-10 * scale**2)
-    # ... the roots themselves only to sqrt(eps) at a coalescence (a defective eigenvalue).
-    assert np.allclose(num, closed, rtol=0, atol=1e-6 * scale)
+    # ... the roots themselves only away from a coalescence, where they are ill-conditioned
+    # (a defective eigenvalue moves like sqrt(perturbation)); there sum and product suffice.
+    disc = (closed[0] - closed[1]) ** 2
+    if abs(disc) > 1e-6 * scale**2:
+        assert np.allclose(num, closed, rtol=1e-8, atol=1e-10 * scale)
 
 
 @given(pendulums(), st.floats(-1.0, 4.0))

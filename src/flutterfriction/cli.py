@@ -4,6 +4,11 @@
 [--c1 0 --c2 0] [--json]`` prints the critical follower loads (flutter ``P_flu``, divergence
 ``P_div``) for the given hinge viscosities, the same without viscosity (``P_flu_undamped``,
 ``P_div_undamped``) and the dead loads (``H_cr``, ``H_sup``, unaffected by viscosity) in newtons.
+``flutterfriction rod --mass-ratio MU --eta ETA --gamma GAMMA [--json]`` prints the
+dimensionless flutter and divergence loads ``p_flu``, ``p_div`` (eq. 106; ``null`` when there is
+none, as for the Beck rod) and the pulsation ``omega_flu``; with SI parameters
+(``--length --B --rho [--D --kappa --tip-mass]``) it also prints ``P_flu_N``, ``P_div_N``.
+
 Bad input: one line naming the parameter on stderr, exit code 2, no traceback.
 """
 
@@ -15,7 +20,7 @@ import math
 import sys
 from collections.abc import Sequence
 
-from flutterfriction.errors import ConvergenceError, ParameterError
+from flutterfriction.errors import ConvergenceError, ParameterError, check_nonnegative
 
 ZIEGLER_PARAMS = {
     "l1": "length of rod AB [m], > 0",
@@ -60,7 +65,59 @@ def build_parser() -> argparse.ArgumentParser:
     z.add_argument("--c2", type=_number, default=0.0,
                    help="hinge viscosity at B [N m s/rad], >= 0 (default 0)")
     z.add_argument("--json", action="store_true", help="print one JSON object")
+    r = sub.add_parser(
+        "rod", help="critical loads of a Beck/Pflüger rod (dimensionless or SI)",
+        description="Flutter and divergence loads of a cantilever with a tangential follower "
+                    "force (chapter §2.7), from the exact characteristic function, eq. (118). "
+                    "Give either the dimensionless groups of eq. (106) or SI parameters.")
+    r.add_argument("--mass-ratio", type=_number, default=None,
+                   help="tip-mass ratio M/(rho l) = tan(alpha), >= 0 (dimensionless mode)")
+    r.add_argument("--eta", type=_number, default=None, help="internal viscosity, >= 0")
+    r.add_argument("--gamma", type=_number, default=None, help="external damping, >= 0")
+    r.add_argument("--length", type=_number, default=None, help="rod length [m], > 0 (SI mode)")
+    r.add_argument("--B", type=_number, default=None, help="bending stiffness [N m^2], > 0")
+    r.add_argument("--rho", type=_number, default=None, help="mass per length [kg/m], > 0")
+    r.add_argument("--D", type=_number, default=None, help="Kelvin-Voigt viscosity [N m^2 s]")
+    r.add_argument("--kappa", type=_number, default=None, help="external damping [N s/m^2]")
+    r.add_argument("--tip-mass", type=_number, default=None, help="tip mass [kg], >= 0")
+    r.add_argument("--p-max", type=_number, default=80.0,
+                   help="largest dimensionless load searched (default 80)")
+    r.add_argument("--json", action="store_true", help="print one JSON object")
     return parser
+
+
+def _rod(args: argparse.Namespace) -> dict:
+    from flutterfriction.analysis.rod import critical_loads
+    from flutterfriction.models.rod import Rod, RodGroups
+
+    si = {k: getattr(args, k) for k in ("length", "B", "rho", "D", "kappa", "tip_mass")}
+    dimless = {"tan_alpha": args.mass_ratio, "eta": args.eta, "gamma": args.gamma}
+    given_si = {k for k, v in si.items() if v is not None}
+    given_dl = {k for k, v in dimless.items() if v is not None}
+    if given_si and given_dl:
+        raise ParameterError("give either --mass-ratio/--eta/--gamma or SI parameters "
+                             "(--length --B --rho ...), not both")
+    rod = None
+    if given_si:
+        missing = [f"--{k}" for k in ("length", "B", "rho") if si[k] is None]
+        if missing:
+            raise ParameterError(f"SI mode needs {', '.join(missing)}")
+        rod = Rod(**{k: v for k, v in si.items() if v is not None})
+        groups = rod.groups()
+    else:
+        names = {"tan_alpha": "--mass-ratio", "eta": "--eta", "gamma": "--gamma"}
+        groups = RodGroups(**{k: (0.0 if v is None else check_nonnegative(names[k], v))
+                              for k, v in dimless.items()})
+    if not args.p_max > 0:
+        raise ParameterError(f"--p-max must be > 0, got {args.p_max}")
+    loads = critical_loads(groups, p_max=args.p_max)
+    out = {**loads.as_dict(), "groups": vars(groups)}
+    if rod is not None:
+        u = rod.load_unit
+        out["P_flu_N"] = None if loads.p_flu is None else loads.p_flu * u
+        out["P_div_N"] = None if loads.p_div is None else loads.p_div * u
+        out["time_scale_s"] = rod.time_scale
+    return out
 
 
 def _ziegler(args: argparse.Namespace) -> dict:
@@ -76,7 +133,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
     try:
-        result = _ziegler(args)
+        result = _ziegler(args) if args.command == "ziegler" else _rod(args)
     except ParameterError as exc:
         print(f"flutterfriction: error: {exc}", file=sys.stderr)
         return 2
@@ -93,6 +150,11 @@ def main(argv: Sequence[str] | None = None) -> int:
 def _print(result: dict, as_json: bool) -> None:
     if as_json:
         print(json.dumps(result))
+    elif "p_flu" in result:
+        for key in ("p_flu", "omega_flu", "p_div", "omega_div", "P_flu_N", "P_div_N"):
+            if key in result:
+                value = result[key]
+                print(f"{key:9s} = {'none' if value is None else f'{value:.10g}'}")
     else:
         names = {"P_flu": "flutter load (follower, given viscosity)",
                  "P_div": "divergence load (follower, given viscosity)",

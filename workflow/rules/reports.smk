@@ -25,3 +25,16 @@ rule report_ziegler_paradox:
         "results/benchmarks/report_ziegler_paradox.tsv"
     script:
         "../scripts/execute_notebook.py"
+
+
+rule report_rods:
+    input:
+        notebook="notebooks/rods.py",
+        data=expand("results/data/{scene}.json", scene=ROD_SCENES),
+        figures=expand("results/figures/{scene}.png", scene=ROD_FIGURES),
+    output:
+        "results/reports/rods.html",
+    benchmark:
+        "results/benchmarks/report_rods.tsv"
+    script:
+        "../scripts/execute_notebook.py"

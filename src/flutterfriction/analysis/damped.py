@@ -143,7 +143,11 @@ def divergence_onset(M: ArrayLike, C: ArrayLike, K0: ArrayLike, K1: ArrayLike, *
         regime_of = sys_.regime_eigen
 
         def disc(p: float) -> float:
-            return float(discriminant(sys_.spectra([p]))[0])
+            # Only the eigenvalues nearest the unstable ones: a product over all pairs of a
+            # large spectrum loses its digits to the far, well-separated ones.
+            s = sys_.spectra([p])[0]
+            near = s[np.argsort(np.abs(s - s[np.argmax(s.real)]))[:4]]
+            return float(discriminant(near[None, :])[0])
     elif method == "algebraic":
         regime_of = sys_.regime_algebraic
 

@@ -57,19 +57,21 @@ def state_eigenvalues(M: ArrayLike, K: ArrayLike, C: ArrayLike | None = None) ->
 def classify(s: ArrayLike, rtol: float = 1e-8) -> Regime:
     """Classify a spectrum ``s`` of the first-order form (chapter §2.3, list after eq. 37).
 
-    Stable when no eigenvalue has ``Re s > rtol * max|s|``; otherwise flutter when an unstable
-    eigenvalue has a non-zero imaginary part (an oscillation of growing amplitude) and divergence
-    when the unstable eigenvalues are real (exponential growth). ``rtol`` absorbs round-off
-    (undamped stable spectra have ``|Re s| ~ 1e-16 max|s|``); critical loads are never found
-    with it, see :func:`coalescence_loads`.
+    Stable when no eigenvalue has ``Re s > tol``; otherwise flutter when an unstable eigenvalue
+    has ``|Im s| > tol`` (an oscillation of growing amplitude) and divergence when the unstable
+    eigenvalues are real (exponential growth). The tolerance is per eigenvalue,
+    ``tol_i = rtol |s_i| + 1000 eps max|s|``: it absorbs round-off (undamped stable spectra have
+    ``|Re s| ~ 1e-16 max|s|``) without letting one stiff, strongly damped mode (e.g. a fine FE
+    mesh with Kelvin–Voigt damping, ``|s| ~ 1e7``) blur the low ones. Critical loads are never
+    found with it, see :func:`coalescence_loads`.
     """
     s = np.asarray(s, dtype=complex)
     scale = float(np.max(np.abs(s))) if s.size else 0.0
-    tol = rtol * max(scale, np.finfo(float).tiny)
-    unstable = s[s.real > tol]
-    if unstable.size == 0:
+    tol = rtol * np.abs(s) + 1000 * np.finfo(float).eps * scale
+    unstable = s.real > tol
+    if not np.any(unstable):
         return Regime.STABLE
-    if np.any(np.abs(unstable.imag) > tol):
+    if np.any(np.abs(s.imag[unstable]) > tol[unstable]):
         return Regime.FLUTTER
     return Regime.DIVERGENCE
 

@@ -11,7 +11,7 @@ from collections.abc import Callable
 from typing import Any
 
 from flutterfriction.errors import ParameterError
-from flutterfriction.scenes import ziegler, ziegler_damped
+from flutterfriction.scenes import rod, ziegler, ziegler_damped
 
 SceneBuilder = Callable[[dict[str, Any]], dict[str, Any]]
 
@@ -30,6 +30,12 @@ SCENES: dict[str, SceneBuilder] = {
     "paradox_map": ziegler_damped.paradox_map,
     "damped_dead_load": ziegler_damped.damped_dead_load,
     "errata_damped": ziegler_damped.errata_damped,
+    "fig11": rod.fig11,
+    "fig12": rod.fig12,
+    "errata_rods": rod.errata_rods,
+    "rod_fe_convergence": rod.rod_fe_convergence,
+    "rod_stability_map": rod.rod_stability_map,
+    "self_adjoint": rod.self_adjoint,
 }
 
 

@@ -1,16 +1,19 @@
-# Chapter §2.1–2.3: the Ziegler double pendulum. Each scene: a solver rule writing
-# results/data/<scene>.json, then a plot rule writing results/figures/<scene>.{pdf,png}.
+# Every scene: a solver rule writing results/data/<scene>.json, then (for figures) a plot rule
+# writing results/figures/<scene>.{pdf,png}. The scene lists say which chapter part is which.
 
 # §2.1–2.3 (undamped) and §2.2/2.4/2.10 (viscous hinges, the Ziegler paradox).
 ZIEGLER_FIGURES = ["eq25", "eq46", "eq47", "eq48", "fig02", "fig03", "fig04"]
 ZIEGLER_SCENES = ZIEGLER_FIGURES + ["errata_ziegler"]
 PARADOX_FIGURES = ["fig05", "paradox_limit", "fig19_theory", "paradox_map"]
 PARADOX_SCENES = PARADOX_FIGURES + ["damped_dead_load", "errata_damped"]
-ALL_FIGURES = ZIEGLER_FIGURES + PARADOX_FIGURES
-ALL_SCENES = ZIEGLER_SCENES + PARADOX_SCENES
+# §2.5–2.8: the Beck and Pflüger rods.
+ROD_FIGURES = ["fig11", "fig12", "rod_fe_convergence", "rod_stability_map"]
+ROD_SCENES = ROD_FIGURES + ["errata_rods", "self_adjoint"]
+ALL_FIGURES = ZIEGLER_FIGURES + PARADOX_FIGURES + ROD_FIGURES
+ALL_SCENES = ZIEGLER_SCENES + PARADOX_SCENES + ROD_SCENES
 
 
-rule ziegler_solve:
+rule solve:
     input:
         SOLVER_SOURCES,
     output:
@@ -26,7 +29,7 @@ rule ziegler_solve:
         "../scripts/solve_scene.py"
 
 
-rule ziegler_plot:
+rule plot:
     input:
         PLOT_SOURCES,
         data="results/data/{scene}.json",

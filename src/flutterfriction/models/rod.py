@@ -1,0 +1,156 @@
+"""The Beck and Pflüger rods (chapter §2.6–2.7): a cantilever of length ``l`` with bending
+stiffness ``B``, Kelvin–Voigt internal viscosity ``D`` (eq. 83), mass per unit length ``rho``,
+external damping ``kappa`` (per unit length) and a tip mass ``M``, loaded at the free end by a
+tangential follower force ``P`` (positive when compressive). Beck: ``M = 0``. SI units.
+
+Dimensionless groups (eq. 106): ``p = P l^2/B``, ``tan(alpha) = M/(rho l)``,
+``eta = D/(B l^2) sqrt(B/rho)``, ``gamma = kappa l^2/sqrt(rho B)``; time ``tau = t/T`` with
+``T = l^2 sqrt(rho/B)``, and ``v ~ exp(omega~ tau)`` (eq. 108), so Re omega~ > 0 is unstable.
+
+:func:`characteristic_function` is eq. (118): ``f = det(115) / (lambda1 lambda2)``. Written with
+``C1 = cosh(lambda1)``, ``S1 = sinh(lambda1)/lambda1``, ``c2 = cos(lambda2)``,
+``s2 = sin(lambda2)/lambda2`` it is an entire function of ``lambda1^2`` and ``lambda2^2`` and
+symmetric under the exchange of the two roots of eq. (113), hence an analytic function of
+``omega~`` with no branch cut. We evaluate it in that form (stable as lambda1, lambda2 -> 0) with
+the hyperbolic and trigonometric factors scaled by ``exp(-sigma)``,
+``sigma = |Re lambda1| + |Im lambda2|``, so that nothing overflows for large or complex arguments.
+
+Note on eq. (113)-(114): for ``sin(lambda2 xi)`` to solve eq. (109), ``lambda2^2`` must be
+*minus* the second root of eq. (112) in ``lambda^2``:
+``lambda1^2 = (-p + sqrt(Delta))/(2(1+eta w))``, ``lambda2^2 = (p + sqrt(Delta))/(2(1+eta w))``.
+(The ``±`` of eq. 113 gives the two roots in ``lambda^2``; eq. 114 then uses
+``lambda2 = sqrt(-lambda^2_2)``.)
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, fields
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from flutterfriction.errors import ParameterError, check_nonnegative, check_positive
+
+
+@dataclass(frozen=True)
+class RodGroups:
+    """Dimensionless parameters of eq. (106) (the load ``p`` varies and is not stored)."""
+
+    tan_alpha: float = 0.0  # M / (rho l)
+    eta: float = 0.0  # internal (Kelvin-Voigt) viscosity
+    gamma: float = 0.0  # external damping
+
+    def __post_init__(self) -> None:
+        for f in fields(self):
+            object.__setattr__(self, f.name, check_nonnegative(f.name, getattr(self, f.name)))
+
+    @property
+    def mass_ratio(self) -> float:
+        return self.tan_alpha
+
+    @property
+    def damped(self) -> bool:
+        return self.eta > 0 or self.gamma > 0
+
+
+@dataclass(frozen=True)
+class Rod:
+    """A Beck (``tip_mass = 0``) or Pflüger rod in SI units.
+
+    Parameters
+    ----------
+    length : float
+        ``l`` [m], > 0.
+    B : float
+        Bending stiffness [N m^2], > 0.
+    rho : float
+        Mass per unit length [kg/m], > 0.
+    D : float
+        Kelvin–Voigt internal viscosity, ``M = B theta' + D theta'_dot`` (eq. 83) [N m^2 s], >= 0.
+    kappa : float
+        External damping per unit length [N s/m^2], >= 0.
+    tip_mass : float
+        Concentrated mass at the loaded end [kg], >= 0 (rotary inertia neglected, eq. 104).
+    """
+
+    length: float
+    B: float
+    rho: float
+    D: float = 0.0
+    kappa: float = 0.0
+    tip_mass: float = 0.0
+
+    def __post_init__(self) -> None:
+        units = {"length": "m", "B": "N m^2", "rho": "kg/m", "D": "N m^2 s",
+                 "kappa": "N s/m^2", "tip_mass": "kg"}
+        for f in fields(self):
+            check = check_positive if f.name in ("length", "B", "rho") else check_nonnegative
+            object.__setattr__(self, f.name, check(f.name, getattr(self, f.name), units[f.name]))
+
+    @property
+    def time_scale(self) -> float:
+        """``T = l^2 sqrt(rho/B)`` [s]: t = T tau (eq. 106)."""
+        return self.length**2 * math.sqrt(self.rho / self.B)
+
+    @property
+    def load_unit(self) -> float:
+        """``B/l^2`` [N]: P = p B/l^2 (eq. 106)."""
+        return self.B / self.length**2
+
+    def groups(self) -> RodGroups:
+        """Eq. (106)."""
+        return RodGroups(
+            tan_alpha=self.tip_mass / (self.rho * self.length),
+            eta=self.D / (self.B * self.length**2) * math.sqrt(self.B / self.rho),
+            gamma=self.kappa * self.length**2 / math.sqrt(self.rho * self.B))
+
+
+def _scaled_even_functions(lam: NDArray, trig: bool) -> tuple[NDArray, NDArray, NDArray]:
+    """``(cosh lam, sinh lam / lam)`` (or ``cos``, ``sin/lam`` when ``trig``) times
+    ``exp(-s)``, with ``s = |Re lam|`` (``|Im lam|`` for trig), and ``s`` itself."""
+    z = 1j * lam if trig else lam  # cos(l) = cosh(i l), sin(l)/l = sinh(i l)/(i l)
+    s = np.abs(z.real)
+    ep = np.exp(z - s)
+    em = np.exp(-z - s)
+    c = 0.5 * (ep + em)
+    small = np.abs(z) < 1e-3
+    with np.errstate(divide="ignore", invalid="ignore"):
+        sc = np.where(small, (1 + z**2 / 6 + z**4 / 120) * np.exp(-s), 0.5 * (ep - em) / z)
+    return c, sc, s
+
+
+def lambda_squares(p: ArrayLike, w: ArrayLike, g: RodGroups) -> tuple[NDArray, NDArray]:
+    """``(lambda1^2, lambda2^2)`` of eqs. (112)–(114): ``lambda1^2`` is a root of eq. (112) in
+    ``lambda^2`` and ``lambda2^2`` minus the other one."""
+    p = np.asarray(p, dtype=complex)
+    w = np.asarray(w, dtype=complex)
+    a = 1 + g.eta * w
+    root = np.sqrt(p**2 - 4 * a * (g.gamma * w + w**2))
+    return (-p + root) / (2 * a), (p + root) / (2 * a)
+
+
+def characteristic_function(p: ArrayLike, w: ArrayLike, g: RodGroups,
+                            with_exponent: bool = False):
+    """Eq. (118), ``f(p, omega~, alpha, gamma, eta)``, evaluated stably (vectorised).
+
+    Returns ``f exp(-sigma)`` and, when ``with_exponent``, ``sigma`` (so ``f = F exp(sigma)``);
+    zeros of the returned value are exactly the zeros of ``f``.
+    """
+    L1, L2 = lambda_squares(p, w, g)
+    lam1, lam2 = np.sqrt(L1), np.sqrt(L2)
+    C1, S1, s1 = _scaled_even_functions(lam1, trig=False)
+    c2, s2, t2 = _scaled_even_functions(lam2, trig=True)
+    w = np.asarray(w, dtype=complex)
+    a = 1 + g.eta * w
+    sigma = s1 + t2
+    F = (a * (L1**2 + L2**2) * np.exp(-sigma) + 2 * a * L1 * L2 * C1 * c2
+         + a * L1 * L2 * (L2 - L1) * S1 * s2
+         - w**2 * g.tan_alpha * (L1 + L2) * (S1 * c2 - C1 * s2))
+    return (F, sigma) if with_exponent else F
+
+
+def check_load(p: float) -> float:
+    if not math.isfinite(p):
+        raise ParameterError(f"p must be finite, got {p!r}")
+    return float(p)

@@ -1,0 +1,107 @@
+"""Figures of §2.7–2.8: Figs. 11 and 12, the FE work-precision study and the stability map."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.figure import Figure
+
+from flutterfriction.plotting import REGIME_COLOURS
+
+
+def plot_branches(data: dict[str, Any], title: str) -> Figure:
+    """Re and Im of omega~ against p; upper row without damping, lower row with (Figs. 11, 12)."""
+    p = np.array(data["p"])
+    fig, axes = plt.subplots(2, 2, figsize=(8.4, 5.8), sharex=True)
+    for row, (name, label) in enumerate((("undamped", "damping absent 'from the beginning'"),
+                                         ("damped", rf"internal damping $\eta$ = "
+                                                    rf"{data['eta']:.4g}"))):
+        case = data["cases"][name]
+        crit = case["critical"]
+        for col, key in enumerate(("re", "im")):
+            ax = axes[row, col]
+            edges = [crit["p_flu"]] + ([crit["p_div"]] if crit["p_div"] else [])
+            names = ["stable", "flutter", "divergence"][: len(edges) + 1]
+            bounds = [p[0], *[e for e in edges if e < p[-1]], p[-1]]
+            for lo, hi, reg in zip(bounds[:-1], bounds[1:], names, strict=False):
+                ax.axvspan(lo, hi, color=REGIME_COLOURS[reg], alpha=0.7, lw=0, zorder=0)
+            for i, branch in enumerate(np.array(case[key])):
+                ax.plot(p, branch, color=f"C{i // 2}", lw=1.3)
+            ax.axhline(0, color="k", lw=0.6)
+            for e, sub in ((crit["p_flu"], "f"), (crit["p_div"], "d")):
+                if e is not None and e < p[-1]:
+                    ax.axvline(e, color="k", ls="--", lw=0.8)
+                    if col == 0:
+                        ax.annotate(rf"$p_{sub}$ = {e:.2f}", (e, 0.97), rotation=90, va="top",
+                                    ha="right", xycoords=("data", "axes fraction"), fontsize=7)
+            ax.set_ylabel(r"Re $\tilde\omega$" if key == "re" else r"Im $\tilde\omega$")
+            if col == 0:
+                ax.set_title(label, fontsize=8, loc="left")
+            ax.set_xlim(p[0], p[-1])
+    for ax in axes[1]:
+        ax.set_xlabel(r"$p = P l^2 / B$")
+    fig.suptitle(title, fontsize=9)
+    fig.tight_layout()
+    return fig
+
+
+def plot_fe_convergence(data: dict[str, Any]) -> Figure:
+    """Relative error of the FE flutter load against elements and against run time."""
+    n = np.array(data["elements"], float)
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(8.4, 3.6))
+    for i, (name, case) in enumerate(data["cases"].items()):
+        e = np.array(case["rel_error_p"])
+        ew = np.array(case["rel_error_omega"])
+        ax1.loglog(n, e, "o-", color=f"C{i}", ms=4,
+                   label=f"{name}: p_flu, rate {case['rate']:.2f}")
+        ax1.loglog(n, ew, "s:", color=f"C{i}", ms=3, mfc="none",
+                   label=rf"{name}: $\omega_{{flu}}$")
+        ax2.loglog(case["time_s"], e, "o-", color=f"C{i}", ms=4, label=name)
+    ref = n[n >= 4]
+    c0 = np.array(next(iter(data["cases"].values()))["rel_error_p"])[list(n).index(ref[0])]
+    ax1.loglog(ref, c0 * (ref[0] / ref) ** 4, "k--", lw=0.8, label=r"$h^4$")
+    ax1.set_xticks(n, [str(int(v)) for v in n])
+    ax1.minorticks_off()
+    ax1.set_xlabel("number of Hermite elements")
+    ax1.set_ylabel("relative error vs exact eq. (118)")
+    ax1.legend(fontsize=6)
+    ax2.set_xlabel("run time per critical-load solve [s] (median)")
+    ax2.set_ylabel("relative error of p_flu")
+    ax2.legend(fontsize=7)
+    fig.suptitle("Finite elements (scikit-fem) against the exact characteristic function",
+                 fontsize=9)
+    fig.tight_layout()
+    return fig
+
+
+def plot_stability_map(data: dict[str, Any]) -> Figure:
+    """Flutter and divergence loads against the tip-mass ratio M/(rho l)."""
+    r = np.array(data["mass_ratio"], float)
+    fig, ax = plt.subplots(figsize=(5.6, 3.8))
+    for name, style, lw, label in (("undamped", "-", 2.6, "damping absent"),
+                                   ("vanishing_damping", "--", 1.2,
+                                    r"vanishing internal damping")):
+        d = data[name]
+        ax.plot(r, d["p_flu"], style, lw=lw, color="C0", label=f"flutter, {label}")
+        div = np.array([np.nan if v is None else v for v in d["p_div"]], float)
+        ax.plot(r, div, style, lw=lw, color="C3" if name == "undamped" else "k",
+                label=f"divergence, {label}" + (" (the same)" if name != "undamped" else ""))
+    ax.set_xscale("symlog", linthresh=0.01)
+    ax.set_xlim(0, r[-1])
+    ax.set_xlabel(r"tip-mass ratio $M/(\rho l) = \tan\alpha$")
+    ax.set_ylabel(r"critical load $p = P l^2/B$ (searched up to 80)")
+    ax.legend(fontsize=7)
+    ax.set_title("Beck (ratio 0) to Pflüger rods: the paradox of vanishing damping", fontsize=9)
+    return fig
+
+
+PLOTS = {
+    "fig11": lambda d: plot_branches(d, "Fig. 11: the Beck rod, list (119)"),
+    "fig12": lambda d: plot_branches(
+        d, "Fig. 12: the Pflüger rod, list (119), tan α = "
+           f"{d['cases']['undamped']['groups']['tan_alpha']:.4g} (see errata)"),
+    "rod_fe_convergence": plot_fe_convergence,
+    "rod_stability_map": plot_stability_map,
+}

@@ -1,0 +1,267 @@
+"""Scenes of chapter §2.7–2.8: Figs. 11 and 12, the FE convergence study, the stability map
+over the tip mass, self-adjointness, and the evidence for the Fig. 12 erratum."""
+
+from __future__ import annotations
+
+import math
+import time
+from typing import Any
+
+import numpy as np
+from scipy.optimize import brentq
+
+from flutterfriction.analysis import rod as ar
+from flutterfriction.errors import ParameterError, check_nonnegative, check_positive
+from flutterfriction.models.rod import Rod, RodGroups
+from flutterfriction.models.rod_fe import assemble
+from flutterfriction.scenes.ziegler import _n_points, _quantity, _take
+
+EXACT = "Newton on the exact characteristic function, eq. (118)"
+
+
+def _rod(params: dict[str, Any]) -> Rod:
+    r = params.get("rod")
+    if not isinstance(r, dict):
+        raise ParameterError("scene parameters need a 'rod' section (length, B, rho, D, ...)")
+    allowed = {"length", "B", "rho", "D", "kappa", "tip_mass"}
+    _take(r, allowed)
+    return Rod(**r)
+
+
+def _fe_n(params: dict[str, Any]) -> int:
+    n = params.get("fe_elements", 32)
+    if isinstance(n, bool) or not isinstance(n, int) or n < 2:
+        raise ParameterError(f"fe_elements must be an integer >= 2, got {n!r}")
+    return n
+
+
+def _loads_quantities(prefix: str, g: RodGroups, n_fe: int) -> tuple[dict, ar.RodCriticalLoads]:
+    exact = ar.critical_loads(g)
+    fe = ar.fe_critical_loads(g, n_fe)
+    method_fe = f"finite elements ({n_fe} Hermite elements), pendulum solvers on the matrices"
+    q = {f"{prefix}_p_flu": _quantity(exact.p_flu, fe.p_flu, EXACT, method_fe, "")}
+    if exact.p_div is not None and fe.p_div is not None:
+        q[f"{prefix}_p_div"] = _quantity(exact.p_div, fe.p_div, EXACT, method_fe, "")
+    return q, exact
+
+
+def _branch_scene(params: dict[str, Any], tan_alpha: float) -> dict[str, Any]:
+    rod = _rod(params)
+    g_damped = RodGroups(tan_alpha=tan_alpha, eta=rod.groups().eta, gamma=rod.groups().gamma)
+    g_undamped = RodGroups(tan_alpha=tan_alpha)
+    p_max = check_positive("p_max", params.get("p_max", 35.0))
+    p = np.linspace(0.0, p_max, _n_points(params))
+    n_modes = int(params.get("n_modes", 2))
+    n_fe = _fe_n(params)
+    cases, quantities = {}, {}
+    for name, g in (("undamped", g_undamped), ("damped", g_damped)):
+        w = ar.branches(g, p, n_modes=n_modes)
+        q, exact = _loads_quantities(name, g, n_fe)
+        quantities.update(q)
+        cases[name] = {"groups": vars(g), "re": w.real.T.tolist(), "im": w.imag.T.tolist(),
+                       "critical": exact.as_dict()}
+    if "P_N" in params:  # list (119): "P = 5.5 N (inside the flutter region)"
+        from flutterfriction.analysis.stability import classify
+        from flutterfriction.models.rod_fe import fe_eigenvalues
+
+        p_load = float(params["P_N"]) / rod.load_unit
+        exact = ar.eigenvalues(p_load, g_damped, n_modes=3)
+        quantities[f"regime_at_{params['P_N']:g}N"] = _quantity(
+            str(classify(exact)), str(classify(fe_eigenvalues(g_damped, p_load, n_fe))),
+            "eigenvalues of eq. (118) (3 lowest modes)", f"FE spectrum ({n_fe} elements)", "")
+    return {"p": p.tolist(), "cases": cases, "quantities": quantities, "eta": g_damped.eta,
+            "P_N": params.get("P_N")}
+
+
+def fig11(params: dict[str, Any]) -> dict[str, Any]:
+    """Beck rod (no tip mass), list (119): branches of omega~ against p, undamped and with
+    internal damping; flutter at 20.05 and 10.94 (§2.7)."""
+    _take(params, {"rod", "p_max", "n_points", "n_modes", "fe_elements", "P_N"})
+    return _branch_scene(params, 0.0)
+
+
+def fig12(params: dict[str, Any]) -> dict[str, Any]:
+    """Pflüger rod, list (119) plus a tip mass ``tan(alpha) = M/(rho l)`` (see errata_rods)."""
+    _take(params, {"rod", "tan_alpha", "p_max", "n_points", "n_modes", "fe_elements", "P_N"})
+    return _branch_scene(params, check_nonnegative("tan_alpha", params["tan_alpha"]))
+
+
+# ---------------------------------------------------------------------- Fig. 12 erratum
+def errata_rods(params: dict[str, Any]) -> dict[str, Any]:
+    """Fig. 12's quoted loads (16.51, 30.22, 7.78, 30.52) against the stated tan(alpha) = 1, and
+    the interval of tan(alpha) that reproduces all four to their printed digits."""
+    _take(params, {"rod", "stated_tan_alpha", "quoted", "bracket"})
+    rod = _rod(params)
+    eta = rod.groups().eta
+    stated = check_positive("stated_tan_alpha", params.get("stated_tan_alpha", 1.0))
+    quoted = params["quoted"]  # {p_flu_undamped, p_div_undamped, p_flu_damped, p_div_damped}
+    lo, hi = params.get("bracket", [1.3, 1.9])
+
+    seed_u = ar.critical_loads(RodGroups(tan_alpha=0.5 * (lo + hi)))
+    seed_d = ar.critical_loads(RodGroups(tan_alpha=0.5 * (lo + hi), eta=eta))
+
+    def loads(t: float) -> dict[str, float]:
+        # Newton continuation from the seeds (ms); FE-guessed solve only if it fails.
+        try:
+            u = ar.continue_critical_loads(RodGroups(tan_alpha=t), seed_u)
+            d = ar.continue_critical_loads(RodGroups(tan_alpha=t, eta=eta), seed_d)
+        except Exception:
+            u = ar.critical_loads(RodGroups(tan_alpha=t))
+            d = ar.critical_loads(RodGroups(tan_alpha=t, eta=eta))
+        return {"p_flu_undamped": u.p_flu, "p_div_undamped": u.p_div,
+                "p_flu_damped": d.p_flu, "p_div_damped": d.p_div}
+
+    # For each quoted value, the tan(alpha) interval where the computed load rounds to it.
+    windows = {}
+    for key, value in quoted.items():
+        digits = 2  # all four are printed with two decimals
+        half = 0.5 * 10.0**-digits
+        edges = []
+        for bound in (value - half, value + half):
+            edges.append(brentq(lambda t, k=key, b=bound: loads(t)[k] - b, lo, hi, xtol=1e-10))
+        windows[key] = sorted(edges)
+    common = [max(w[0] for w in windows.values()), min(w[1] for w in windows.values())]
+    if common[0] >= common[1]:
+        raise ParameterError(f"no single tan(alpha) reproduces all quoted values: {windows}")
+    middle = 0.5 * (common[0] + common[1])
+    at_stated, at_middle, at_one_rad = loads(stated), loads(middle), loads(math.tan(1.0))
+    errata = {
+        key: {"quantity": f"{key} (p = P l^2/B), list (119)",
+              "printed": at_stated[key], "corrected": at_middle[key],
+              "independent": quoted[key],
+              "independent_method": "the value the chapter quotes (two decimals)"}
+        for key in quoted}
+    return {"windows": windows, "common_window": common, "tan_alpha_inferred": middle,
+            "at_stated": at_stated, "at_inferred": at_middle, "at_alpha_1_rad": at_one_rad,
+            "errata": errata,
+            "quantities": {"tan_alpha_window_width": _quantity(
+                common[1] - common[0], common[1] - common[0], "intersection of the four windows",
+                "same", "")}}
+
+
+# ---------------------------------------------------------------------- FE convergence
+def rod_fe_convergence(params: dict[str, Any]) -> dict[str, Any]:
+    """Work-precision of the FE twin: error of the flutter load and pulsation against the
+    number of elements and against run time, for each case."""
+    _take(params, {"cases", "elements", "repeats"})
+    elements = [int(n) for n in params["elements"]]
+    repeats = int(params.get("repeats", 3))
+    out: dict[str, Any] = {"elements": elements, "cases": {}}
+    quantities = {}
+    for name, spec in params["cases"].items():
+        _take(spec, {"tan_alpha", "eta", "gamma"})
+        g = RodGroups(**spec)
+        exact = ar.critical_loads(g)
+        err_p, err_w, times = [], [], []
+        for n in elements:
+            ts = []
+            for _ in range(repeats):
+                t0 = time.perf_counter()
+                fe = ar.fe_critical_loads(g, n)
+                ts.append(time.perf_counter() - t0)
+            err_p.append(abs(fe.p_flu - exact.p_flu) / exact.p_flu)
+            err_w.append(abs(fe.omega_flu - exact.omega_flu) / exact.omega_flu)
+            times.append(float(np.median(ts)))
+        # Convergence rate: least-squares slope of log(error) against log(h) where the error is
+        # above round-off (1e-12) and the asymptotic range has started (n >= 4).
+        n_arr, e_arr = np.array(elements, float), np.array(err_p)
+        mask = (e_arr > 1e-12) & (n_arr >= 4)
+        rate, log_c = np.polyfit(np.log(1 / n_arr[mask]), np.log(e_arr[mask]), 1)
+        out["cases"][name] = {"groups": vars(g), "exact": exact.as_dict(), "rel_error_p": err_p,
+                              "rel_error_omega": err_w, "time_s": times, "rate": rate,
+                              "constant": float(np.exp(log_c))}
+        quantities[f"{name}_rate"] = _quantity(float(rate), 4.0, "least-squares slope",
+                                               "cubic Hermite elements: O(h^4)", "")
+        quantities[f"{name}_finest"] = _quantity(
+            float(ar.fe_critical_loads(g, elements[-1]).p_flu), exact.p_flu,
+            f"FE, {elements[-1]} elements", EXACT, "")
+    out["quantities"] = quantities
+    return out
+
+
+# ---------------------------------------------------------------------- stability map
+def rod_stability_map(params: dict[str, Any]) -> dict[str, Any]:
+    """Flutter and divergence loads against the tip-mass ratio, undamped and with vanishing
+    internal damping (the rod's Ziegler paradox over the whole family)."""
+    _take(params, {"log10_ratio_range", "n_ratios", "eta_small"})
+    lo, hi = params.get("log10_ratio_range", [-2.0, 2.0])
+    n = int(params.get("n_ratios", 41))
+    if n < 3 or not lo < hi:
+        raise ParameterError("need n_ratios >= 3 and log10_ratio_range [lo, hi] with lo < hi")
+    ratios = [0.0, *np.logspace(lo, hi, n).tolist()]  # 0 is the Beck rod
+    eta = check_positive("eta_small", params.get("eta_small", 1e-6))
+    out: dict[str, Any] = {"mass_ratio": ratios}
+    for name, e in (("undamped", 0.0), ("vanishing_damping", eta)):
+        flu, div = [], []
+        prev = None
+        for r in ratios:
+            g = RodGroups(tan_alpha=r, eta=e)
+            c = None
+            if prev is not None and (prev.p_div is not None or r < 0.3):
+                try:  # continuation in the mass ratio (ms); a fresh FE-guessed solve otherwise
+                    c = ar.continue_critical_loads(g, prev)
+                except Exception:
+                    c = None
+            if c is None:
+                c = ar.critical_loads(g)
+            flu.append(c.p_flu)
+            div.append(c.p_div)
+            prev = c
+        out[name] = {"p_flu": flu, "p_div": div}
+    beck = ar.critical_loads(RodGroups(eta=eta))
+    out["quantities"] = {"beck_vanishing_damping": _quantity(
+        beck.p_flu, ar.fe_critical_loads(RodGroups(eta=eta), 64).p_flu, EXACT,
+        "finite elements (64 Hermite elements)", "")}
+    return out
+
+
+# ---------------------------------------------------------------------- §2.8 self-adjointness
+def self_adjoint(params: dict[str, Any]) -> dict[str, Any]:
+    """§2.8: the dead-load operator is symmetric and the follower one is not; the dead-load Beck
+    rod buckles (divergence through omega~ = 0) at p = pi^2/4."""
+    _take(params, {"fe_elements", "p_test"})
+    n = _fe_n(params)
+    p = float(params.get("p_test", 3.0))
+    fe = assemble(RodGroups(), n)
+    K_dead = fe.K_B + p * fe.load_matrix(follower=False)
+    K_fol = fe.K_B + p * fe.load_matrix(follower=True)
+    load_part = np.linalg.norm(p * fe.K_G)
+    asym = {k: float(np.linalg.norm(K - K.T) / load_part)
+            for k, K in (("dead", K_dead), ("follower", K_fol))}
+    import scipy.linalg as sla
+    p_buckle = float(np.min(sla.eigh(fe.K_B, fe.K_G, eigvals_only=True)))
+    # Eq. (126) on polynomial test functions satisfying the clamp, v''(1) = 0 and the shear
+    # condition of each load (eq. 121), for the same p.
+    lhs = {}
+    for kind in ("dead", "follower"):
+        X, Y = _test_functions(kind, p)
+        d = [np.polyder(X, k) for k in range(4)], [np.polyder(Y, k) for k in range(4)]
+        Xs, Ys = ([np.polyval(q, 1.0) for q in d[0]], [np.polyval(q, 1.0) for q in d[1]])
+        lhs[kind] = float(Ys[3] * Xs[0] - Ys[0] * Xs[3] + p * (Ys[1] * Xs[0] - Ys[0] * Xs[1]))
+    return {"asymmetry": asym, "eq126": lhs, "p_test": p,
+            "quantities": {
+                "dead_load_buckling": _quantity(p_buckle, math.pi**2 / 4,
+                                                f"FE, {n} elements: K_B v = p K_G v",
+                                                "Euler: pi^2/4", ""),
+                "eq126_dead": _quantity(lhs["dead"], 0.0, "eq. (126) on test functions", "zero",
+                                        ""),
+                "asymmetry_dead": _quantity(asym["dead"], 0.0,
+                                            "||K - K^T|| / ||p K_G||, dead load",
+                                            "zero", "")}}
+
+
+def _test_functions(kind: str, p: float) -> tuple[np.ndarray, np.ndarray]:
+    """Two independent quintic polynomials with v(0) = v'(0) = 0, v''(1) = 0 and v'''(1) = 0
+    (follower) or v'''(1) = -p v'(1) (dead)."""
+    out = []
+    for free in ((1.0, 0.0), (0.3, 1.0)):
+        # v = a2 x^2 + a3 x^3 + a4 x^4 + a5 x^5 with (a4, a5) given, (a2, a3) from the two BCs.
+        a4, a5 = free
+        # v''(1) = 2 a2 + 6 a3 + 12 a4 + 20 a5 = 0
+        # v'''(1) = 6 a3 + 24 a4 + 60 a5 = -c (2 a2 + 3 a3 + 4 a4 + 5 a5), c = p (dead) or 0
+        c = p if kind == "dead" else 0.0
+        A = np.array([[2.0, 6.0], [2 * c, 6.0 + 3 * c]])
+        b = -np.array([12 * a4 + 20 * a5, 24 * a4 + 60 * a5 + c * (4 * a4 + 5 * a5)])
+        a2, a3 = np.linalg.solve(A, b)
+        out.append(np.array([a5, a4, a3, a2, 0.0, 0.0]))
+    return out[0], out[1]

@@ -1,0 +1,183 @@
+"""The Beck and Pflüger rods (§2.5–2.8): exact characteristic function, critical loads to 1e-9
+against mpmath at 30 digits, finite-element convergence, self-adjointness, branches."""
+
+from __future__ import annotations
+
+import math
+
+import mpmath as mp
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from flutterfriction.analysis import rod as ar
+from flutterfriction.errors import ParameterError
+from flutterfriction.models.rod import Rod, RodGroups, characteristic_function
+from flutterfriction.models.rod_fe import assemble, fe_eigenvalues
+
+ETA_119 = 7.078e-6 / (0.0332 * 0.35**2) * math.sqrt(0.0332 / 0.0546)
+
+
+def f_mp(p, w, ta, gam=0, eta=0):
+    """Eq. (118) literally, in mpmath (lambda2^2 = minus the second root of eq. 112)."""
+    a = 1 + eta * w
+    disc = mp.sqrt(p**2 - 4 * a * (gam * w + w**2))
+    l1, l2 = mp.sqrt((-p + disc) / (2 * a)), mp.sqrt((p + disc) / (2 * a))
+    def shc(x):  # sinh(x)/x, and sin(x)/x, continuous at 0
+        return mp.mpf(1) if x == 0 else mp.sinh(x) / x
+
+    def sc(x):
+        return mp.mpf(1) if x == 0 else mp.sin(x) / x
+
+    # (lambda1^2 + lambda2^2)/(lambda1 lambda2) [lambda2 sinh l1 cos l2 - lambda1 cosh l1 sin l2]
+    # written without the 0/0 at lambda1 lambda2 = 0:
+    return (a * (l1**4 + l2**4) + 2 * a * l1**2 * l2**2 * mp.cosh(l1) * mp.cos(l2)
+            + l1 * l2 * a * (l2**2 - l1**2) * mp.sinh(l1) * mp.sin(l2)
+            - w**2 * ta * (l1**2 + l2**2)
+            * (shc(l1) * mp.cos(l2) - mp.cosh(l1) * sc(l2)))
+
+
+def det115_mp(p, w, ta, gam=0, eta=0):
+    a = 1 + eta * w
+    disc = mp.sqrt(p**2 - 4 * a * (gam * w + w**2))
+    l1, l2 = mp.sqrt((-p + disc) / (2 * a)), mp.sqrt((p + disc) / (2 * a))
+    t = w**2 * ta
+    M = mp.matrix([[0, 1, 0, 1], [l1, 0, l2, 0],
+                   [l1**2 * mp.sinh(l1), l1**2 * mp.cosh(l1), -l2**2 * mp.sin(l2),
+                    -l2**2 * mp.cos(l2)],
+                   [a * l1**3 * mp.cosh(l1) - t * mp.sinh(l1), a * l1**3 * mp.sinh(l1)
+                    - t * mp.cosh(l1), -a * l2**3 * mp.cos(l2) - t * mp.sin(l2),
+                    a * l2**3 * mp.sin(l2) - t * mp.cos(l2)]])
+    return mp.det(M)
+
+
+@settings(max_examples=40)
+@given(st.floats(0, 40), st.floats(-5, 5), st.floats(-60, 60), st.floats(0, 3),
+       st.floats(0, 0.5), st.floats(0, 0.05))
+def test_characteristic_function_vs_mpmath_and_eq115(p, wr, wi, ta, gam, eta):
+    """Our stable evaluation of eq. (118) equals eq. (118) at 30 digits, and eq. (118) is
+    det(115) / (lambda1 lambda2)."""
+    w = complex(wr, wi)
+    g = RodGroups(tan_alpha=ta, eta=eta, gamma=gam)
+    F, sigma = characteristic_function(p, w, g, with_exponent=True)
+    ours = complex(F * np.exp(sigma))
+    with mp.workdps(40):
+        wm = mp.mpc(wr, wi)
+        a = 1 + eta * wm
+        disc = mp.sqrt(p**2 - 4 * a * (gam * wm + wm**2))
+        l1l2 = mp.sqrt((-p + disc) / (2 * a)) * mp.sqrt((p + disc) / (2 * a))
+        ref = complex(f_mp(mp.mpf(p), wm, mp.mpf(ta), mp.mpf(gam), mp.mpf(eta)))
+        if abs(l1l2) > 1e-6 and abs(w) > 1e-6:  # generic points: det(115) is regular there
+            det = complex(det115_mp(mp.mpf(p), wm, mp.mpf(ta), mp.mpf(gam), mp.mpf(eta)) / l1l2)
+            assert det == pytest.approx(ref, rel=1e-9, abs=1e-9)
+    assert ours == pytest.approx(ref, rel=1e-9, abs=1e-9 * max(1.0, abs(ref)))
+
+
+def test_stable_for_huge_arguments_and_small_lambdas():
+    g = RodGroups(tan_alpha=1.0)
+    F, sigma = characteristic_function(5.0, 1e7j, g, with_exponent=True)
+    assert np.isfinite(F) and np.isfinite(sigma) and sigma > 700  # f itself would overflow
+    small = characteristic_function(1e-12, 1e-12j, RodGroups(tan_alpha=1.0))
+    assert np.isfinite(small)
+
+
+CASES = [  # (tan alpha, eta, expected exact values from 30-digit mpmath, see _mp_critical)
+    (0.0, 0.0), (0.0, ETA_119), (1.0, 0.0), (math.tan(1.0), ETA_119), (1.5608, 0.0)]
+
+
+def _mp_critical(ta, eta, kind, guess):
+    with mp.workdps(30):
+        if eta == 0:
+            def G(p, mu):
+                return f_mp(p, mp.sqrt(mu), ta)
+            sol = mp.findroot(lambda p, mu: [G(p, mu), mp.diff(lambda m: G(p, m), mu)], guess)
+        elif kind == "flutter":
+            def F(p, W):
+                v = f_mp(p, mp.mpc(0, W), ta, 0, eta)
+                return [v.real, v.imag]
+            sol = mp.findroot(F, guess)
+        else:
+            def F(p, w):
+                return [f_mp(p, w, ta, 0, eta).real,
+                        mp.diff(lambda x: f_mp(p, x, ta, 0, eta).real, w)]
+            sol = mp.findroot(F, guess)
+        return float(mp.re(sol[0]))
+
+
+@pytest.mark.parametrize(("ta", "eta"), CASES)
+def test_exact_critical_loads_vs_mpmath(ta, eta):
+    """Done-when: the exact critical loads agree with 30-digit mpmath to 1e-9 (we get ~1e-13)."""
+    c = ar.critical_loads(RodGroups(tan_alpha=ta, eta=eta))
+    guess_f = (c.p_flu, -c.omega_flu**2) if eta == 0 else (c.p_flu, c.omega_flu)
+    assert c.p_flu == pytest.approx(_mp_critical(ta, eta, "flutter", guess_f), rel=1e-11)
+    if ta == 0:
+        assert c.p_div is None  # Beck: no divergence
+    else:
+        guess_d = (c.p_div, c.omega_div**2) if eta == 0 else (c.p_div, c.omega_div)
+        assert c.p_div == pytest.approx(_mp_critical(ta, eta, "div", guess_d), rel=1e-11)
+
+
+def test_classical_values():
+    assert ar.critical_loads(RodGroups()).p_flu == pytest.approx(20.0509536190, rel=1e-10)
+    assert ar.critical_loads(RodGroups(eta=ETA_119)).p_flu == pytest.approx(10.9393514864,
+                                                                           rel=1e-10)
+
+
+def test_fe_converges_at_fourth_order():
+    exact = ar.critical_loads(RodGroups(tan_alpha=1.0)).p_flu
+    errors = [abs(ar.fe_critical_loads(RodGroups(tan_alpha=1.0), n).p_flu - exact)
+              for n in (4, 8, 16)]
+    rates = np.log2(np.array(errors[:-1]) / np.array(errors[1:]))
+    assert np.all(rates > 3.5) and np.all(rates < 4.5)
+
+
+def test_fe_eigenvalues_converge_to_exact_roots():
+    g = RodGroups(tan_alpha=0.5, eta=1e-3, gamma=0.1)
+    exact = ar.eigenvalues(12.0, g, n_modes=2)
+    fe = fe_eigenvalues(g, 12.0, 48)
+    for w in exact:
+        assert np.min(np.abs(fe - w)) < 1e-6 * abs(w)
+
+
+def test_self_adjointness_sec28():
+    fe = assemble(RodGroups(), 16)
+    dead, fol = fe.K_B + 3.0 * fe.load_matrix(False), fe.K_B + 3.0 * fe.load_matrix(True)
+    assert np.allclose(dead, dead.T, atol=1e-12)
+    assert not np.allclose(fol, fol.T)
+    import scipy.linalg as sla
+    p_buckle = np.min(sla.eigh(fe.K_B, fe.K_G, eigvals_only=True))
+    assert p_buckle == pytest.approx(math.pi**2 / 4, rel=1e-6)
+    from flutterfriction.scenes.rod import _test_functions
+    for kind, expect_zero in (("dead", True), ("follower", False)):
+        X, Y = _test_functions(kind, 3.0)
+        d = [[np.polyval(np.polyder(q, k), 1.0) for k in range(4)] for q in (X, Y)]
+        lhs = d[1][3] * d[0][0] - d[1][0] * d[0][3] + 3.0 * (d[1][1] * d[0][0] - d[1][0] * d[0][1])
+        assert (abs(lhs) < 1e-12) == expect_zero
+
+
+def test_branches_are_continuous():
+    p = np.linspace(0, 35, 141)
+    w = ar.branches(RodGroups(tan_alpha=1.5608, eta=ETA_119), p)
+    jumps = np.abs(np.diff(w, axis=0)).max()
+    assert jumps < 2.0  # the largest step between neighbours (dp = 0.25), no branch swaps
+    assert np.all(np.abs(np.diff(w, axis=0)) < 0.5 + 4 * np.sqrt(np.abs(np.diff(p))[:, None]))
+
+
+def test_rod_groups_eq106():
+    r = Rod(length=0.35, B=0.0332, rho=0.0546, D=7.078e-6, kappa=0.01, tip_mass=0.02)
+    g = r.groups()
+    assert g.eta == pytest.approx(ETA_119)
+    assert g.tan_alpha == pytest.approx(0.02 / (0.0546 * 0.35))
+    assert g.gamma == pytest.approx(0.01 * 0.35**2 / math.sqrt(0.0546 * 0.0332))
+    assert r.load_unit * 20.0 == pytest.approx(20.0 * 0.0332 / 0.35**2)
+
+
+@pytest.mark.parametrize("field", ["length", "B", "rho"])
+@pytest.mark.parametrize("bad", [0.0, -1.0, math.nan, math.inf])
+def test_rod_validation(field, bad):
+    params = dict(length=0.35, B=0.0332, rho=0.0546)
+    with pytest.raises(ParameterError, match=field):
+        Rod(**{**params, field: bad})
+    with pytest.raises(ParameterError, match="tip_mass"):
+        Rod(**params, tip_mass=-1.0)
