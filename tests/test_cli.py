@@ -103,3 +103,26 @@ def test_rod_bad_input(capsys, args, name):
     assert exc.value.code == 2
     err = capsys.readouterr().err
     assert name in err and "Traceback" not in err
+
+
+def test_acoustic_json(capsys):
+    args = ["acoustic", "--lam", "1", "--mu", "1", "--P", "1,-0.5,-0.5,0,0,0.8",
+            "--Q", "0.6,-0.3,-0.3,0,0,-0.8", "--n", "1,0,0", "--g", "0.5", "--json"]
+    assert main(args) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["flutter_interval"][0] < 0.5 < out["flutter_interval"][1]
+    assert any(abs(im) > 0 for _, im in out["eigenvalues"])  # inside the interval: flutter
+    assert "g_localization" in out
+
+
+@pytest.mark.parametrize(("extra", "name"), [(["--n", "0,0,0"], "--n"),
+                                             (["--n", "1,0"], "--n"),
+                                             (["--n", "1,0,0", "--g", "0"], "--g")])
+def test_acoustic_bad_input(capsys, extra, name):
+    args = ["acoustic", "--lam", "1", "--mu", "1", "--P", "1,0,0,0,0,0", "--Q", "1,0,0,0,0,0",
+            *extra]
+    with pytest.raises(SystemExit) as exc:
+        raise SystemExit(main(args))
+    assert exc.value.code == 2
+    err = capsys.readouterr().err
+    assert name in err and "Traceback" not in err

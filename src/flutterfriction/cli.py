@@ -9,6 +9,11 @@ dimensionless flutter and divergence loads ``p_flu``, ``p_div`` (eq. 106; ``null
 none, as for the Beck rod) and the pulsation ``omega_flu``; with SI parameters
 (``--length --B --rho [--D --kappa --tip-mass]``) it also prints ``P_flu_N``, ``P_div_N``.
 
+``flutterfriction acoustic --lam L --mu M --P p11,p22,p33,p23,p13,p12 --Q q11,... --n n1,n2,n3
+[--g G] [--json]`` analyses the acoustic tensor of nonassociative elastoplasticity (§3.5,
+isotropic elasticity, unit density): ``g_localization`` (eq. 185), ``flutter_interval``
+(eq. 188 corrected, or null) and, with ``--g``, the ``eigenvalues`` as ``[re, im]`` pairs.
+
 Bad input: one line naming the parameter on stderr, exit code 2, no traceback.
 """
 
@@ -83,7 +88,57 @@ def build_parser() -> argparse.ArgumentParser:
     r.add_argument("--p-max", type=_number, default=80.0,
                    help="largest dimensionless load searched (default 80)")
     r.add_argument("--json", action="store_true", help="print one JSON object")
+    a = sub.add_parser(
+        "acoustic", help="acoustic tensor of nonassociative elastoplasticity (§3.5)",
+        description="Localization modulus, flutter interval and eigenvalues of the acoustic "
+                    "tensor A(n) for isotropic elasticity (Lame constants), unit density, flow "
+                    "mode P and yield gradient Q (symmetric, Voigt order 11,22,33,23,13,12).")
+    a.add_argument("--lam", type=_number, required=True, help="Lame constant lambda [Pa]")
+    a.add_argument("--mu", type=_number, required=True, help="shear modulus mu [Pa], > 0")
+    a.add_argument("--P", type=_vector(6), required=True, help="p11,p22,p33,p23,p13,p12")
+    a.add_argument("--Q", type=_vector(6), required=True, help="q11,q22,q33,q23,q13,q12")
+    a.add_argument("--n", type=_vector(3), required=True, help="unit propagation direction")
+    a.add_argument("--g", type=_number, default=None, help="plastic modulus g [Pa], != 0")
+    a.add_argument("--json", action="store_true", help="print one JSON object")
     return parser
+
+
+def _vector(size: int):
+    def parse(text: str) -> list[float]:
+        parts = text.split(",")
+        if len(parts) != size:
+            raise argparse.ArgumentTypeError(f"needs {size} comma-separated numbers, got {text!r}")
+        return [_number(x) for x in parts]
+    return parse
+
+
+def _acoustic(args: argparse.Namespace) -> dict:
+    import numpy as np
+
+    from flutterfriction.models import solid as so
+
+    so.isotropic_elasticity(args.lam, args.mu)  # validates lam, mu (positive definite)
+    P = so.voigt_to_tensor(args.P)
+    Q = so.voigt_to_tensor(args.Q)
+    n = np.asarray(args.n, dtype=float)
+    norm = float(np.linalg.norm(n))
+    if norm == 0:
+        raise ParameterError("--n must be a non-zero vector (a unit propagation direction)")
+    notes = []
+    if abs(norm - 1) > 1e-9:
+        notes.append(f"n normalised from |n| = {norm:.6g}")
+        n = n / norm
+    out = {"g_localization": so.localization_modulus_isotropic(args.lam, args.mu, P, Q, n),
+           "flutter_interval": None, "notes": notes}
+    interval = so.flutter_interval_isotropic(args.lam, args.mu, P, Q, n)
+    if interval is not None:
+        out["flutter_interval"] = list(interval)
+    if args.g is not None:
+        if args.g == 0:
+            raise ParameterError("--g must be non-zero (the plastic modulus divides)")
+        eta = so.acoustic_eigenvalues_isotropic(args.lam, args.mu, P, Q, args.g, n)
+        out["eigenvalues"] = [[float(z.real), float(z.imag)] for z in eta]
+    return out
 
 
 def _rod(args: argparse.Namespace) -> dict:
@@ -133,7 +188,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
     try:
-        result = _ziegler(args) if args.command == "ziegler" else _rod(args)
+        result = {"ziegler": _ziegler, "rod": _rod, "acoustic": _acoustic}[args.command](args)
     except ParameterError as exc:
         print(f"flutterfriction: error: {exc}", file=sys.stderr)
         return 2
@@ -150,6 +205,9 @@ def main(argv: Sequence[str] | None = None) -> int:
 def _print(result: dict, as_json: bool) -> None:
     if as_json:
         print(json.dumps(result))
+    elif "g_localization" in result:
+        for key, value in result.items():
+            print(f"{key} = {value}")
     elif "p_flu" in result:
         for key in ("p_flu", "omega_flu", "p_div", "omega_div", "P_flu_N", "P_div_N"):
             if key in result:

@@ -38,3 +38,16 @@ rule report_rods:
         "results/benchmarks/report_rods.tsv"
     script:
         "../scripts/execute_notebook.py"
+
+
+rule report_solids:
+    input:
+        notebook="notebooks/solids.py",
+        data=expand("results/data/{scene}.json", scene=SOLID_SCENES),
+        figures=expand("results/figures/{scene}.png", scene=SOLID_FIGURES),
+    output:
+        "results/reports/solids.html",
+    benchmark:
+        "results/benchmarks/report_solids.tsv"
+    script:
+        "../scripts/execute_notebook.py"

@@ -9,8 +9,11 @@ PARADOX_SCENES = PARADOX_FIGURES + ["damped_dead_load", "errata_damped"]
 # §2.5–2.8: the Beck and Pflüger rods.
 ROD_FIGURES = ["fig11", "fig12", "rod_fe_convergence", "rod_stability_map"]
 ROD_SCENES = ROD_FIGURES + ["errata_rods", "self_adjoint"]
-ALL_FIGURES = ZIEGLER_FIGURES + PARADOX_FIGURES + ROD_FIGURES
-ALL_SCENES = ZIEGLER_SCENES + PARADOX_SCENES + ROD_SCENES
+# §3: frictional solids.
+SOLID_FIGURES = ["fig22", "acoustic_eigenvalues", "localization_directions", "flutter_map"]
+SOLID_SCENES = SOLID_FIGURES + ["solids_statements", "errata_solids"]
+ALL_FIGURES = ZIEGLER_FIGURES + PARADOX_FIGURES + ROD_FIGURES + SOLID_FIGURES
+ALL_SCENES = ZIEGLER_SCENES + PARADOX_SCENES + ROD_SCENES + SOLID_SCENES
 
 
 rule solve:

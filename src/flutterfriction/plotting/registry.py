@@ -1,5 +1,5 @@
 """All figure functions by scene name (the plot rule looks a scene up here)."""
 
-from flutterfriction.plotting import rod, ziegler, ziegler_damped
+from flutterfriction.plotting import rod, solids, ziegler, ziegler_damped
 
-PLOTS = {**ziegler.PLOTS, **ziegler_damped.PLOTS, **rod.PLOTS}
+PLOTS = {**ziegler.PLOTS, **ziegler_damped.PLOTS, **rod.PLOTS, **solids.PLOTS}

@@ -11,7 +11,7 @@ from collections.abc import Callable
 from typing import Any
 
 from flutterfriction.errors import ParameterError
-from flutterfriction.scenes import rod, ziegler, ziegler_damped
+from flutterfriction.scenes import rod, solids, ziegler, ziegler_damped
 
 SceneBuilder = Callable[[dict[str, Any]], dict[str, Any]]
 
@@ -36,6 +36,12 @@ SCENES: dict[str, SceneBuilder] = {
     "rod_fe_convergence": rod.rod_fe_convergence,
     "rod_stability_map": rod.rod_stability_map,
     "self_adjoint": rod.self_adjoint,
+    "fig22": solids.fig22,
+    "acoustic_eigenvalues": solids.acoustic_eigenvalues,
+    "localization_directions": solids.localization_directions,
+    "flutter_map": solids.flutter_map,
+    "solids_statements": solids.solids_statements,
+    "errata_solids": solids.errata_solids,
 }
 
 

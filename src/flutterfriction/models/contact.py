@@ -1,0 +1,136 @@
+"""Contact with Coulomb friction (chapter §3.1, Fig. 22): a point mass held by a normal spring
+``k_N`` and a tangential spring ``k_T``, sliding on a rigid plane with friction coefficient
+``mu``; forces ``p = (p_N, p_T)`` (``p_N > 0`` compressive), displacements ``u = (u_N, u_T)``.
+
+The rate equations (140)–(141) are piecewise linear in the rate: stick ``p_dot = E u_dot``
+inside the Coulomb cone ``|p_T| < mu p_N`` (eq. 127–129) or when unloading from it, slip
+``p_dot = C u_dot`` (eq. 143) on it. Along a piecewise-linear displacement path the response is
+therefore integrated *exactly*, splitting each segment where the force reaches the cone.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from flutterfriction.errors import ParameterError, check_positive
+
+
+@dataclass(frozen=True)
+class CoulombContact:
+    """Normal and tangential spring stiffnesses [N/m] and friction coefficient, all > 0."""
+
+    k_N: float
+    k_T: float
+    mu: float
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "k_N", check_positive("k_N", self.k_N, "N/m"))
+        object.__setattr__(self, "k_T", check_positive("k_T", self.k_T, "N/m"))
+        object.__setattr__(self, "mu", check_positive("mu", self.mu))
+
+    def elastic_matrix(self) -> NDArray:
+        """``E`` of eq. (129)."""
+        return np.diag([self.k_N, self.k_T])
+
+    def friction_function(self, p: ArrayLike) -> float:
+        """``f = |p_T| - mu p_N`` (eq. 128)."""
+        pN, pT = np.asarray(p, dtype=float)
+        return abs(pT) - self.mu * pN
+
+    @staticmethod
+    def _side(p: ArrayLike, side: float | None) -> float:
+        if side is not None:
+            return 1.0 if side >= 0 else -1.0
+        return float(np.sign(np.asarray(p, dtype=float)[1])) or 1.0
+
+    def gradient(self, p: ArrayLike, side: float | None = None) -> NDArray:
+        """``a = [-mu, sgn p_T]`` (eq. 131): normal to the Coulomb cone. At the apex
+        (``p_T = 0``) the side of the cone must be given (``side`` = +1 or -1)."""
+        return np.array([-self.mu, self._side(p, side)])
+
+    def slip_direction(self, p: ArrayLike, side: float | None = None) -> NDArray:
+        """``b = [0, sgn p_T]`` (eq. 136): not parallel to ``a``, the model is nonassociative."""
+        return np.array([0.0, self._side(p, side)])
+
+    def slip_operator(self, p: ArrayLike, side: float | None = None) -> NDArray:
+        """``C = E - (E b) (x) (E a) / (a . E b)`` (eq. 143), unsymmetric."""
+        E, a, b = self.elastic_matrix(), self.gradient(p, side), self.slip_direction(p, side)
+        return E - np.outer(E @ b, E.T @ a) / (a @ E @ b)
+
+    def rate(self, p: ArrayLike, u_dot: ArrayLike) -> NDArray:
+        """``p_dot`` of eq. (140) at the force ``p`` for the displacement rate ``u_dot``."""
+        p, u_dot = np.asarray(p, dtype=float), np.asarray(u_dot, dtype=float)
+        E = self.elastic_matrix()
+        if self.friction_function(p) < -1e-12 * max(1.0, abs(p[0])):
+            return E @ u_dot
+        a, b = self.gradient(p), self.slip_direction(p)
+        lam = max(a @ E @ u_dot, 0.0) / (a @ E @ b)  # Macaulay bracket: slip only if > 0
+        return E @ u_dot - lam * (E @ b)
+
+
+@dataclass(frozen=True)
+class ContactPath:
+    """Forces along a displacement path, with the slip and the branch of each piece."""
+
+    u: NDArray  # (n, 2) displacements at the recorded points
+    p: NDArray  # (n, 2) forces
+    slip: NDArray  # (n,) accumulated tangential slip u_T^s
+    branch: list[str]  # for the piece ending at each point: "start", "stick" or "slip"
+
+
+def integrate_path(contact: CoulombContact, vertices: ArrayLike,
+                   p0: ArrayLike = (0.0, 0.0)) -> ContactPath:
+    """Exact response to the piecewise-linear displacement path through ``vertices`` (m, 2).
+
+    Within a segment the rate is constant; the branch changes only where the force reaches
+    the cone (computed exactly), so every piece is linear. ``p0`` must be admissible
+    (``p_N >= 0``, ``|p_T| <= mu p_N``).
+    """
+    V = np.asarray(vertices, dtype=float)
+    if V.ndim != 2 or V.shape[1] != 2 or len(V) < 2 or not np.all(np.isfinite(V)):
+        raise ParameterError("vertices must be a finite (m >= 2, 2) array of (u_N, u_T)")
+    p = np.asarray(p0, dtype=float).copy()
+    if p[0] < 0 or contact.friction_function(p) > 1e-12 * max(1.0, p[0]):
+        raise ParameterError(f"p0 = {p0} is outside the Coulomb cone |p_T| <= mu p_N")
+    E = contact.elastic_matrix()
+    us, ps, slips, branches = [V[0].copy()], [p.copy()], [0.0], ["start"]
+    slip = 0.0
+    for u_a, u_b in zip(V[:-1], V[1:], strict=True):
+        du = u_b - u_a
+        t = 0.0
+        while t < 1.0 - 1e-15:
+            tol = 1e-12 * max(1.0, abs(p[0]))
+            dp_trial = E @ du
+            # The side of the cone: sgn p_T, or at the apex the direction of the trial rate.
+            side = np.sign(p[1]) if abs(p[1]) > tol else (np.sign(dp_trial[1]) or 1.0)
+            on_cone = contact.friction_function(p) >= -tol
+            a, b = contact.gradient(p, side), contact.slip_direction(p, side)
+            if on_cone and a @ dp_trial > 0:  # plastic loading: slip to the end of the segment
+                lam = (a @ dp_trial) / (a @ E @ b) * (1.0 - t)
+                p = p + contact.slip_operator(p, side) @ du * (1.0 - t)
+                slip += lam * b[1]
+                t = 1.0
+                branch = "slip"
+            else:  # stick: elastic until the force reaches the cone (either side) or the end
+                dp = E @ du
+                t_hit = 1.0
+                for s in (1.0, -1.0):  # f = s p_T - mu p_N reaches 0
+                    rate = s * dp[1] - contact.mu * dp[0]
+                    val = s * p[1] - contact.mu * p[0]
+                    if rate > 0 and val < 0:
+                        t_hit = min(t_hit, t + (-val / rate))
+                t_new = min(t_hit, 1.0)
+                p = p + dp * (t_new - t)
+                t = t_new
+                branch = "stick"
+                if p[0] < 0:
+                    raise ParameterError("the path separates the contact (p_N < 0): not "
+                                         "modelled (chapter §3.1: contact only)")
+            us.append(u_a + t * du)
+            ps.append(p.copy())
+            slips.append(slip)
+            branches.append(branch)
+    return ContactPath(u=np.array(us), p=np.array(ps), slip=np.array(slips), branch=branches)

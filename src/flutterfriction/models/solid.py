@@ -1,0 +1,215 @@
+"""Nonassociative elastoplasticity and the acoustic tensor (chapter §3.2–3.5).
+
+Fourth-order tensors are numpy arrays of shape (3, 3, 3, 3) acting on symmetric second-order
+tensors by double contraction, ``E[A]_ij = E_ijkl A_kl``. General forms use ``einsum`` and any
+elasticity tensor; the isotropic closed forms (eqs. 178–194) are their twins.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from flutterfriction.errors import ParameterError, check_positive, check_real
+
+I3 = np.eye(3)
+
+
+def isotropic_elasticity(lam: float, mu: float) -> NDArray:
+    """``E = lam I (x) I + 2 mu II^sym``; positive definite iff mu > 0 and 3 lam + 2 mu > 0."""
+    lam = check_real("lam", lam)
+    mu = check_positive("mu", mu)
+    if 3 * lam + 2 * mu <= 0:
+        raise ParameterError(f"lam must be > -2 mu/3 = {-2 * mu / 3:g} for a positive definite "
+                             f"isotropic elasticity, got {lam!r}")
+    return (lam * np.einsum("ij,kl->ijkl", I3, I3)
+            + mu * (np.einsum("ik,jl->ijkl", I3, I3) + np.einsum("il,jk->ijkl", I3, I3)))
+
+
+def random_elasticity_perturbation(rng: np.random.Generator) -> NDArray:
+    """A random fourth-order tensor with major and minor symmetries and unit norm (from a
+    random symmetric 6x6 matrix in Mandel notation): a generic elastic anisotropy."""
+    B = rng.normal(size=(6, 6))
+    B = (B + B.T) / 2
+    pairs = [(0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1)]
+    weight = [1.0, 1.0, 1.0, math.sqrt(2), math.sqrt(2), math.sqrt(2)]
+    T = np.zeros((3, 3, 3, 3))
+    for a, (i, j) in enumerate(pairs):
+        for b, (k, l) in enumerate(pairs):
+            v = B[a, b] / (weight[a] * weight[b])
+            for r, s in {(i, j), (j, i)}:
+                for t, u in {(k, l), (l, k)}:
+                    T[r, s, t, u] = v
+    return T / np.linalg.norm(T)
+
+
+def apply(E: NDArray, A: ArrayLike) -> NDArray:
+    """``E[A]``."""
+    return np.einsum("ijkl,kl->ij", E, np.asarray(A, dtype=float))
+
+
+def apply_transpose(E: NDArray, A: ArrayLike) -> NDArray:
+    """``E^T[A]`` (major transpose)."""
+    return np.einsum("ijkl,ij->kl", E, np.asarray(A, dtype=float))
+
+
+def check_symmetric(name: str, A: ArrayLike) -> NDArray:
+    A = np.asarray(A, dtype=float)
+    if A.shape != (3, 3) or not np.all(np.isfinite(A)):
+        raise ParameterError(f"{name} must be a finite 3x3 tensor")
+    if not np.allclose(A, A.T, atol=1e-12 * max(1.0, np.abs(A).max())):
+        raise ParameterError(f"{name} must be symmetric")
+    return 0.5 * (A + A.T)
+
+
+def check_direction(n: ArrayLike, normalise: bool = False) -> NDArray:
+    n = np.asarray(n, dtype=float)
+    if n.shape != (3,) or not np.all(np.isfinite(n)):
+        raise ParameterError("n must be 3 finite numbers")
+    norm = np.linalg.norm(n)
+    if norm == 0:
+        raise ParameterError("n must be non-zero (a unit vector)")
+    if abs(norm - 1) > 1e-9 and not normalise:
+        raise ParameterError(f"n must be a unit vector, |n| = {norm:.6g}")
+    return n / norm
+
+
+def voigt_to_tensor(v: ArrayLike) -> NDArray:
+    """``(a11, a22, a33, a23, a13, a12)`` to the symmetric 3x3 tensor."""
+    a = np.asarray(v, dtype=float)
+    if a.shape != (6,):
+        raise ParameterError("a Voigt tensor needs 6 components a11,a22,a33,a23,a13,a12")
+    return np.array([[a[0], a[5], a[4]], [a[5], a[1], a[3]], [a[4], a[3], a[2]]])
+
+
+# ---------------------------------------------------------------------- §3.2
+def drucker_prager_tensors(sigma: ArrayLike, friction_angle: float,
+                           dilatancy_angle: float) -> tuple[NDArray, NDArray]:
+    """``(P, Q)`` of eqs. (154)–(155): ``P = cos(chi) S^ + sqrt3 sin(chi)/3 I``,
+    ``Q = cos(phi) S^ + sqrt3 sin(phi)/3 I`` with ``S^ = dev(sigma)/|dev(sigma)|``; ``phi``
+    the friction (pressure-sensitivity) angle and ``chi`` the dilatancy angle, radians. Both
+    tensors have unit norm. Deviatoric associativity: their deviatoric parts are aligned."""
+    sigma = check_symmetric("sigma", sigma)
+    phi = check_real("friction_angle", friction_angle)
+    chi = check_real("dilatancy_angle", dilatancy_angle)
+    dev = sigma - I3 * np.trace(sigma) / 3
+    norm = np.linalg.norm(dev)
+    if norm == 0:
+        raise ParameterError("sigma must have a non-zero deviator (Drucker-Prager's S^)")
+    S = dev / norm
+    P = math.cos(chi) * S + math.sqrt(3) * math.sin(chi) / 3 * I3
+    Q = math.cos(phi) * S + math.sqrt(3) * math.sin(phi) / 3 * I3
+    return P, Q
+
+
+def plastic_modulus(H: float, E: NDArray, P: ArrayLike, Q: ArrayLike) -> float:
+    """``g = H + Q . E[P]`` (eq. 152)."""
+    return float(check_real("H", H) + np.einsum("ij,ij->", np.asarray(Q), apply(E, P)))
+
+
+def elastoplastic_tangent(E: NDArray, P: ArrayLike, Q: ArrayLike, g: float) -> NDArray:
+    """``C = E - E[P] (x) E^T[Q] / g`` (eq. 153), the plastic branch."""
+    g = check_real("g", g)
+    if g == 0:
+        raise ParameterError("g must be non-zero")
+    return E - np.einsum("ij,kl->ijkl", apply(E, P), apply_transpose(E, Q)) / g
+
+
+# ---------------------------------------------------------------------- §3.3–3.4
+def elastic_acoustic_tensor(E: NDArray, n: ArrayLike, rho: float = 1.0) -> NDArray:
+    """``A_el(n)`` of eq. (162): ``(A_el)_ik = E_ijkl n_j n_l / rho``."""
+    n = np.asarray(n, dtype=float)
+    return np.einsum("ijkl,j,l->ik", E, n, n) / rho
+
+
+def acoustic_vectors(E: NDArray, P: ArrayLike, Q: ArrayLike, n: ArrayLike) -> tuple:
+    """``p = E[P] n`` and ``q = E^T[Q] n`` (eq. 165)."""
+    n = np.asarray(n, dtype=float)
+    return apply(E, P) @ n, apply_transpose(E, Q) @ n
+
+
+def acoustic_tensor(E: NDArray, P: ArrayLike, Q: ArrayLike, g: float, n: ArrayLike,
+                    rho: float = 1.0) -> NDArray:
+    """``A(n) = A_el(n) - p (x) q / (rho g)`` (eq. 161), general elasticity."""
+    p, q = acoustic_vectors(E, P, Q, n)
+    return elastic_acoustic_tensor(E, n, rho) - np.outer(p, q) / (rho * g)
+
+
+def localization_modulus(E: NDArray, P: ArrayLike, Q: ArrayLike, n: ArrayLike) -> float:
+    """``g_cr^E(n) = q . A_el^{-1}(n) p`` (eq. 166), general elasticity, rho = 1."""
+    p, q = acoustic_vectors(E, P, Q, n)
+    return float(q @ np.linalg.solve(elastic_acoustic_tensor(E, n), p))
+
+
+# ---------------------------------------------------------------------- §3.5, isotropic
+def isotropic_vectors(lam: float, mu: float, P: ArrayLike, Q: ArrayLike,
+                      n: ArrayLike) -> tuple[NDArray, NDArray]:
+    """``q = lam tr(Q) n + 2 mu Q n``, ``p = lam tr(P) n + 2 mu P n`` (eq. 180)."""
+    P, Q, n = (np.asarray(x, dtype=float) for x in (P, Q, n))
+    return lam * np.trace(P) * n + 2 * mu * P @ n, lam * np.trace(Q) * n + 2 * mu * Q @ n
+
+
+def acoustic_tensor_isotropic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike, g: float,
+                              n: ArrayLike) -> NDArray:
+    """Eq. (179): ``(lam + mu) n (x) n + mu I - p (x) q / g``."""
+    n = np.asarray(n, dtype=float)
+    p, q = isotropic_vectors(lam, mu, P, Q, n)
+    return (lam + mu) * np.outer(n, n) + mu * I3 - np.outer(p, q) / g
+
+
+def acoustic_eigenvalues_isotropic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike,
+                                   g: float, n: ArrayLike) -> NDArray:
+    """``mu`` and the two roots of eq. (184) (complex when flutter)."""
+    p, q = isotropic_vectors(lam, mu, P, Q, n)
+    n = np.asarray(n, dtype=float)
+    b = lam + 3 * mu - p @ q / g
+    c = (lam + 2 * mu) * (mu - p @ q / g) + (lam + mu) * (p @ n) * (q @ n) / g
+    root = np.sqrt(complex(b * b - 4 * c))
+    return np.array([mu, (b - root) / 2, (b + root) / 2])
+
+
+def localization_modulus_isotropic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike,
+                                   n: ArrayLike) -> float:
+    """Eq. (185)."""
+    n = np.asarray(n, dtype=float)
+    p, q = isotropic_vectors(lam, mu, P, Q, n)
+    return float(-(lam + mu) / (mu * (lam + 2 * mu)) * (p @ n) * (q @ n) + p @ q / mu)
+
+
+def flutter_interval_isotropic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike,
+                               n: ArrayLike) -> tuple[float, float] | None:
+    """``(g1, g2)`` of eqs. (187)–(188), corrected: flutter iff ``N = (n.p)(n.q) > 0``,
+    ``N - p.q > 0`` and ``g1 < g < g2`` with ``g = (sqrt N -/+ sqrt(N - p.q))^2/(lam + mu)``.
+    (Eq. 188 as printed has ``(n.p)(n.p)`` in the second root.) ``None`` when no flutter."""
+    n = np.asarray(n, dtype=float)
+    p, q = isotropic_vectors(lam, mu, P, Q, n)
+    N, pq = (n @ p) * (n @ q), p @ q
+    if not (N > 0 and N - pq > 0):
+        return None
+    r1, r2 = math.sqrt(N), math.sqrt(N - pq)
+    return (r1 - r2) ** 2 / (lam + mu), (r1 + r2) ** 2 / (lam + mu)
+
+
+def flutter_interval_as_printed(lam: float, mu: float, P: ArrayLike, Q: ArrayLike,
+                                n: ArrayLike) -> tuple[float, float] | None:
+    """Eq. (188) exactly as printed (erratum evidence only)."""
+    n = np.asarray(n, dtype=float)
+    p, q = isotropic_vectors(lam, mu, P, Q, n)
+    N, pq = (n @ p) * (n @ q), p @ q
+    printed = (n @ p) * (n @ p) - pq
+    if not (N > 0 and printed > 0):
+        return None
+    r1, r2 = math.sqrt(N), math.sqrt(printed)
+    return (r1 - r2) ** 2 / (lam + mu), (r1 + r2) ** 2 / (lam + mu)
+
+
+def coalescence_modulus(lam: float, mu: float, P: ArrayLike, Q: ArrayLike) -> float:
+    """Eq. (194): ``max_i (E[P])_i (E[Q])_i / (lam + mu)`` over principal components, for
+    coaxial ``P``, ``Q`` (deviatoric associativity)."""
+    E = isotropic_elasticity(lam, mu)
+    EP, EQ = apply(E, P), apply(E, Q)
+    w, V = np.linalg.eigh(EP)
+    eq = np.einsum("ji,jk,ki->i", V, EQ, V)  # components of E[Q] on E[P]'s principal axes
+    return float(np.max(w * eq) / (lam + mu))

@@ -1,0 +1,288 @@
+"""Scenes of chapter §3: Fig. 22 (Coulomb contact), the eigenvalues of the acoustic tensor,
+localization directions (checked against Rudnicki and Rice 1975), flutter maps, the statements
+of §3.5 shown numerically, and the evidence for the errata of §3."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from flutterfriction.analysis import acoustic as ac
+from flutterfriction.errors import ParameterError, check_positive
+from flutterfriction.models import solid as so
+from flutterfriction.models.contact import CoulombContact, integrate_path
+from flutterfriction.scenes.ziegler import _n_points, _quantity, _take
+
+
+def _unit(t: Any) -> np.ndarray:
+    t = np.asarray(t, dtype=float)
+    if t.shape == (6,):
+        t = so.voigt_to_tensor(t)
+    t = so.check_symmetric("tensor", t)
+    return t / np.linalg.norm(t)
+
+
+def _direction_in_plane(theta: np.ndarray) -> np.ndarray:
+    """Unit vectors in the (e1, e3) principal plane at angle theta from e1, shape (m, 3)."""
+    return np.stack([np.cos(theta), np.zeros_like(theta), np.sin(theta)], axis=-1)
+
+
+# ---------------------------------------------------------------------- Fig. 22
+def fig22(params: dict[str, Any]) -> dict[str, Any]:
+    """The Coulomb cone, the normal a and the slip direction b, and a computed force path."""
+    _take(params, {"k_N", "k_T", "mu", "path"})
+    c = CoulombContact(params["k_N"], params["k_T"], params["mu"])
+    r = integrate_path(c, params["path"])
+    slip_pt = r.p[r.branch.index("slip")]
+    C = c.slip_operator(slip_pt)
+    closed = np.array([[c.k_N, 0.0], [c.mu * c.k_N * np.sign(slip_pt[1]), 0.0]])
+    drift = max(abs(c.friction_function(p)) for p, b in zip(r.p, r.branch, strict=True)
+                if b == "slip")
+    return {
+        "mu": c.mu, "u": r.u.tolist(), "p": r.p.tolist(), "slip": r.slip.tolist(),
+        "branch": r.branch, "slip_point": slip_pt.tolist(),
+        "a": c.gradient(slip_pt).tolist(), "b": c.slip_direction(slip_pt).tolist(),
+        "quantities": {
+            "slip_operator_C21": _quantity(float(C[1, 0]), float(closed[1, 0]),
+                                           "eq. (143) from E, a, b", "closed form mu k_N sgn p_T",
+                                           "N/m"),
+            "slip_operator_asymmetry": _quantity(float(C[1, 0] - C[0, 1]), c.mu * c.k_N,
+                                                 "C21 - C12 of eq. (143)", "mu k_N", "N/m"),
+            "cone_drift_while_slipping": _quantity(float(drift), 0.0,
+                                                   "max |f| on the slip pieces", "zero", "N"),
+        }}
+
+
+# ---------------------------------------------------------------------- acoustic eigenvalues
+def _nonassociative_case(params: dict[str, Any]):
+    lam, mu = float(params["lam"]), check_positive("mu", params["mu"])
+    P, Q = _unit(params["P"]), _unit(params["Q"])
+    n = so.check_direction(params["n"], normalise=True)
+    return lam, mu, P, Q, n
+
+
+def acoustic_eigenvalues(params: dict[str, Any]) -> dict[str, Any]:
+    """Eigenvalues of A(n) against g for a nonassociative case: localization, coalescences and
+    the complex (flutter) pair between g1 and g2 (eqs. 179–188)."""
+    _take(params, {"lam", "mu", "P", "Q", "n", "g_min", "g_max", "n_points"})
+    lam, mu, P, Q, n = _nonassociative_case(params)
+    E = so.isotropic_elasticity(lam, mu)
+    g = np.geomspace(check_positive("g_min", params["g_min"]),
+                     check_positive("g_max", params["g_max"]), _n_points(params))
+    eta = np.array([np.sort_complex(np.linalg.eigvals(so.acoustic_tensor(E, P, Q, gi, n)))
+                    for gi in g])
+    closed = np.array([so.acoustic_eigenvalues_isotropic(lam, mu, P, Q, gi, n) for gi in g])
+    interval = so.flutter_interval_isotropic(lam, mu, P, Q, n)
+    brute = ac.flutter_interval_bruteforce(E, P, Q, n, g_max=float(g[-1]))
+    if interval is None or len(brute) != 1:
+        raise ParameterError("the configured case must have one flutter interval")
+    gE = so.localization_modulus_isotropic(lam, mu, P, Q, n)
+    return {
+        "g": g.tolist(), "re": eta.real.T.tolist(), "im": eta.imag.T.tolist(), "mu": mu,
+        "g_localization": gE, "flutter_interval": list(interval),
+        "max_closed_vs_eig": float(np.max(np.abs(np.sort_complex(closed) - eta))),
+        "quantities": {
+            "g1": _quantity(interval[0], brute[0][0], "closed form eq. (188), corrected",
+                            "brute force: discriminant of det(A - eta I) (Brent)", "Pa"),
+            "g2": _quantity(interval[1], brute[0][1], "closed form eq. (188), corrected",
+                            "brute force: discriminant of det(A - eta I) (Brent)", "Pa"),
+            "g_localization": _quantity(gE, so.localization_modulus(E, P, Q, n),
+                                        "closed form eq. (185)", "general eq. (166)", "Pa"),
+        }}
+
+
+# ---------------------------------------------------------------------- localization
+def _dp_state(params: dict[str, Any]):
+    """Drucker–Prager in Rudnicki–Rice form: tension-positive stress with s_II / tau = N,
+    Q = S^/sqrt2 + mu_f I/3, P = S^/sqrt2 + beta I/3 (so that H is R&R's h)."""
+    N = float(params["N"])
+    if not -1 / math.sqrt(3) - 1e-12 <= N <= 1 / math.sqrt(3) + 1e-12:
+        raise ParameterError(f"N = s_II/tau must lie in [-1/sqrt3, 1/sqrt3], got {N}")
+    a = math.sqrt(max(0.0, (2 - 1.5 * N**2) / 2))
+    s = np.diag([-N / 2 + a, N, -N / 2 - a])
+    S = s / np.linalg.norm(s)
+    P = S / math.sqrt(2) + float(params["beta"]) * np.eye(3) / 3
+    Q = S / math.sqrt(2) + float(params["mu_f"]) * np.eye(3) / 3
+    return P, Q
+
+
+def rudnicki_rice_hcr(G: float, nu: float, beta: float, mu_f: float, N: float) -> float:
+    """Rudnicki and Rice (1975): critical hardening modulus for localization of a
+    Drucker–Prager material, ``h/G = (1+nu)/(9(1-nu)) (beta - mu)^2 - (1+nu)/2 (N + (beta+mu)/3)^2``
+    (valid when the band normal lies in the plane of the extreme principal stresses)."""
+    return G * ((1 + nu) / (9 * (1 - nu)) * (beta - mu_f) ** 2
+                - (1 + nu) / 2 * (N + (beta + mu_f) / 3) ** 2)
+
+
+def localization_directions(params: dict[str, Any]) -> dict[str, Any]:
+    """g_E(n) over the directions of the (sigma_1, sigma_3) principal plane and its maximum over
+    the whole sphere, against Rudnicki and Rice's closed form."""
+    _take(params, {"G", "nu", "beta", "mu_f", "N", "n_points", "n_search"})
+    G, nu = check_positive("G", params["G"]), float(params["nu"])
+    if not -1 < nu < 0.5:
+        raise ParameterError(f"nu must lie in (-1, 0.5), got {nu}")
+    lam = 2 * G * nu / (1 - 2 * nu)
+    E = so.isotropic_elasticity(lam, G)
+    P, Q = _dp_state(params)
+    theta = np.linspace(0, np.pi, _n_points(params))
+    gE = ac.localization_moduli(E, P, Q, _direction_in_plane(theta))
+    g_max, n_max = ac.max_localization_modulus(E, P, Q, int(params.get("n_search", 4000)))
+    QEP = float(np.einsum("ij,ij->", Q, so.apply(E, P)))
+    h_rr = rudnicki_rice_hcr(G, nu, params["beta"], params["mu_f"], params["N"])
+    return {
+        "theta": theta.tolist(), "g_E": gE.tolist(), "g_max": g_max, "n_max": n_max.tolist(),
+        "theta_max_in_plane": float(theta[np.argmax(gE)]),
+        "quantities": {"h_cr": _quantity(g_max - QEP, h_rr,
+                                         "max over the sphere of eq. (166) minus Q.E[P]",
+                                         "Rudnicki and Rice (1975), closed form", "Pa")}}
+
+
+# ---------------------------------------------------------------------- flutter maps
+def flutter_map(params: dict[str, Any]) -> dict[str, Any]:
+    """(a) Which directions in a principal plane flutter, against g, for the nonassociative case
+    (closed form, verified by brute force at a few points); (b) a deviatoric-associative
+    Drucker–Prager material at coalescence (no flutter with isotropic elasticity): the fraction
+    of directions that flutter as a small elastic anisotropy grows (Bigoni and Loret 1999)."""
+    _take(params, {"plane_case", "anisotropy", "n_points"})
+    pc = params["plane_case"]
+    lam, mu, P, Q, _ = _nonassociative_case({**pc, "n": [1, 0, 0]})
+    theta = np.linspace(0, np.pi, _n_points(params))
+    dirs = _direction_in_plane(theta)
+    bounds = [so.flutter_interval_isotropic(lam, mu, P, Q, n) for n in dirs]
+    gE = [so.localization_modulus_isotropic(lam, mu, P, Q, n) for n in dirs]
+    E = so.isotropic_elasticity(lam, mu)
+    checks = {}
+    for i in np.linspace(0, len(theta) - 1, 7).astype(int)[1:-1]:
+        if bounds[i] is not None:
+            brute = ac.flutter_interval_bruteforce(E, P, Q, dirs[i], g_max=10 * bounds[i][1])
+            checks[f"g2_theta{theta[i]:.3f}"] = _quantity(
+                bounds[i][1], brute[0][1], "closed form eq. (188), corrected", "brute force",
+                "Pa")
+    an = params["anisotropy"]
+    _take(an, {"lam", "mu", "sigma", "friction_deg", "dilatancy_deg", "seed", "eps_values",
+               "patch_deg", "n_patch", "n_g"})
+    lam2, mu2 = float(an["lam"]), check_positive("mu", an["mu"])
+    Pd, Qd = so.drucker_prager_tensors(np.diag(an["sigma"]), math.radians(an["friction_deg"]),
+                                       math.radians(an["dilatancy_deg"]))
+    E0 = so.isotropic_elasticity(lam2, mu2)
+    gC = so.coalescence_modulus(lam2, mu2, Pd, Qd)
+    w, V = np.linalg.eigh(so.apply(E0, Pd))
+    nC = V[:, int(np.argmax(w * np.einsum("ji,jk,ki->i", V, so.apply(E0, Qd), V)))]
+    T = so.random_elasticity_perturbation(np.random.default_rng(int(an["seed"]))) * mu2
+    dirs, offsets = _patch(nC, float(an["patch_deg"]), int(an["n_patch"]))
+    g_scan = gC * np.linspace(0.8, 1.2, int(an["n_g"]))
+    fractions, maps = [], []
+    for eps in an["eps_values"]:
+        flutters = ac.flutters_somewhere(E0 + float(eps) * T, Pd, Qd, dirs, g_scan)
+        fractions.append(float(np.mean(flutters)))
+        maps.append(flutters.reshape(len(offsets), len(offsets)).astype(int).tolist())
+    checks["isotropic_flutter_directions"] = _quantity(
+        int(round(fractions[0] * len(dirs))), 0, "brute force near coalescence, eps = 0",
+        "Loret et al. (1990): excluded", "")
+    return {"theta": theta.tolist(),
+            "g1": [None if b is None else b[0] for b in bounds],
+            "g2": [None if b is None else b[1] for b in bounds], "g_localization": gE,
+            "anisotropy": {"eps": an["eps_values"], "fraction_flutter": fractions,
+                           "maps": maps, "offsets_deg": offsets.tolist(), "n_coalescence":
+                           nC.tolist(), "g_coalescence": gC,
+                           "g_range": [float(g_scan[0]), float(g_scan[-1])]},
+            "quantities": checks}
+
+
+def _patch(nC: np.ndarray, half_deg: float, m: int) -> tuple[np.ndarray, np.ndarray]:
+    """Directions within +/- half_deg of nC on an m x m grid of tangent-plane angles."""
+    t1 = np.cross(nC, [0.0, 0.0, 1.0])
+    if np.linalg.norm(t1) < 1e-6:
+        t1 = np.cross(nC, [0.0, 1.0, 0.0])
+    t1 /= np.linalg.norm(t1)
+    t2 = np.cross(nC, t1)
+    off = np.linspace(-half_deg, half_deg, m)
+    X, Y = np.meshgrid(np.radians(off), np.radians(off))
+    d = nC[None, None] + np.tan(X)[..., None] * t1 + np.tan(Y)[..., None] * t2
+    d = d.reshape(-1, 3)
+    return d / np.linalg.norm(d, axis=1)[:, None], off
+
+
+# ---------------------------------------------------------------------- §3.5 statements
+def _random_symmetric(rng: np.random.Generator) -> np.ndarray:
+    A = rng.normal(size=(3, 3))
+    return (A + A.T) / np.linalg.norm(A + A.T)
+
+
+def solids_statements(params: dict[str, Any]) -> dict[str, Any]:
+    """The statements of §3.5 on random samples (seeded): deviatoric associativity excludes
+    flutter (eqs. 187, 191), flutter never at g <= g_cr^E(n), triple coalescence at mu (eq.
+    190, 194)."""
+    _take(params, {"n_samples", "seed"})
+    rng = np.random.default_rng(int(params.get("seed", 1)))
+    n_samples = int(params.get("n_samples", 2000))
+    min_191, worst_gap, n_flutter_cases = np.inf, np.inf, 0
+    complex_found = 0
+    for _ in range(n_samples):
+        mu = rng.uniform(0.2, 3.0)
+        lam = rng.uniform(-2 * mu / 3 + 0.05, 3.0)  # positive definite elasticity (§3.4)
+        n = rng.normal(size=3)
+        n /= np.linalg.norm(n)
+        sigma = _random_symmetric(rng)
+        P, Q = so.drucker_prager_tensors(sigma, rng.uniform(0, 0.8), rng.uniform(-0.5, 0.8))
+        p, q = so.isotropic_vectors(lam, mu, P, Q, n)
+        min_191 = min(min_191, (p @ q - (n @ p) * (n @ q)) / max(1.0, abs(p @ q)))
+        g = rng.uniform(0.01, 5.0)
+        if ac.cubic_discriminant(so.acoustic_tensor_isotropic(lam, mu, P, Q, g, n)) < -1e-9:
+            complex_found += 1
+        # General nonassociativity: flutter only above the localization modulus.
+        P2, Q2 = _random_symmetric(rng), _random_symmetric(rng)
+        iv = so.flutter_interval_isotropic(lam, mu, P2, Q2, n)
+        if iv is not None:
+            n_flutter_cases += 1
+            gE = so.localization_modulus_isotropic(lam, mu, P2, Q2, n)
+            worst_gap = min(worst_gap, (iv[0] - gE) / max(1.0, abs(gE)))
+    # Triple coalescence (eqs. 190, 193, 194).
+    lam, mu = 1.2, 0.8
+    P, Q = so.drucker_prager_tensors(np.diag([1.0, -0.3, -0.7]), 0.5, 0.2)
+    gC = so.coalescence_modulus(lam, mu, P, Q)
+    w, V = np.linalg.eigh(so.apply(so.isotropic_elasticity(lam, mu), P))
+    EQ = so.apply(so.isotropic_elasticity(lam, mu), Q)
+    i = int(np.argmax(w * np.einsum("ji,jk,ki->i", V, EQ, V)))
+    A = so.acoustic_tensor_isotropic(lam, mu, P, Q, gC, V[:, i])
+    char = np.poly(A)  # compared with (eta - mu)^3
+    triple = np.poly([mu, mu, mu])
+    return {
+        "n_samples": n_samples, "n_flutter_cases": n_flutter_cases,
+        "quantities": {
+            "deviatoric_associativity_no_flutter": _quantity(
+                "excluded" if complex_found == 0 else f"{complex_found} flutter",
+                "excluded" if min_191 >= -1e-12 else "violated",
+                "brute force: cubic discriminant of A at random g > 0",
+                "eq. (191) >= 0 on the samples", ""),
+            "flutter_above_localization": _quantity(
+                "always" if worst_gap >= -1e-10 else "violated",
+                "always" if n_flutter_cases > 0 else "no flutter sampled",
+                "g1 - g_cr^E(n) >= 0 on random nonassociative samples",
+                "eq. (186): Delta >= 0 for g <= g_cr^E", ""),
+            "triple_coalescence": _quantity(
+                float(np.max(np.abs(char - triple)) / mu**3), 0.0,
+                "char. polynomial of A at g_cr^C (eq. 194), n an eigenvector of S^ (eq. 193)",
+                "(eta - mu)^3", ""),
+        }}
+
+
+# ---------------------------------------------------------------------- errata of §3
+def errata_solids(params: dict[str, Any]) -> dict[str, Any]:
+    """Eq. (188) as printed vs corrected vs brute force, for the nonassociative case."""
+    _take(params, {"lam", "mu", "P", "Q", "n"})
+    lam, mu, P, Q, n = _nonassociative_case(params)
+    E = so.isotropic_elasticity(lam, mu)
+    corrected = so.flutter_interval_isotropic(lam, mu, P, Q, n)
+    printed = so.flutter_interval_as_printed(lam, mu, P, Q, n)
+    brute = ac.flutter_interval_bruteforce(E, P, Q, n, g_max=10 * corrected[1])
+    if printed is None:
+        printed = (math.nan, math.nan)
+    return {"errata": {
+        f"eq188_g{k + 1}": {
+            "quantity": f"g{k + 1} of eq. (188) [Pa]", "printed": printed[k],
+            "corrected": corrected[k], "independent": brute[0][k],
+            "independent_method": "brute force: sign changes of the discriminant of "
+                                  "det(A(n) - eta I), Brent"} for k in range(2)}}

@@ -1,0 +1,161 @@
+"""§3: Coulomb contact, the elastoplastic operator and the acoustic tensor; closed forms against
+brute force on random inputs (hypothesis), and the statements of §3.5."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
+
+from flutterfriction.analysis import acoustic as ac
+from flutterfriction.errors import ParameterError
+from flutterfriction.models import solid as so
+from flutterfriction.models.contact import CoulombContact, integrate_path
+from flutterfriction.scenes.solids import rudnicki_rice_hcr
+
+
+def sym(rng_vals) -> np.ndarray:
+    a = np.asarray(rng_vals, dtype=float).reshape(3, 3)
+    return (a + a.T) / 2
+
+
+tensors = st.lists(st.floats(-1, 1), min_size=9, max_size=9).map(sym)
+unit_vectors = st.lists(st.floats(-1, 1), min_size=3, max_size=3).map(np.array).filter(
+    lambda v: np.linalg.norm(v) > 0.1).map(lambda v: v / np.linalg.norm(v))
+lames = st.tuples(st.floats(0.2, 3.0), st.floats(-0.6, 3.0)).filter(
+    lambda t: 3 * t[1] + 2 * t[0] > 0.1).map(lambda t: (t[1], t[0]))  # (lam, mu)
+
+
+# ---------------------------------------------------------------------- contact
+def test_contact_rate_equations_eq141():
+    c = CoulombContact(2.0, 1.0, 0.5)
+    p = np.array([2.0, 1.0])  # on the cone, p_T > 0
+    for u_dot in ([0.0, 1.0], [1.0, 0.0], [-0.3, 0.2], [0.1, -1.0]):
+        u_dot = np.array(u_dot)
+        mac = max(-c.mu * c.k_N * u_dot[0] + c.k_T * u_dot[1], 0.0)
+        expected = [c.k_N * u_dot[0], c.k_T * u_dot[1] - mac]
+        assert np.allclose(c.rate(p, u_dot), expected)
+
+
+@given(st.lists(st.tuples(st.floats(0.5, 3), st.floats(-3, 3)), min_size=2, max_size=8))
+def test_contact_path_stays_admissible(vertices):
+    c = CoulombContact(2.0, 1.0, 0.5)
+    r = integrate_path(c, [(0.0, 0.0), *vertices])
+    f = np.array([c.friction_function(p) for p in r.p])
+    assert np.all(f <= 1e-9 * np.maximum(1.0, r.p[:, 0]))
+    # Slip only increases along b = sgn(p_T): the dissipation is never negative.
+    dslip = np.diff(r.slip)
+    pT = r.p[1:, 1]
+    assert np.all(dslip * np.sign(pT) >= -1e-12)
+
+
+def test_contact_validation():
+    with pytest.raises(ParameterError, match="mu"):
+        CoulombContact(1.0, 1.0, 0.0)
+    with pytest.raises(ParameterError, match="p0"):
+        integrate_path(CoulombContact(1.0, 1.0, 0.5), [(0, 0), (1, 0)], p0=(1.0, 2.0))
+
+
+# ---------------------------------------------------------------------- tensors
+@given(lames, tensors, tensors, st.floats(0.1, 5.0))
+def test_tangent_is_symmetric_iff_associative(lm, P, Q, g):
+    lam, mu = lm
+    E = so.isotropic_elasticity(lam, mu)
+    C = so.elastoplastic_tangent(E, P, Q, g)
+    major = np.allclose(C, C.transpose(2, 3, 0, 1), atol=1e-10)
+    Ca = so.elastoplastic_tangent(E, P, P, g)
+    assert np.allclose(Ca, Ca.transpose(2, 3, 0, 1), atol=1e-12)
+    assume(np.linalg.norm(P - Q) > 1e-3 and np.linalg.norm(P + Q) > 1e-3)
+    assume(np.linalg.norm(np.cross(so.apply(E, P).ravel()[:3], so.apply(E, Q).ravel()[:3]))
+           > 1e-6)
+    assert not major
+
+
+@given(lames, tensors, tensors, st.floats(0.05, 5.0), unit_vectors)
+def test_acoustic_tensor_closed_forms(lm, P, Q, g, n):
+    """Eq. (179)-(180) = eq. (161); eigenvalues: mu and the roots of eq. (184); eq. (185) =
+    eq. (166)."""
+    lam, mu = lm
+    E = so.isotropic_elasticity(lam, mu)
+    A = so.acoustic_tensor(E, P, Q, g, n)
+    assert np.allclose(A, so.acoustic_tensor_isotropic(lam, mu, P, Q, g, n), atol=1e-12)
+    ev = np.sort_complex(np.linalg.eigvals(A))
+    closed = np.sort_complex(so.acoustic_eigenvalues_isotropic(lam, mu, P, Q, g, n))
+    assert np.allclose(np.poly(ev), np.poly(closed), atol=1e-8 * max(1, np.abs(ev).max()) ** 3)
+    assert so.localization_modulus_isotropic(lam, mu, P, Q, n) == pytest.approx(
+        so.localization_modulus(E, P, Q, n), rel=1e-9, abs=1e-10)
+
+
+@settings(max_examples=60)
+@given(lames, tensors, tensors, unit_vectors)
+def test_flutter_interval_vs_brute_force(lm, P, Q, n):
+    """Eqs. (187)-(188) (corrected) against the discriminant of the eigenvalue problem."""
+    lam, mu = lm
+    E = so.isotropic_elasticity(lam, mu)
+    closed = so.flutter_interval_isotropic(lam, mu, P, Q, n)
+    p, q = so.isotropic_vectors(lam, mu, P, Q, n)
+    N, pq = (n @ p) * (n @ q), p @ q
+    assume(abs(N) > 1e-6 and abs(N - pq) > 1e-6 * max(1, abs(N)))
+    g_top = 10 * closed[1] if closed else 100.0
+    brute = ac.flutter_interval_bruteforce(E, P, Q, n, g_max=g_top, decades=10)
+    if closed is None:
+        assert brute == []
+    else:
+        assume(closed[0] > g_top * 1e-10)
+        assert len(brute) == 1
+        assert brute[0] == pytest.approx(closed, rel=1e-7)
+        # Flutter never at or below the localization modulus (Bigoni and Zaccaria 1994).
+        assert closed[0] >= so.localization_modulus_isotropic(lam, mu, P, Q, n) - 1e-9
+
+
+@given(lames, tensors, st.floats(0.0, 1.2), st.floats(-0.8, 1.2), unit_vectors,
+       st.floats(0.01, 5.0))
+def test_deviatoric_associativity_excludes_flutter(lm, sigma, phi, chi, n, g):
+    lam, mu = lm
+    assume(np.linalg.norm(sigma - np.eye(3) * np.trace(sigma) / 3) > 1e-3)
+    P, Q = so.drucker_prager_tensors(sigma, phi, chi)
+    p, q = so.isotropic_vectors(lam, mu, P, Q, n)
+    assert p @ q - (n @ p) * (n @ q) >= -1e-12 * max(1.0, abs(p @ q))  # eq. (191)
+    assert so.flutter_interval_isotropic(lam, mu, P, Q, n) is None
+    A = so.acoustic_tensor_isotropic(lam, mu, P, Q, g, n)
+    scale = (np.trace(A) / 3) ** 6
+    assert ac.cubic_discriminant(A) >= -1e-9 * abs(scale)
+
+
+def test_triple_coalescence_eq194():
+    lam, mu = 1.2, 0.8
+    P, Q = so.drucker_prager_tensors(np.diag([1.0, -0.3, -0.7]), 0.5, 0.2)
+    gC = so.coalescence_modulus(lam, mu, P, Q)
+    E = so.isotropic_elasticity(lam, mu)
+    w, V = np.linalg.eigh(so.apply(E, P))
+    i = int(np.argmax(w * np.einsum("ji,jk,ki->i", V, so.apply(E, Q), V)))
+    A = so.acoustic_tensor_isotropic(lam, mu, P, Q, gC, V[:, i])
+    assert np.allclose(np.poly(A), np.poly([mu, mu, mu]), atol=1e-12)
+
+
+@pytest.mark.parametrize(("beta", "mu_f", "N"), [(0.3, 0.6, 0.0), (0.4, 0.4, -1 / math.sqrt(3)),
+                                                 (0.2, 0.5, -0.2)])
+def test_rudnicki_rice(beta, mu_f, N):
+    from flutterfriction.scenes.solids import _dp_state
+    G, nu = 1.0, 0.25
+    E = so.isotropic_elasticity(2 * G * nu / (1 - 2 * nu), G)
+    P, Q = _dp_state({"beta": beta, "mu_f": mu_f, "N": N})
+    g_max, _ = ac.max_localization_modulus(E, P, Q)
+    h = g_max - float(np.einsum("ij,ij->", Q, so.apply(E, P)))
+    assert h == pytest.approx(rudnicki_rice_hcr(G, nu, beta, mu_f, N), rel=1e-7, abs=1e-10)
+
+
+def test_input_validation():
+    with pytest.raises(ParameterError, match="mu"):
+        so.isotropic_elasticity(1.0, 0.0)
+    with pytest.raises(ParameterError, match="lam"):
+        so.isotropic_elasticity(-1.0, 1.0)
+    with pytest.raises(ParameterError, match="symmetric"):
+        so.check_symmetric("P", [[1, 2, 0], [0, 1, 0], [0, 0, 1]])
+    with pytest.raises(ParameterError, match="unit"):
+        so.check_direction([2.0, 0, 0])
+    with pytest.raises(ParameterError, match="deviator"):
+        so.drucker_prager_tensors(np.eye(3), 0.3, 0.1)
