@@ -126,3 +126,14 @@ def test_acoustic_bad_input(capsys, extra, name):
     assert exc.value.code == 2
     err = capsys.readouterr().err
     assert name in err and "Traceback" not in err
+
+
+def test_limit_cycle_cli(capsys):
+    args = ["limit-cycle", "ziegler", "--l1", "0.1", "--l2", "0.1", "--d", "0.1", "--h", "0",
+            "--m1", "0.2", "--m2", "0.2", "--m3", "0", "--k1", "0.189", "--k2", "0.189",
+            "--c1", "0.006", "--c2", "0.006", "--P", "3.915", "--json"]
+    assert main(args) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["period_s"] == pytest.approx(0.9658, rel=1e-3)
+    assert out["period_s"] == pytest.approx(out["shooting_check"]["period_s"], rel=1e-8)
+    assert set(out) >= {"alpha1_amplitude_rad", "alpha2_amplitude_rad", "period_s"}

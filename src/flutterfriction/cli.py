@@ -100,7 +100,41 @@ def build_parser() -> argparse.ArgumentParser:
     a.add_argument("--n", type=_vector(3), required=True, help="unit propagation direction")
     a.add_argument("--g", type=_number, default=None, help="plastic modulus g [Pa], != 0")
     a.add_argument("--json", action="store_true", help="print one JSON object")
+    lc = sub.add_parser("limit-cycle", help="limit cycles of the nonlinear dynamics (§2.9)")
+    lcs = lc.add_subparsers(dest="system", required=True, parser_class=_Parser)
+    lz = lcs.add_parser(
+        "ziegler", help="limit cycle of the Ziegler pendulum, eq. (10) with viscous hinges",
+        description="Integrates eq. (10) from alpha1 = alpha2 = ALPHA0 until successive "
+                    "crossings of the Poincare section agree to 1e-8, then confirms the orbit "
+                    "by shooting. SI units.")
+    for name, text in ZIEGLER_PARAMS.items():
+        lz.add_argument(f"--{name}", type=_number, required=True, help=text)
+    lz.add_argument("--c1", type=_number, required=True, help="hinge viscosity at A, > 0")
+    lz.add_argument("--c2", type=_number, required=True, help="hinge viscosity at B, > 0")
+    lz.add_argument("--P", type=_number, required=True, help="follower load [N]")
+    lz.add_argument("--alpha0-deg", type=_number, default=0.1,
+                    help="initial rotations alpha1 = alpha2 [deg] (default 0.1)")
+    lz.add_argument("--json", action="store_true", help="print one JSON object")
     return parser
+
+
+def _limit_cycle(args: argparse.Namespace) -> dict:
+    import math
+
+    from flutterfriction.analysis.dynamics import limit_cycle, shoot_periodic_orbit
+    from flutterfriction.models.ziegler import ZieglerPendulum
+
+    pendulum = ZieglerPendulum(**{k: getattr(args, k) for k in (*ZIEGLER_PARAMS, "c1", "c2")})
+    if pendulum.c1 <= 0 and pendulum.c2 <= 0:
+        raise ParameterError("--c1/--c2: a limit cycle needs hinge viscosity (> 0)")
+    a0 = math.radians(args.alpha0_deg)
+    cycle = limit_cycle(pendulum, args.P, [a0, a0, 0.0, 0.0])
+    check = shoot_periodic_orbit(pendulum, args.P, cycle)
+    return {"alpha1_amplitude_rad": cycle.alpha1_amplitude_rad,
+            "alpha2_amplitude_rad": cycle.alpha2_amplitude_rad, "period_s": cycle.period_s,
+            "transient_s": cycle.transient_s,
+            "shooting_check": {"period_s": check.period_s,
+                               "alpha1_amplitude_rad": check.alpha1_amplitude_rad}}
 
 
 def _vector(size: int):
@@ -188,7 +222,8 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
     try:
-        result = {"ziegler": _ziegler, "rod": _rod, "acoustic": _acoustic}[args.command](args)
+        result = {"ziegler": _ziegler, "rod": _rod, "acoustic": _acoustic,
+                  "limit-cycle": _limit_cycle}[args.command](args)
     except ParameterError as exc:
         print(f"flutterfriction: error: {exc}", file=sys.stderr)
         return 2
@@ -205,7 +240,7 @@ def main(argv: Sequence[str] | None = None) -> int:
 def _print(result: dict, as_json: bool) -> None:
     if as_json:
         print(json.dumps(result))
-    elif "g_localization" in result:
+    elif "g_localization" in result or "period_s" in result:
         for key, value in result.items():
             print(f"{key} = {value}")
     elif "p_flu" in result:

@@ -71,7 +71,8 @@ def _check_quantity(entry: dict[str, Any], data: Mapping[str, Any]) -> CheckRow:
                   independent=q["independent"], method=q["method"],
                   independent_method=q["independent_method"])
     if isinstance(quoted, str):  # a categorical statement, e.g. "flutter"
-        ok = q["value"] == quoted and q["independent"] == quoted
+        expected_independent = entry.get("quoted_independent", quoted)
+        ok = q["value"] == quoted and q["independent"] == expected_independent
         return CheckRow(**common, error=None, agreement=None, status="pass" if ok else "FAIL")
     err = normalised_error(q["value"], quoted, entry["tolerance"])
     agr = normalised_error(q["value"], q["independent"], entry["agreement"])

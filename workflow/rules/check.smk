@@ -7,7 +7,8 @@ rule check:
         data=expand("results/data/{scene}.json", scene=ALL_SCENES),
         figures=expand("results/figures/{scene}.{ext}", scene=ALL_FIGURES, ext=["pdf", "png"]),
         reports=["results/reports/ziegler.html", "results/reports/ziegler_paradox.html",
-                 "results/reports/rods.html", "results/reports/solids.html"],
+                 "results/reports/rods.html", "results/reports/solids.html",
+                 "results/reports/limit_cycles.html"],
     output:
         json="results/checks/summary.json",
         md="results/checks/summary.md",

@@ -51,3 +51,16 @@ rule report_solids:
         "results/benchmarks/report_solids.tsv"
     script:
         "../scripts/execute_notebook.py"
+
+
+rule report_limit_cycles:
+    input:
+        notebook="notebooks/limit_cycles.py",
+        data=expand("results/data/{scene}.json", scene=CYCLE_SCENES),
+        figures=expand("results/figures/{scene}.png", scene=CYCLE_FIGURES),
+    output:
+        "results/reports/limit_cycles.html",
+    benchmark:
+        "results/benchmarks/report_limit_cycles.tsv"
+    script:
+        "../scripts/execute_notebook.py"

@@ -12,8 +12,11 @@ ROD_SCENES = ROD_FIGURES + ["errata_rods", "self_adjoint"]
 # §3: frictional solids.
 SOLID_FIGURES = ["fig22", "acoustic_eigenvalues", "localization_directions", "flutter_map"]
 SOLID_SCENES = SOLID_FIGURES + ["solids_statements", "errata_solids"]
-ALL_FIGURES = ZIEGLER_FIGURES + PARADOX_FIGURES + ROD_FIGURES + SOLID_FIGURES
-ALL_SCENES = ZIEGLER_SCENES + PARADOX_SCENES + ROD_SCENES + SOLID_SCENES
+# §2.9–2.11: nonlinear dynamics and limit cycles (the Ziegler pendulum so far).
+CYCLE_FIGURES = ["fig13", "fig14", "fig20", "fig21"]
+CYCLE_SCENES = CYCLE_FIGURES
+ALL_FIGURES = ZIEGLER_FIGURES + PARADOX_FIGURES + ROD_FIGURES + SOLID_FIGURES + CYCLE_FIGURES
+ALL_SCENES = ZIEGLER_SCENES + PARADOX_SCENES + ROD_SCENES + SOLID_SCENES + CYCLE_SCENES
 
 
 rule solve:

@@ -11,7 +11,7 @@ from collections.abc import Callable
 from typing import Any
 
 from flutterfriction.errors import ParameterError
-from flutterfriction.scenes import rod, solids, ziegler, ziegler_damped
+from flutterfriction.scenes import rod, solids, ziegler, ziegler_damped, ziegler_nonlinear
 
 SceneBuilder = Callable[[dict[str, Any]], dict[str, Any]]
 
@@ -42,6 +42,10 @@ SCENES: dict[str, SceneBuilder] = {
     "flutter_map": solids.flutter_map,
     "solids_statements": solids.solids_statements,
     "errata_solids": solids.errata_solids,
+    "fig13": ziegler_nonlinear.fig13,
+    "fig14": ziegler_nonlinear.fig14,
+    "fig20": ziegler_nonlinear.fig20,
+    "fig21": ziegler_nonlinear.fig21,
 }
 
 

@@ -1,0 +1,84 @@
+# ---
+# jupyter:
+#   jupytext:
+#     text_representation:
+#       extension: .py
+#       format_name: percent
+#   kernelspec:
+#     display_name: Python 3
+#     language: python
+#     name: python3
+# ---
+
+# %% [markdown]
+# # Beyond linearisation: limit cycles (chapter §2.9–2.11)
+#
+# Executed by the workflow into `results/reports/limit_cycles.html`. This part covers the
+# Ziegler pendulum; the nonlinear Beck rod (Figs. 15–17) is the next step of this issue.
+
+# %%
+import json
+from pathlib import Path
+
+import numpy as np
+from IPython.display import Image, Markdown, display
+
+DATA, FIGS = Path("results/data"), Path("results/figures")
+
+
+def scene(name):
+    return json.loads((DATA / f"{name}.json").read_text())
+
+
+def show(name, width=620):
+    display(Image(filename=str(FIGS / f"{name}.png"), width=width))
+
+
+# %% [markdown]
+# ## §2.9 The viscous Ziegler pendulum reaches a stable limit cycle
+#
+# Eq. (10) with hinge viscosity is integrated (DOP853, rtol 1e-11) from
+# $\alpha_1 = \alpha_2 = 0.1°$ at $P = 1.5 P^*_{flu}$ (eq. 54), for $l_1 = l_2 = 0.1$ m,
+# $k_1 = k_2 = 0.189$ N m, $c_1 = c_2 = 0.006$ N m s, $m_1 = m_2 = 0.2$ kg, $m_3 = 0$, $d = l_1$.
+# The limit cycle is detected on the Poincaré section $\dot\alpha_1 = 0$ (downwards): the run
+# stops when successive crossings agree to 1e-8. A periodic-orbit solve by shooting (Newton on
+# the flow map over one period, independent of the transient) confirms it.
+
+# %%
+d = scene("fig14")
+lc = d["limit_cycle"]
+display(Markdown(
+    f"P*_flu = {d['P_star_flu']:.6f} N, P = {d['P']:.6f} N. Limit cycle: period "
+    f"{lc['period_s']:.10f} s, amplitudes {lc['alpha1_amplitude_rad']:.10f} rad and "
+    f"{lc['alpha2_amplitude_rad']:.10f} rad ({np.degrees(lc['alpha1_amplitude_rad']):.2f}°, "
+    f"{np.degrees(lc['alpha2_amplitude_rad']):.2f}°), reached after {lc['transient_s']:.1f} s."))
+display(Markdown("\n".join(f"- {k}: {v['value']} ({v['method']}); {v['independent']} "
+                           f"({v['independent_method']})" for k, v in d["quantities"].items())))
+show("fig13", width=480)
+show("fig14", width=480)
+
+# %% [markdown]
+# ## §2.10 Fig. 20: linear against nonlinear
+#
+# The device of list (47) with the hinge viscosity that reproduces Fig. 19's ratios
+# (c1 = c2 = 0.006 N m s). "A load in the middle of the flutter region" is taken as the
+# midpoint of the flutter interval *of this viscous model* (from the damped flutter load to
+# the damped divergence load), because that is the model whose flutter region the experiment
+# probes; the midpoint of the undamped interval (6.8 N, the load of Fig. 4) would be the other
+# reading. The linear solution grows without bound (cut at 1.5 s); the nonlinear one settles on
+# a limit cycle.
+
+# %%
+d20 = scene("fig20")
+display(Markdown(f"P = {d20['P']:.4f} N, the middle of [{d20['P_flu']:.4f}, {d20['P_div']:.4f}] N."))
+show("fig20", width=900)
+
+# %% [markdown]
+# ## Fig. 21: the scratch
+#
+# From $\alpha = 0$ with angular velocities 0.5 rad/s, over 2.04 s, at the same load. The plate
+# slides under the wheel (100 mm/s) so that the friction on the wheel points towards A; in the
+# plate's frame the wheel therefore advances by $v t$ along $\mathbf e_1$.
+
+# %%
+show("fig21", width=900)

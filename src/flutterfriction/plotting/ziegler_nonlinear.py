@@ -1,0 +1,98 @@
+"""Figures of §2.9–2.11 for the Ziegler pendulum: Figs. 13, 14, 20, 21."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.collections import LineCollection
+from matplotlib.figure import Figure
+
+
+def _time_coloured(ax, x, y, t, lw=0.8):
+    pts = np.array([x, y]).T.reshape(-1, 1, 2)
+    lc = LineCollection(np.concatenate([pts[:-1], pts[1:]], axis=1), cmap="viridis", lw=lw)
+    lc.set_array(np.asarray(t)[:-1])
+    ax.add_collection(lc)
+    ax.autoscale()
+    return lc
+
+
+def plot_fig13(data: dict[str, Any]) -> Figure:
+    """Fig. 13: trajectory in the alpha1-alpha2 plane reaching a stable limit cycle."""
+    a1, a2 = np.degrees(data["alpha"])
+    fig, ax = plt.subplots(figsize=(4.8, 4.4))
+    lc = _time_coloured(ax, a1, a2, data["t"])
+    fig.colorbar(lc, ax=ax, label="t [s]")
+    T = data["limit_cycle"]["period_s"]
+    ax.set_xlabel(r"$\alpha_1$ [deg]")
+    ax.set_ylabel(r"$\alpha_2$ [deg]")
+    ax.set_title(f"Fig. 13: P = {data['P']:.4g} N = 1.5 P*_flu (eq. 54); limit cycle, "
+                 f"period {T:.4f} s", fontsize=8)
+    return fig
+
+
+def plot_fig14(data: dict[str, Any]) -> Figure:
+    """Fig. 14: angular velocities against rotations."""
+    a = np.degrees(data["alpha"])
+    w = np.degrees(data["alpha_dot"])
+    fig, axes = plt.subplots(2, 1, figsize=(4.8, 6.0))
+    for i, ax in enumerate(axes):
+        lc = _time_coloured(ax, a[i], w[i], data["t"])
+        ax.set_xlabel(rf"$\alpha_{i + 1}$ [deg]")
+        ax.set_ylabel(rf"$\dot\alpha_{i + 1}$ [deg/s]")
+    fig.colorbar(lc, ax=axes, label="t [s]")
+    lcd = data["limit_cycle"]
+    axes[0].set_title(f"Fig. 14: amplitudes {np.degrees(lcd['alpha1_amplitude_rad']):.2f}°, "
+                      f"{np.degrees(lcd['alpha2_amplitude_rad']):.2f}°", fontsize=8)
+    return fig
+
+
+def plot_fig20(data: dict[str, Any]) -> Figure:
+    """Fig. 20: transverse acceleration of the loaded end, 6 s and the first 1.5 s."""
+    t = np.array(data["t"])
+    acc = np.array(data["acc_nonlinear"])
+    tl, al = np.array(data["t_linear"]), np.array(data["acc_linear"])
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(9.0, 3.4),
+                                   gridspec_kw={"width_ratios": [2, 1]})
+    lim = 1.3 * np.max(np.abs(acc))
+    for ax, tmax in ((ax1, t[-1]), (ax2, tl[-1])):
+        ax.plot(t[t <= tmax], acc[t <= tmax], color="C3", lw=0.8, label="nonlinear, eq. (10)")
+        ax.plot(tl, al, color="C0", lw=0.8, label="linear, eqs. (11)+(26)")
+        ax.set_ylim(-lim, lim)
+        ax.set_xlim(0, tmax)
+        ax.set_xlabel("t [s]")
+    ax1.set_ylabel(r"transverse acceleration of C [m/s$^2$]")
+    ax1.legend(fontsize=7, loc="lower left")
+    ax1.set_title(f"Fig. 20: list (47), c1 = c2 = 0.006 N m s, P = {data['P']:.3f} N (middle "
+                  f"of the flutter interval {data['P_flu']:.2f}–{data['P_div']:.2f} N)",
+                  fontsize=8)
+    ax2.set_title("detail: first 1.5 s (the linear solution is cut there)", fontsize=8)
+    fig.tight_layout()
+    return fig
+
+
+def plot_fig21(data: dict[str, Any]) -> Figure:
+    """Fig. 21: the path of the loaded end and the scratch it leaves on the moving plate."""
+    C = np.array(data["C"]) * 1000
+    S = np.array(data["scratch"]) * 1000
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(9.6, 4.4),
+                                   gridspec_kw={"width_ratios": [1, 1.6]})
+    _time_coloured(ax1, C[:, 0], C[:, 1], data["t"], lw=1.2)
+    ax1.set_aspect("equal")
+    ax1.set_title("path of the loaded end C in the fixed frame [mm]", fontsize=8)
+    ax2.set_facecolor("0.15")
+    ax2.plot(S[:, 0], S[:, 1], color="w", lw=1.4)
+    ax2.set_aspect("equal")
+    ax2.set_title(f"Fig. 21: the scratch on the plate (moving at {data['plate_speed'] * 1000:g} "
+                  f"mm/s),\n2.04 s from alpha = 0, angular velocities 0.5 rad/s, "
+                  f"P = {data['P']:.3f} N", fontsize=8)
+    for ax in (ax1, ax2):
+        ax.set_xlabel("x [mm]")
+        ax.set_ylabel("y [mm]")
+    fig.tight_layout()
+    return fig
+
+
+PLOTS = {"fig13": plot_fig13, "fig14": plot_fig14, "fig20": plot_fig20, "fig21": plot_fig21}

@@ -1,0 +1,126 @@
+"""Scenes of chapter §2.9–2.11 for the Ziegler pendulum: Figs. 13, 14 (limit cycle of §2.9),
+Fig. 20 (acceleration of the loaded end, linear vs nonlinear) and Fig. 21 (the scratch)."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from flutterfriction.analysis import dynamics as dy
+from flutterfriction.analysis.ziegler import (
+    damped_divergence_load,
+    damped_flutter_load,
+    linear_response,
+)
+from flutterfriction.closed_forms.ziegler_damped import eq54_flutter_gamma, viscosity_groups
+from flutterfriction.errors import check_positive, check_real
+from flutterfriction.scenes.ziegler import _pendulum, _quantity, _take
+
+
+def _section29(params: dict[str, Any]):
+    """§2.9: P = (load factor) x P*_flu of eq. (54), initial rotations alpha0 (degrees)."""
+    p = _pendulum(params)
+    eps, _ = viscosity_groups(p)
+    P_star = eq54_flutter_gamma(eps) * p.load_unit
+    P = check_positive("load_factor", params.get("load_factor", 1.5)) * P_star
+    a0 = math.radians(check_real("alpha0_deg", params.get("alpha0_deg", 0.1)))
+    return p, P, P_star, np.array([a0, a0, 0.0, 0.0])
+
+
+def _cycle(params: dict[str, Any]) -> dict[str, Any]:
+    p, P, P_star, x0 = _section29(params)
+    lc = dy.limit_cycle(p, P, x0, tol=float(params.get("tol", 1e-8)))
+    shot = dy.shoot_periodic_orbit(p, P, lc)
+    t_end = lc.transient_s + 3 * lc.period_s
+    n = int(params.get("n_samples", 6000))
+    sol = dy.simulate(p, P, x0, t_end, t_eval=np.linspace(0, t_end, n))
+    return {
+        "P": P, "P_star_flu": P_star, "limit_cycle": lc.as_dict(), "t": sol.t.tolist(),
+        "alpha": sol.y[:2].tolist(), "alpha_dot": sol.y[2:].tolist(),
+        "quantities": {
+            "period": _quantity(lc.period_s, shot.period_s, "Poincare section (DOP853)",
+                                "periodic-orbit shooting (Newton)", "s"),
+            "alpha1_amplitude": _quantity(lc.alpha1_amplitude_rad, shot.alpha1_amplitude_rad,
+                                          "Poincare section (DOP853)",
+                                          "periodic-orbit shooting (Newton)", "rad"),
+            "alpha2_amplitude": _quantity(lc.alpha2_amplitude_rad, shot.alpha2_amplitude_rad,
+                                          "Poincare section (DOP853)",
+                                          "periodic-orbit shooting (Newton)", "rad"),
+            "reaches_limit_cycle": _quantity("stable limit cycle", "stable limit cycle",
+                                             "transient converges on the section",
+                                             "shooting finds the orbit", ""),
+        }}
+
+
+def fig13(params: dict[str, Any]) -> dict[str, Any]:
+    """§2.9, Fig. 13: the alpha1-alpha2 trajectory reaching the limit cycle."""
+    _take(params, {"pendulum", "load_factor", "alpha0_deg", "tol", "n_samples"})
+    d = _cycle(params)
+    d.pop("alpha_dot")
+    return d
+
+
+def fig14(params: dict[str, Any]) -> dict[str, Any]:
+    """§2.9, Fig. 14: angular velocities against rotations."""
+    _take(params, {"pendulum", "load_factor", "alpha0_deg", "tol", "n_samples"})
+    return _cycle(params)
+
+
+def _mid_flutter_load(p) -> tuple[float, float, float]:
+    P_flu, P_div = damped_flutter_load(p, "routh"), damped_divergence_load(p)
+    return 0.5 * (P_flu + P_div), P_flu, P_div
+
+
+def fig20(params: dict[str, Any]) -> dict[str, Any]:
+    """§2.10, Fig. 20: transverse acceleration of the loaded end, nonlinear (6 s) and linear
+    (cut at 1.5 s), at the middle of the damped flutter interval, from alpha = 0.5 deg."""
+    _take(params, {"pendulum", "alpha0_deg", "t_nonlinear", "t_linear", "n_samples"})
+    p = _pendulum(params)
+    P, P_flu, P_div = _mid_flutter_load(p)
+    a0 = math.radians(check_real("alpha0_deg", params.get("alpha0_deg", 0.5)))
+    x0 = np.array([a0, a0, 0.0, 0.0])
+    T_nl = check_positive("t_nonlinear", params.get("t_nonlinear", 6.0), "s")
+    T_li = check_positive("t_linear", params.get("t_linear", 1.5), "s")
+    n = int(params.get("n_samples", 6001))
+    t = np.linspace(0.0, T_nl, n)
+    sol = dy.simulate(p, P, x0, T_nl, t_eval=t)
+    acc_nl = dy.tip_acceleration(p, sol.y.T, P)
+    t_li = t[t <= T_li + 1e-12]
+    lin = linear_response(p, P, 0.0, x0, t_li)
+    M = p.mass_matrix()
+    acc_ang = -np.linalg.solve(M, (p.stiffness_matrix() + p.geometric_matrix(P)) @ lin[:, :2].T
+                               + p.viscosity_matrix() @ lin[:, 2:].T)
+    acc_li = p.l1 * acc_ang[0] + p.l2 * acc_ang[1]  # linearised transverse acceleration of C
+    late = t > T_nl - 1.0
+    return {
+        "P": P, "P_flu": P_flu, "P_div": P_div, "t": t.tolist(), "acc_nonlinear": acc_nl[:, 1]
+        .tolist(), "t_linear": t_li.tolist(), "acc_linear": acc_li.tolist(),
+        "quantities": {
+            "nonlinear_saturates": _quantity(
+                "saturates" if np.max(np.abs(acc_nl[late, 1])) < 10 * np.max(
+                    np.abs(acc_nl[(t > 1.0) & (t < 2.0), 1])) else "grows",
+                "blows up" if abs(acc_li[-1]) > 10 * abs(acc_li[len(acc_li) // 3]) or np.max(
+                    np.abs(acc_li)) > np.max(np.abs(acc_nl[:, 1])) else "bounded",
+                "nonlinear eq. (10): amplitude of the last second vs the second second",
+                "linear eqs. (11)+(26): exact matrix exponential", "")}}
+
+
+def fig21(params: dict[str, Any]) -> dict[str, Any]:
+    """§2.10, Fig. 21: the path of the loaded end over 2.04 s from alpha = 0 with angular
+    velocities 0.5 rad/s, and the scratch it leaves on the plate moving at ``plate_speed``."""
+    _take(params, {"pendulum", "duration", "omega0", "plate_speed", "n_samples"})
+    p = _pendulum(params)
+    P, P_flu, P_div = _mid_flutter_load(p)
+    T = check_positive("duration", params.get("duration", 2.04), "s")
+    w0 = check_real("omega0", params.get("omega0", 0.5))
+    v = check_real("plate_speed", params.get("plate_speed", 0.1))
+    t = np.linspace(0.0, T, int(params.get("n_samples", 4001)))
+    sol = dy.simulate(p, P, [0.0, 0.0, w0, w0], T, t_eval=t)
+    C = p.positions(sol.y[0], sol.y[1])["C"]
+    # The plate slides under the wheel along -e1 (the friction on the wheel, -P t, points to A):
+    # in the plate's frame the wheel moves by +v t along e1.
+    scratch = C + np.stack([v * t, np.zeros_like(t)], axis=-1)
+    return {"P": P, "P_flu": P_flu, "P_div": P_div, "t": t.tolist(), "C": C.tolist(),
+            "scratch": scratch.tolist(), "plate_speed": v}

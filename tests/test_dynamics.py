@@ -1,0 +1,98 @@
+"""Nonlinear dynamics of the Ziegler pendulum (§2.9): Jacobian, limit cycle, shooting."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from conftest import pendulums
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from flutterfriction import ConvergenceError, ParameterError, ZieglerPendulum
+from flutterfriction.analysis import dynamics as dy
+from flutterfriction.analysis.ziegler import damped_flutter_load, linear_response
+from flutterfriction.closed_forms.ziegler_damped import eq54_flutter_gamma, viscosity_groups
+
+SEC29 = ZieglerPendulum(l1=0.1, l2=0.1, d=0.1, h=0.0, m1=0.2, m2=0.2, m3=0.0, k1=0.189,
+                        k2=0.189, c1=0.006, c2=0.006)
+
+
+@settings(max_examples=40)
+@given(pendulums(), st.lists(st.floats(-2, 2), min_size=4, max_size=4), st.floats(0, 3))
+def test_analytic_jacobian_vs_central_differences(p, state, load):
+    p = p.with_(c1=0.1 * p.k1, c2=0.05 * p.k2)
+    P = load * p.load_unit
+    x = np.array(state)
+    J = dy.jacobian(p, x, P, H=0.3 * p.load_unit)
+    h = 1e-6
+    fd = np.column_stack([(p.equations_of_motion(x + h * e, P, 0.3 * p.load_unit)
+                           - p.equations_of_motion(x - h * e, P, 0.3 * p.load_unit)) / (2 * h)
+                          for e in np.eye(4)])
+    assert np.allclose(J, fd, rtol=1e-5, atol=1e-6 * np.abs(J).max())
+
+
+def test_small_motions_follow_the_linear_solution():
+    """Eq. (10) linearises to eq. (11): at 1e-5 rad they differ by O(alpha^3) ~ 1e-15 plus
+    the integrator's absolute tolerance (1e-12), nothing more."""
+    P = 0.5 * damped_flutter_load(SEC29)
+    x0 = [1e-5, -1e-5, 0.0, 0.0]
+    t = np.linspace(0, 1.0, 11)
+    nl = dy.simulate(SEC29, P, x0, 1.0, t_eval=t).y.T
+    li = linear_response(SEC29, P, 0.0, x0, t)
+    assert np.allclose(nl, li, rtol=0, atol=1e-11)
+
+
+@pytest.fixture(scope="module")
+def cycle():
+    eps, _ = viscosity_groups(SEC29)
+    P = 1.5 * eq54_flutter_gamma(eps) * SEC29.load_unit
+    return P, dy.limit_cycle(SEC29, P, np.radians([0.1, 0.1, 0, 0]))
+
+
+def test_limit_cycle_two_methods(cycle):
+    P, lc = cycle
+    shot = dy.shoot_periodic_orbit(SEC29, P, lc)
+    assert lc.period_s == pytest.approx(shot.period_s, rel=1e-8)
+    assert lc.alpha1_amplitude_rad == pytest.approx(shot.alpha1_amplitude_rad, rel=1e-8)
+    assert lc.alpha2_amplitude_rad == pytest.approx(shot.alpha2_amplitude_rad, rel=1e-7)
+
+
+def test_limit_cycle_independent_of_integrator(cycle):
+    """A second integrator (LSODA with the analytic Jacobian) finds the same orbit."""
+    P, lc = cycle
+    other = dy.limit_cycle(SEC29, P, np.radians([0.1, 0.1, 0, 0]), method="LSODA",
+                           rtol=1e-11, atol=1e-13, tol=1e-7)
+    assert other.period_s == pytest.approx(lc.period_s, rel=1e-6)
+
+
+def test_limit_cycle_is_attracting_from_other_initial_conditions(cycle):
+    P, lc = cycle
+    other = dy.limit_cycle(SEC29, P, [0.0, 0.0, 0.5, 0.5])
+    assert other.period_s == pytest.approx(lc.period_s, rel=1e-7)
+
+
+def test_no_limit_cycle_below_flutter():
+    P = 0.9 * damped_flutter_load(SEC29)
+    with pytest.raises(ConvergenceError):
+        dy.limit_cycle(SEC29, P, np.radians([0.1, 0.1, 0, 0]), t_max=30.0)
+
+
+def test_simulate_rejects_bad_input():
+    with pytest.raises(ParameterError, match="state0"):
+        dy.simulate(SEC29, 1.0, [0.0, 0.0], 1.0)
+    with pytest.raises(ParameterError, match="t_end"):
+        dy.simulate(SEC29, 1.0, [0.0] * 4, -1.0)
+    with pytest.raises(ParameterError, match="P"):
+        dy.simulate(SEC29, math.nan, [0.0] * 4, 1.0)
+
+
+def test_tip_acceleration_is_second_derivative_of_position():
+    P = 3.0
+    t = np.linspace(0, 0.5, 5001)
+    sol = dy.simulate(SEC29, P, [0.3, -0.2, 0.0, 1.0], 0.5, t_eval=t)
+    C = SEC29.positions(sol.y[0], sol.y[1])["C"]
+    fd = np.gradient(np.gradient(C, t, axis=0), t, axis=0)
+    acc = dy.tip_acceleration(SEC29, sol.y.T, P)
+    assert np.allclose(acc[10:-10], fd[10:-10], rtol=1e-3, atol=1e-3 * np.abs(acc).max())
