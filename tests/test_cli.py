@@ -137,3 +137,13 @@ def test_limit_cycle_cli(capsys):
     assert out["period_s"] == pytest.approx(0.9658, rel=1e-3)
     assert out["period_s"] == pytest.approx(out["shooting_check"]["period_s"], rel=1e-8)
     assert set(out) >= {"alpha1_amplitude_rad", "alpha2_amplitude_rad", "period_s"}
+
+
+@pytest.mark.parametrize(("args", "name"), [(["--elements", "0"], "--elements"),
+                                            (["--P", "-1"], "--P"), (["--B", "0"], "B")])
+def test_limit_cycle_beck_bad_input(capsys, args, name):
+    with pytest.raises(SystemExit) as exc:
+        raise SystemExit(main(["limit-cycle", "beck", *args]))
+    assert exc.value.code == 2
+    err = capsys.readouterr().err
+    assert name in err and "Traceback" not in err

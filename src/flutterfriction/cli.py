@@ -115,7 +115,36 @@ def build_parser() -> argparse.ArgumentParser:
     lz.add_argument("--alpha0-deg", type=_number, default=0.1,
                     help="initial rotations alpha1 = alpha2 [deg] (default 0.1)")
     lz.add_argument("--json", action="store_true", help="print one JSON object")
+    lb = lcs.add_parser(
+        "beck", help="limit cycle of the nonlinear Beck rod (defaults: list (119))",
+        description="Geometrically exact inextensible rod with a tangential follower force and "
+                    "Kelvin-Voigt viscosity (P2 elements for the rotation), integrated until "
+                    "the cycle on the Poincare section converges. SI units.")
+    for name, default, text in (("P", 5.5, "follower load [N]"), ("length", 0.35, "[m]"),
+                                ("B", 0.0332, "bending stiffness [N m^2]"),
+                                ("rho", 0.0546, "mass per length [kg/m]"),
+                                ("D", 7.078e-6, "Kelvin-Voigt viscosity [N m^2 s]"),
+                                ("kappa", 0.0, "external damping [N s/m^2]"),
+                                ("tip-mass", 0.0, "tip mass [kg]")):
+        lb.add_argument(f"--{name}", type=_number, default=default,
+                        help=f"{text} (default {default})")
+    lb.add_argument("--elements", type=int, default=4, help="P2 elements (default 4)")
+    lb.add_argument("--json", action="store_true", help="print one JSON object")
     return parser
+
+
+def _limit_cycle_beck(args: argparse.Namespace) -> dict:
+    from flutterfriction.analysis.rod_dynamics import beck_limit_cycle
+    from flutterfriction.models.rod import Rod
+
+    rod = Rod(length=args.length, B=args.B, rho=args.rho, D=args.D, kappa=args.kappa,
+              tip_mass=args.tip_mass)
+    if args.elements < 1:
+        raise ParameterError(f"--elements must be >= 1, got {args.elements}")
+    if not args.P > 0:
+        raise ParameterError(f"--P must be > 0, got {args.P}")
+    return beck_limit_cycle(rod, args.P, n_elements=args.elements, method="LSODA", rtol=1e-8,
+                            atol=1e-10, tol=1e-5, initial_tip_rotation=1.2).as_dict()
 
 
 def _limit_cycle(args: argparse.Namespace) -> dict:
@@ -222,8 +251,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
     try:
-        result = {"ziegler": _ziegler, "rod": _rod, "acoustic": _acoustic,
-                  "limit-cycle": _limit_cycle}[args.command](args)
+        if args.command == "limit-cycle" and args.system == "beck":
+            result = _limit_cycle_beck(args)
+        else:
+            result = {"ziegler": _ziegler, "rod": _rod, "acoustic": _acoustic,
+                      "limit-cycle": _limit_cycle}[args.command](args)
     except ParameterError as exc:
         print(f"flutterfriction: error: {exc}", file=sys.stderr)
         return 2
@@ -240,7 +272,7 @@ def main(argv: Sequence[str] | None = None) -> int:
 def _print(result: dict, as_json: bool) -> None:
     if as_json:
         print(json.dumps(result))
-    elif "g_localization" in result or "period_s" in result:
+    elif "g_localization" in result or "period_s" in result:  # acoustic, limit cycles
         for key, value in result.items():
             print(f"{key} = {value}")
     elif "p_flu" in result:

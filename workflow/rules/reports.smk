@@ -56,7 +56,7 @@ rule report_solids:
 rule report_limit_cycles:
     input:
         notebook="notebooks/limit_cycles.py",
-        data=expand("results/data/{scene}.json", scene=CYCLE_SCENES),
+        data=expand("results/data/{scene}.json", scene=CYCLE_SCENES),  # incl. the rod cycle
         figures=expand("results/figures/{scene}.png", scene=CYCLE_FIGURES),
     output:
         "results/reports/limit_cycles.html",

@@ -13,8 +13,11 @@ ROD_SCENES = ROD_FIGURES + ["errata_rods", "self_adjoint"]
 SOLID_FIGURES = ["fig22", "acoustic_eigenvalues", "localization_directions", "flutter_map"]
 SOLID_SCENES = SOLID_FIGURES + ["solids_statements", "errata_solids"]
 # §2.9–2.11: nonlinear dynamics and limit cycles (the Ziegler pendulum so far).
-CYCLE_FIGURES = ["fig13", "fig14", "fig20", "fig21"]
-CYCLE_SCENES = CYCLE_FIGURES
+CYCLE_FIGURES = ["fig13", "fig14", "fig20", "fig21", "fig15", "fig16", "fig17"]
+CYCLE_SCENES = ["fig13", "fig14", "fig20", "fig21", "beck_limit_cycle"]
+# Figures drawn from another scene's data (one computation, several views).
+FIGURE_DATA = {"fig15": "beck_limit_cycle", "fig16": "beck_limit_cycle",
+               "fig17": "beck_limit_cycle"}
 ALL_FIGURES = ZIEGLER_FIGURES + PARADOX_FIGURES + ROD_FIGURES + SOLID_FIGURES + CYCLE_FIGURES
 ALL_SCENES = ZIEGLER_SCENES + PARADOX_SCENES + ROD_SCENES + SOLID_SCENES + CYCLE_SCENES
 
@@ -38,7 +41,7 @@ rule solve:
 rule plot:
     input:
         PLOT_SOURCES,
-        data="results/data/{scene}.json",
+        data=lambda w: f"results/data/{FIGURE_DATA.get(w.scene, w.scene)}.json",
     output:
         pdf="results/figures/{scene}.pdf",
         png="results/figures/{scene}.png",

@@ -97,7 +97,65 @@ def plot_stability_map(data: dict[str, Any]) -> Figure:
     return fig
 
 
+def _tip(data):
+    h = data["history"]
+    return (np.array(h["t"]), np.array(h["u1"]) * 1000, np.array(h["u2"]) * 1000,
+            np.array(h["u1_dot"]), np.array(h["u2_dot"]))
+
+
+def _title(data, fig):
+    c = data["cycle"]
+    return (f"{fig}: nonlinear Beck rod, list (119), P = {data['P']:g} N: tip amplitude "
+            f"{c['tip_amplitude_m'] * 1000:.1f} mm, period {c['period_s'] * 1000:.2f} ms")
+
+
+def plot_fig15(data: dict[str, Any]) -> Figure:
+    """Fig. 15: the tip's trajectory u1-u2 reaching the (flat) limit cycle."""
+    from flutterfriction.plotting.ziegler_nonlinear import _time_coloured
+
+    t, u1, u2, _, _ = _tip(data)
+    fig, ax = plt.subplots(figsize=(5.6, 4.0))
+    lc = _time_coloured(ax, u2, u1, t, lw=0.6)
+    fig.colorbar(lc, ax=ax, label="t [s]")
+    ax.set_xlabel(r"$u_2^{tip}$ [mm] (lateral)")
+    ax.set_ylabel(r"$u_1^{tip}$ [mm] (axial)")
+    ax.set_title(_title(data, "Fig. 15"), fontsize=8)
+    return fig
+
+
+def plot_fig16(data: dict[str, Any]) -> Figure:
+    """Fig. 16: tip velocities against tip displacements."""
+    from flutterfriction.plotting.ziegler_nonlinear import _time_coloured
+
+    t, u1, u2, v1, v2 = _tip(data)
+    fig, axes = plt.subplots(2, 1, figsize=(5.2, 6.0))
+    for ax, u, v, k in ((axes[0], u1, v1, 1), (axes[1], u2, v2, 2)):
+        lc = _time_coloured(ax, u, v, t, lw=0.6)
+        ax.set_xlabel(rf"$u_{k}^{{tip}}$ [mm]")
+        ax.set_ylabel(rf"$\dot u_{k}^{{tip}}$ [m/s]")
+    fig.colorbar(lc, ax=axes, label="t [s]")
+    axes[0].set_title(_title(data, "Fig. 16"), fontsize=7)
+    return fig
+
+
+def plot_fig17(data: dict[str, Any]) -> Figure:
+    """Fig. 17: lateral against axial tip velocity."""
+    from flutterfriction.plotting.ziegler_nonlinear import _time_coloured
+
+    t, _, _, v1, v2 = _tip(data)
+    fig, ax = plt.subplots(figsize=(5.2, 4.2))
+    lc = _time_coloured(ax, v1, v2, t, lw=0.6)
+    fig.colorbar(lc, ax=ax, label="t [s]")
+    ax.set_xlabel(r"$\dot u_1^{tip}$ [m/s]")
+    ax.set_ylabel(r"$\dot u_2^{tip}$ [m/s]")
+    ax.set_title(_title(data, "Fig. 17"), fontsize=8)
+    return fig
+
+
 PLOTS = {
+    "fig15": plot_fig15,
+    "fig16": plot_fig16,
+    "fig17": plot_fig17,
     "fig11": lambda d: plot_branches(d, "Fig. 11: the Beck rod, list (119)"),
     "fig12": lambda d: plot_branches(
         d, "Fig. 12: the Pflüger rod, list (119), tan α = "

@@ -46,6 +46,7 @@ SCENES: dict[str, SceneBuilder] = {
     "fig14": ziegler_nonlinear.fig14,
     "fig20": ziegler_nonlinear.fig20,
     "fig21": ziegler_nonlinear.fig21,
+    "beck_limit_cycle": rod.beck_limit_cycle,
 }
 
 

@@ -265,3 +265,42 @@ def _test_functions(kind: str, p: float) -> tuple[np.ndarray, np.ndarray]:
         a2, a3 = np.linalg.solve(A, b)
         out.append(np.array([a5, a4, a3, a2, 0.0, 0.0]))
     return out[0], out[1]
+
+
+# ---------------------------------------------------------------------- §2.9 nonlinear Beck rod
+def beck_limit_cycle(params: dict[str, Any]) -> dict[str, Any]:
+    """Figs. 15–17: the nonlinear Beck rod of list (119) at P = 5.5 N reaches a limit cycle.
+    Primary: ``n_elements`` P2 elements; check: a mesh twice as fine (looser cycle tolerance).
+    Only the tip's history is stored."""
+    from flutterfriction.analysis.rod_dynamics import beck_limit_cycle as solve
+
+    _take(params, {"rod", "P_N", "n_elements", "method", "rtol", "tol", "initial_tip_rotation",
+                   "check_method", "check_tol"})
+    rod = _rod(params)
+    P = check_positive("P_N", params["P_N"], "N")
+    n = int(params.get("n_elements", 4))
+    main = solve(rod, P, n_elements=n, method=params.get("method", "LSODA"),
+                 rtol=float(params.get("rtol", 1e-8)), atol=1e-10,
+                 tol=float(params.get("tol", 1e-5)),
+                 initial_tip_rotation=float(params.get("initial_tip_rotation", 1.2)))
+    fine = solve(rod, P, n_elements=2 * n, method=params.get("check_method", "BDF"),
+                 rtol=1e-7, atol=1e-9, tol=float(params.get("check_tol", 1e-4)),
+                 initial_tip_rotation=float(params.get("initial_tip_rotation", 1.2)))
+    mesh = f"{2 * n} elements ({params.get('check_method', 'BDF')})"
+    prim = f"{n} P2 elements ({params.get('method', 'LSODA')})"
+    return {
+        "P": P, "cycle": main.as_dict(), "cycle_fine": fine.as_dict(), "history": main.history,
+        "quantities": {
+            "tip_amplitude": _quantity(main.tip_amplitude_m, fine.tip_amplitude_m, prim, mesh,
+                                       "m"),
+            "period": _quantity(main.period_s, fine.period_s, prim, mesh, "s"),
+            "tip_rotation_amplitude": _quantity(main.tip_rotation_amplitude_rad,
+                                                fine.tip_rotation_amplitude_rad, prim, mesh,
+                                                "rad"),
+            "energy_balance": _quantity(main.energy_balance_error, fine.energy_balance_error,
+                                        "|W_P - W_D|/W_D on the cycle, primary",
+                                        "same, finer mesh", ""),
+            "reaches_limit_cycle": _quantity("limit cycle", "limit cycle",
+                                             "Poincare section converges (primary)",
+                                             "Poincare section converges (finer mesh)", ""),
+        }}

@@ -1,0 +1,164 @@
+"""A geometrically exact, inextensible planar rod with a tangential follower force at the tip
+(chapter §2.5–2.6, §2.9): the nonlinear Beck/Pflüger rod.
+
+The unknown is the rotation field ``theta(s, t)`` (``theta(0) = 0`` at the clamp), discretised
+with continuous P2 (quadratic Lagrange) elements; the position follows from inextensibility,
+``x(s) = int_0^s (cos theta, sin theta) ds'`` (eq. 64), so no axial stiffness makes the problem
+stiff and no membrane locking can occur. With ``t = (cos theta, sin theta)`` and
+``t_perp = (-sin theta, cos theta)``, ``x_dot(s) = sum_j G_j(s) q_dot_j`` with
+``G_j(s) = int_0^s t_perp phi_j``, and ``x_ddot = sum_j G_j q_ddot_j - int_0^s t theta_dot^2``.
+Virtual work then gives
+
+    M(q) q_ddot + h(q, q_dot) + K q + C q_dot = F(q)
+
+with ``M = rho int G^T G + M_tip G(l)^T G(l)``, the bending stiffness ``K = B int phi' phi'``,
+the Kelvin–Voigt viscosity ``C = D int phi' phi'`` (eq. 83: moment ``B theta' + D theta_dot'``),
+the follower force ``F_i = -P int sin(theta(l) - theta) phi_i`` (the load ``-P t(l)`` at the tip)
+and external damping ``-kappa x_dot`` per length. Linearised about the straight rod this is the
+Euler–Bernoulli beam of eq. (105) in the variable ``theta = v'``, so it converges to the exact
+theory of :mod:`flutterfriction.analysis.rod`.
+
+Cumulative integrals along ``s`` use, in each element, Gauss–Legendre points and a spectral
+integration matrix (exact for polynomials of the rule's degree).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.polynomial import legendre
+from numpy.typing import NDArray
+
+from flutterfriction.errors import ParameterError
+from flutterfriction.models.rod import Rod
+
+
+def _integration_matrix(x: NDArray) -> NDArray:
+    """``S[q, r]``: ``int_{-1}^{x_q} f = sum_r S[q, r] f(x_r)`` for polynomials of degree < n."""
+    n = len(x)
+    S = np.zeros((n, n))
+    for r in range(n):
+        c = np.zeros(n)
+        c[r] = 1.0
+        # Lagrange basis polynomial l_r in monomial coefficients, then integrate from -1.
+        others = np.delete(x, r)
+        poly = np.poly(others) / np.prod(x[r] - others)
+        integral = np.polyint(poly)
+        S[:, r] = np.polyval(integral, x) - np.polyval(integral, -1.0)
+    return S
+
+
+@dataclass
+class NonlinearRod:
+    """The discretised rod: ``rod`` (SI), ``n_elements`` P2 elements, ``n_gauss`` points each."""
+
+    rod: Rod
+    n_elements: int
+    n_gauss: int = 5
+
+    def __post_init__(self) -> None:
+        if isinstance(self.n_elements, bool) or int(self.n_elements) < 1:
+            raise ParameterError(f"n_elements must be >= 1, got {self.n_elements!r}")
+        N, ng = int(self.n_elements), int(self.n_gauss)
+        L = self.rod.length
+        h = L / N
+        xg, wg = legendre.leggauss(ng)
+        self.h = h
+        self.n_dof = 2 * N  # nodes 1..2N (node 0 is clamped)
+        e = np.repeat(np.arange(N), ng)
+        xi = np.tile(xg, N)
+        self.s = (e + (xi + 1) / 2) * h  # quadrature points along the rod
+        self.w = np.tile(wg, N) * h / 2
+        self.elem = e
+        # P2 shape functions on [-1, 1] at the Gauss points: nodes -1, 0, 1.
+        N0, N1, N2 = xi * (xi - 1) / 2, 1 - xi**2, xi * (xi + 1) / 2
+        dN0, dN1, dN2 = (xi - 0.5), -2 * xi, (xi + 0.5)
+        phi = np.zeros((N * ng, 2 * N + 1))
+        dphi = np.zeros_like(phi)
+        rows = np.arange(N * ng)
+        for k, (f, df) in enumerate(((N0, dN0), (N1, dN1), (N2, dN2))):
+            cols = 2 * e + k
+            phi[rows, cols] = f
+            dphi[rows, cols] = df * 2 / h
+        self.phi = phi[:, 1:]  # drop the clamped node
+        self.dphi = dphi[:, 1:]
+        self.S = _integration_matrix(xg) * h / 2  # within-element cumulative integral
+        self.wg = wg * h / 2
+        stiff = np.einsum("q,qi,qj->ij", self.w, self.dphi, self.dphi)
+        self.K = self.rod.B * stiff
+        self.C = self.rod.D * stiff
+        self.int_phi = self.w @ self.phi  # int phi_i
+        self.int_phiphi = np.einsum("q,qi,qj->ij", self.w, self.phi, self.phi)
+
+    # ------------------------------------------------------------------ cumulative integrals
+    def _cumint(self, f: NDArray) -> tuple[NDArray, NDArray]:
+        """``int_0^{s_q} f`` at every quadrature point and ``int_0^l f``; ``f`` (n_q, ...)."""
+        N, ng = int(self.n_elements), int(self.n_gauss)
+        fe = f.reshape(N, ng, *f.shape[1:])
+        within = np.einsum("ab,eb...->ea...", self.S, fe)
+        full = np.einsum("b,eb...->e...", self.wg, fe)
+        before = np.concatenate([np.zeros_like(full[:1]), np.cumsum(full, axis=0)[:-1]], axis=0)
+        return (before[:, None] + within).reshape(f.shape), full.sum(axis=0)
+
+    def kinematics(self, q: NDArray):
+        theta = self.phi @ q
+        t = np.stack([np.cos(theta), np.sin(theta)], axis=-1)
+        tp = np.stack([-np.sin(theta), np.cos(theta)], axis=-1)
+        G, G_tip = self._cumint(tp[:, :, None] * self.phi[:, None, :])
+        return theta, t, G, G_tip
+
+    def tip_position(self, q: NDArray) -> NDArray:
+        theta = self.phi @ q
+        _, x_tip = self._cumint(np.stack([np.cos(theta), np.sin(theta)], axis=-1))
+        return x_tip
+
+    # ------------------------------------------------------------------ equations of motion
+    def mass_matrix(self, G: NDArray, G_tip: NDArray) -> NDArray:
+        r = self.rod
+        return (r.rho * np.einsum("q,qci,qcj->ij", self.w, G, G)
+                + r.tip_mass * G_tip.T @ G_tip)
+
+    def accelerations(self, q: NDArray, v: NDArray, P: float) -> NDArray:
+        r = self.rod
+        theta, t, G, G_tip = self.kinematics(q)
+        M = self.mass_matrix(G, G_tip)
+        theta_dot = self.phi @ v
+        a_c, a_c_tip = self._cumint(-t * theta_dot[:, None] ** 2)
+        h = r.rho * np.einsum("q,qci,qc->i", self.w, G, a_c) + r.tip_mass * G_tip.T @ a_c_tip
+        F = -P * (self.w * np.sin(q[-1] - theta)) @ self.phi
+        if r.kappa > 0:
+            xdot = np.einsum("qci,i->qc", G, v)
+            F = F - r.kappa * np.einsum("q,qci,qc->i", self.w, G, xdot)
+        return np.linalg.solve(M, F - self.K @ q - self.C @ v - h)
+
+    def rhs(self, t: float, y: NDArray, P: float) -> NDArray:
+        n = self.n_dof
+        return np.concatenate([y[n:], self.accelerations(y[:n], y[n:], P)])
+
+    # ------------------------------------------------------------------ linearisation
+    def linear_matrices(self):
+        """``(M0, C, K, dK/dP)`` of the linearisation about the straight rod:
+        ``M0 q_ddot + C q_dot + (K + P K1) q = 0`` with ``K1 = int phi (x) (e_tip - phi)``
+        (from ``F_i = -P int (theta_l - theta) phi_i``)."""
+        _, _, G, G_tip = self.kinematics(np.zeros(self.n_dof))
+        M0 = self.mass_matrix(G, G_tip)
+        e_tip = np.zeros(self.n_dof)
+        e_tip[-1] = 1.0
+        K1 = np.outer(self.int_phi, e_tip) - self.int_phiphi
+        C = self.C.copy()
+        if self.rod.kappa > 0:
+            C = C + self.rod.kappa / self.rod.rho * (M0 - self.rod.tip_mass * G_tip.T @ G_tip)
+        return M0, C, self.K.copy(), K1
+
+    # ------------------------------------------------------------------ energy
+    def power_balance(self, q: NDArray, v: NDArray, P: float) -> tuple[float, float]:
+        """Power of the follower force and viscous dissipation rate [W] at one state."""
+        theta, t, G, G_tip = self.kinematics(q)
+        xdot_tip = G_tip @ v
+        power_P = -P * np.array([np.cos(q[-1]), np.sin(q[-1])]) @ xdot_tip
+        dissipation = v @ self.C @ v
+        if self.rod.kappa > 0:
+            xdot = np.einsum("qci,i->qc", G, v)
+            dissipation += self.rod.kappa * np.einsum("q,qc,qc->", self.w, xdot, xdot)
+        return float(power_P), float(dissipation)

@@ -1,0 +1,89 @@
+"""The nonlinear rod (θ formulation): kinematics, linearisation, convergence to the exact
+linear theory, energy conservation without damping."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy.integrate import solve_ivp
+
+from flutterfriction.analysis import rod as ar
+from flutterfriction.analysis.stability import _refine_roots, discriminant, pencil_eigenvalues
+from flutterfriction.models.rod import Rod, RodGroups
+from flutterfriction.models.rod_nonlinear import NonlinearRod
+
+ROD = Rod(length=0.35, B=0.0332, rho=0.0546, D=7.078e-6)
+
+
+def test_straight_and_bent_kinematics():
+    m = NonlinearRod(ROD, 4)
+    assert np.allclose(m.tip_position(np.zeros(m.n_dof)), [ROD.length, 0.0], atol=1e-14)
+    # theta = k s (a circular arc, exactly representable by P2): tip at (sin kl, 1 - cos kl)/k.
+    k = 3.0
+    nodes = np.linspace(0, ROD.length, 2 * 4 + 1)[1:]
+    tip = m.tip_position(k * nodes)
+    L = ROD.length
+    assert np.allclose(tip, [np.sin(k * L) / k, (1 - np.cos(k * L)) / k], atol=1e-10)
+
+
+def test_nonlinear_rhs_linearises_to_the_linear_matrices():
+    m = NonlinearRod(ROD, 3)
+    n, P = m.n_dof, 5.5
+    eps = 1e-7
+    J = np.column_stack([(m.rhs(0, eps * e, P) - m.rhs(0, -eps * e, P)) / (2 * eps)
+                         for e in np.eye(2 * n)])
+    M0, C, K, K1 = m.linear_matrices()
+    A = np.block([[np.zeros((n, n)), np.eye(n)],
+                  [-np.linalg.solve(M0, K + P * K1), -np.linalg.solve(M0, C)]])
+    assert np.allclose(J, A, rtol=1e-7, atol=1e-7 * np.abs(A).max())
+
+
+def _flutter(m):
+    M0, _, K, K1 = m.linear_matrices()
+
+    def low(P):
+        mu = pencil_eigenvalues(K, K1, M0, P)
+        idx = np.argsort(np.abs(mu), axis=-1)[..., :6]
+        return np.take_along_axis(mu, idx, axis=-1)
+
+    grid = np.linspace(0, 20, 201)
+    return _refine_roots(lambda P: float(discriminant(low(np.array([P])))[0]), grid,
+                         discriminant(low(grid)))[0]
+
+
+def test_linearised_flutter_load_converges_at_fourth_order():
+    exact = ar.critical_loads(RodGroups()).p_flu * ROD.load_unit
+    errors = [abs(_flutter(NonlinearRod(ROD, n)) - exact) / exact for n in (4, 8, 16)]
+    rates = np.log2(np.array(errors[:-1]) / np.array(errors[1:]))
+    assert np.all(rates > 3.5), (errors, rates)
+    assert errors[-1] < 2e-5
+
+
+def test_energy_conserved_without_damping():
+    rod = Rod(length=0.35, B=0.0332, rho=0.0546)  # no D: with P = 0 the motion is conservative
+    m = NonlinearRod(rod, 3)
+    n = m.n_dof
+    y0 = np.concatenate([0.8 * np.linspace(0, 1, n + 1)[1:], np.zeros(n)])
+
+    def energy(y):
+        q, v = y[:n], y[n:]
+        _, _, G, G_tip = m.kinematics(q)
+        return 0.5 * v @ m.mass_matrix(G, G_tip) @ v + 0.5 * q @ m.K @ q
+
+    sol = solve_ivp(lambda t, y: m.rhs(t, y, 0.0), (0, 0.2), y0, method="DOP853", rtol=1e-10,
+                    atol=1e-12)
+    E = [energy(y) for y in sol.y.T]
+    assert max(E) - min(E) < 1e-7 * E[0]
+
+
+def test_follower_load_power_balance_is_consistent():
+    m = NonlinearRod(ROD, 3)
+    q = 0.3 * np.linspace(0, 1, m.n_dof + 1)[1:]
+    v = np.linspace(-1, 1, m.n_dof)
+    P = 5.5
+    power, dissipation = m.power_balance(q, v, P)
+    # The generalised follower force times v is the power of -P t(l) at the tip.
+    theta = m.phi @ q
+    F = -P * (m.w * np.sin(q[-1] - theta)) @ m.phi
+    assert power == pytest.approx(F @ v, rel=1e-12)
+    assert dissipation == pytest.approx(v @ m.C @ v)
