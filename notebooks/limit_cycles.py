@@ -115,3 +115,17 @@ display(Markdown(
 show("fig15")
 show("fig16", width=480)
 show("fig17", width=480)
+
+# %% [markdown]
+# ## Beyond the chapter: the bifurcation diagram of the pendulum
+#
+# Limit-cycle amplitude and period against the load, from the flutter load of §2.9 upwards.
+# The amplitude grows like $\sqrt{P - P_{flu}}$ and the period starts at $2\pi/\Omega$ of the
+# linear flutter mode; below $P_{flu}$ even a large initial amplitude decays: the Hopf
+# bifurcation is supercritical (no hysteresis, no coexisting large cycle before flutter).
+
+# %%
+show("limit_cycle_amplitude", width=860)
+for k, v in scene("limit_cycle_amplitude")["quantities"].items():
+    display(Markdown(f"- {k}: {v['value']} ({v['method']}); {v['independent']} "
+                     f"({v['independent_method']})"))

@@ -13,8 +13,10 @@ ROD_SCENES = ROD_FIGURES + ["errata_rods", "self_adjoint"]
 SOLID_FIGURES = ["fig22", "acoustic_eigenvalues", "localization_directions", "flutter_map"]
 SOLID_SCENES = SOLID_FIGURES + ["solids_statements", "errata_solids"]
 # §2.9–2.11: nonlinear dynamics and limit cycles (the Ziegler pendulum so far).
-CYCLE_FIGURES = ["fig13", "fig14", "fig20", "fig21", "fig15", "fig16", "fig17"]
-CYCLE_SCENES = ["fig13", "fig14", "fig20", "fig21", "beck_limit_cycle"]
+CYCLE_FIGURES = ["fig13", "fig14", "fig20", "fig21", "fig15", "fig16", "fig17",
+                 "limit_cycle_amplitude"]
+CYCLE_SCENES = ["fig13", "fig14", "fig20", "fig21", "beck_limit_cycle",
+                "limit_cycle_amplitude"]
 # Figures drawn from another scene's data (one computation, several views).
 FIGURE_DATA = {"fig15": "beck_limit_cycle", "fig16": "beck_limit_cycle",
                "fig17": "beck_limit_cycle"}

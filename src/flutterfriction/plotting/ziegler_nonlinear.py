@@ -95,4 +95,33 @@ def plot_fig21(data: dict[str, Any]) -> Figure:
     return fig
 
 
-PLOTS = {"fig13": plot_fig13, "fig14": plot_fig14, "fig20": plot_fig20, "fig21": plot_fig21}
+def plot_limit_cycle_amplitude(data: dict[str, Any]) -> Figure:
+    """Bifurcation diagram: amplitudes and period of the limit cycle against the load."""
+    P = np.array(data["P"])
+    Pf = data["P_flu"]
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(8.6, 3.6))
+    ax1.plot(P, np.degrees(data["alpha1_amplitude"]), "o-", ms=4, label=r"$\alpha_1$")
+    ax1.plot(P, np.degrees(data["alpha2_amplitude"]), "s-", ms=4, label=r"$\alpha_2$")
+    Pfine = np.linspace(Pf, P[2], 50)
+    c = np.degrees(data["alpha1_amplitude"][0]) / np.sqrt(P[0] - Pf)
+    ax1.plot(Pfine, c * np.sqrt(Pfine - Pf), "k:", lw=1, label=r"$\propto\sqrt{P - P_{flu}}$")
+    ax1.plot([P[0] * 0.97, Pf], [0, 0], "k-", lw=2, label="stable equilibrium")
+    ax1.axvline(Pf, color="k", ls="--", lw=0.8)
+    ax1.set_xlabel("follower load P [N]")
+    ax1.set_ylabel("limit-cycle amplitude [deg]")
+    ax1.legend(fontsize=7)
+    q = data["quantities"]
+    ax1.set_title(f"supercritical Hopf at P_flu = {Pf:.4g} N (exponent "
+                  f"{q['hopf_exponent']['value']:.3f})", fontsize=8)
+    ax2.plot(P, data["period"], "o-", ms=4)
+    ax2.axhline(2 * np.pi / data["omega_flu"], color="k", ls=":", lw=1,
+                label=r"$2\pi/\Omega$ at the flutter load")
+    ax2.set_xlabel("follower load P [N]")
+    ax2.set_ylabel("period [s]")
+    ax2.legend(fontsize=7)
+    fig.tight_layout()
+    return fig
+
+
+PLOTS = {"fig13": plot_fig13, "fig14": plot_fig14, "fig20": plot_fig20, "fig21": plot_fig21,
+         "limit_cycle_amplitude": plot_limit_cycle_amplitude}

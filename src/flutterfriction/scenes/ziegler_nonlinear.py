@@ -124,3 +124,52 @@ def fig21(params: dict[str, Any]) -> dict[str, Any]:
     scratch = C + np.stack([v * t, np.zeros_like(t)], axis=-1)
     return {"P": P, "P_flu": P_flu, "P_div": P_div, "t": t.tolist(), "C": C.tolist(),
             "scratch": scratch.tolist(), "plate_speed": v}
+
+
+def limit_cycle_amplitude(params: dict[str, Any]) -> dict[str, Any]:
+    """Bifurcation diagram of the viscous Ziegler pendulum: limit-cycle amplitude and period
+    against the load, from the (damped) flutter load upwards. Supercritical Hopf: amplitude
+    ~ sqrt(P - P_flu), period -> 2 pi / Omega_flu, and no cycle below P_flu even from a large
+    initial amplitude."""
+    from flutterfriction.analysis.ziegler import spectrum
+
+    _take(params, {"pendulum", "load_factors", "below_factor", "tol"})
+    p = _pendulum(params)
+    P_flu = damped_flutter_load(p, "routh")
+    factors = [float(f) for f in params["load_factors"]]
+    tol = float(params.get("tol", 1e-7))
+    amps1, amps2, periods = [], [], []
+    for f in factors:
+        lc = dy.limit_cycle(p, f * P_flu, [0.3, 0.3, 0.0, 0.0], tol=tol, t_max=5000.0)
+        amps1.append(lc.alpha1_amplitude_rad)
+        amps2.append(lc.alpha2_amplitude_rad)
+        periods.append(lc.period_s)
+    mu = np.array(factors) - 1.0
+    slope = float(np.polyfit(np.log(mu[:3]), np.log(amps1[:3]), 1)[0])
+    s = spectrum(p, P_flu)
+    omega_flu = float(np.abs(s[np.argmax(s.real)].imag))
+    below = float(params.get("below_factor", 0.98))
+    T0 = 2 * math.pi / omega_flu
+    t_b = np.linspace(0.0, 400.0, 40001)
+    sol = dy.simulate(p, below * P_flu, [0.6, 0.6, 0.0, 0.0], 400.0, t_eval=t_b)
+    # Envelope: the largest |alpha1| in consecutive windows of about one period. Below a
+    # supercritical Hopf point it decreases monotonically towards the equilibrium; a
+    # subcritical one would settle on a large cycle instead.
+    win = max(1, int(T0 / (t_b[1] - t_b[0])))
+    env = np.abs(sol.y[0, : len(t_b) // win * win]).reshape(-1, win).max(axis=1)
+    decays = bool(np.all(np.diff(env[5:]) <= 1e-9) and env[-1] < 0.5 * env[0])
+    return {
+        "P_flu": P_flu, "load_factors": factors, "P": (np.array(factors) * P_flu).tolist(),
+        "alpha1_amplitude": amps1, "alpha2_amplitude": amps2, "period": periods,
+        "omega_flu": omega_flu,
+        "quantities": {
+            "hopf_exponent": _quantity(slope, 0.5, "log-log slope of the amplitude near P_flu",
+                                       "supercritical Hopf normal form: 1/2", ""),
+            "period_at_onset": _quantity(periods[0], 2 * math.pi / omega_flu,
+                                         f"limit cycle at {factors[0]:g} P_flu",
+                                         "2 pi / Omega at the flutter load (eigenvalues)", "s"),
+            "hopf_type": _quantity(
+                "supercritical" if decays and slope > 0.4 else "subcritical?",
+                "no cycle below P_flu" if decays else "cycle below P_flu",
+                "amplitude ~ sqrt(P - P_flu)",
+                f"from 0.6 rad at {below:g} P_flu the motion decays", "")}}
