@@ -152,7 +152,33 @@ def plot_fig17(data: dict[str, Any]) -> Figure:
     return fig
 
 
+def plot_beck_work_precision(data: dict[str, Any]) -> Figure:
+    """Tip error against wall time for each integrator and mesh."""
+    fig, ax = plt.subplots(figsize=(6.0, 4.2))
+    styles = {4: "-", 8: "--", 16: ":"}
+    colours = {"LSODA": "C0", "BDF": "C1", "Radau": "C2", "generalized-alpha": "C3"}
+    keys = sorted({(r["method"], r["mesh"]) for r in data["runs"]})
+    for method, mesh in keys:
+        runs = sorted((r for r in data["runs"] if r["method"] == method and r["mesh"] == mesh
+                       and r["tip_error_m"] is not None), key=lambda r: r["wall_s"])
+        if not runs:
+            continue
+        ax.loglog([r["wall_s"] for r in runs], [r["tip_error_m"] for r in runs], "o",
+                  ls=styles.get(mesh, "-"), color=colours.get(method, "k"), ms=4,
+                  label=f"{method}, {mesh} elements")
+    from matplotlib.ticker import NullFormatter
+
+    ax.xaxis.set_minor_formatter(NullFormatter())
+    ax.set_xlabel("wall time [s]")
+    ax.set_ylabel("tip position error [m] at the end of the window")
+    ax.legend(fontsize=7)
+    ax.set_title("Nonlinear Beck rod: work-precision of the time integrators (adaptive "
+                 "tolerances; generalized-alpha: fixed steps)", fontsize=8)
+    return fig
+
+
 PLOTS = {
+    "beck_work_precision": plot_beck_work_precision,
     "fig15": plot_fig15,
     "fig16": plot_fig16,
     "fig17": plot_fig17,

@@ -47,6 +47,7 @@ SCENES: dict[str, SceneBuilder] = {
     "fig20": ziegler_nonlinear.fig20,
     "fig21": ziegler_nonlinear.fig21,
     "beck_limit_cycle": rod.beck_limit_cycle,
+    "beck_work_precision": rod.beck_work_precision,
     "limit_cycle_amplitude": ziegler_nonlinear.limit_cycle_amplitude,
 }
 
