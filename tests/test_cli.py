@@ -147,3 +147,10 @@ def test_limit_cycle_beck_bad_input(capsys, args, name):
     assert exc.value.code == 2
     err = capsys.readouterr().err
     assert name in err and "Traceback" not in err
+
+
+def test_acoustic_regime(capsys):
+    args = ["acoustic", "--lam", "1", "--mu", "1", "--P", "1,-0.5,-0.5,0,0,0.8",
+            "--Q", "0.6,-0.3,-0.3,0,0,-0.8", "--n", "1,0,0", "--g", "0.5", "--json"]
+    assert main(args) == 0
+    assert json.loads(capsys.readouterr().out)["regime"] == "flutter"

@@ -159,3 +159,16 @@ def test_input_validation():
         so.check_direction([2.0, 0, 0])
     with pytest.raises(ParameterError, match="deviator"):
         so.drucker_prager_tensors(np.eye(3), 0.3, 0.1)
+
+
+def test_plastic_modulus_eq152_and_classification():
+    E = so.isotropic_elasticity(1.0, 1.0)
+    P = so.voigt_to_tensor([1, -0.5, -0.5, 0, 0, 0.8])
+    Q = so.voigt_to_tensor([0.6, -0.3, -0.3, 0, 0, -0.8])
+    g = so.plastic_modulus(0.25, E, P, Q)
+    assert g == pytest.approx(0.25 + float(np.einsum("ij,ij->", Q, so.apply(E, P))))
+    n = np.array([1.0, 0.0, 0.0])
+    g1, g2 = so.flutter_interval_isotropic(1.0, 1.0, P, Q, n)
+    assert ac.classify_acoustic(so.acoustic_tensor(E, P, Q, np.sqrt(g1 * g2), n)) == "flutter"
+    assert ac.classify_acoustic(so.acoustic_tensor(E, P, Q, 10 * g2, n)) == "stable"
+    assert ac.classify_acoustic(so.acoustic_tensor(E, P, Q, -0.01, n)) == "divergence"

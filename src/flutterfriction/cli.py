@@ -55,6 +55,12 @@ def _number(text: str) -> float:
     return value
 
 
+def _add_pendulum_arguments(parser: argparse.ArgumentParser) -> None:
+    """The SI parameters of a Ziegler pendulum (shared by `ziegler` and `limit-cycle ziegler`)."""
+    for name, text in ZIEGLER_PARAMS.items():
+        parser.add_argument(f"--{name}", type=_number, required=True, help=text)
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="flutterfriction",
                      description="Flutter from friction: reproducible stability analyses.")
@@ -63,8 +69,7 @@ def build_parser() -> argparse.ArgumentParser:
         "ziegler", help="critical loads of a Ziegler double pendulum (SI units)",
         description="Critical loads of the Ziegler double pendulum (chapter §2.1-2.3): flutter "
                     "and divergence under a follower load, buckling under a dead load.")
-    for name, text in ZIEGLER_PARAMS.items():
-        z.add_argument(f"--{name}", type=_number, required=True, help=text)
+    _add_pendulum_arguments(z)
     z.add_argument("--c1", type=_number, default=0.0,
                    help="hinge viscosity at A [N m s/rad], >= 0 (default 0)")
     z.add_argument("--c2", type=_number, default=0.0,
@@ -107,8 +112,7 @@ def build_parser() -> argparse.ArgumentParser:
         description="Integrates eq. (10) from alpha1 = alpha2 = ALPHA0 until successive "
                     "crossings of the Poincare section agree to 1e-8, then confirms the orbit "
                     "by shooting. SI units.")
-    for name, text in ZIEGLER_PARAMS.items():
-        lz.add_argument(f"--{name}", type=_number, required=True, help=text)
+    _add_pendulum_arguments(lz)
     lz.add_argument("--c1", type=_number, required=True, help="hinge viscosity at A, > 0")
     lz.add_argument("--c2", type=_number, required=True, help="hinge viscosity at B, > 0")
     lz.add_argument("--P", type=_number, required=True, help="follower load [N]")
@@ -199,8 +203,12 @@ def _acoustic(args: argparse.Namespace) -> dict:
     if args.g is not None:
         if args.g == 0:
             raise ParameterError("--g must be non-zero (the plastic modulus divides)")
+        from flutterfriction.analysis.acoustic import classify_acoustic
+
         eta = so.acoustic_eigenvalues_isotropic(args.lam, args.mu, P, Q, args.g, n)
         out["eigenvalues"] = [[float(z.real), float(z.imag)] for z in eta]
+        out["regime"] = str(classify_acoustic(
+            so.acoustic_tensor_isotropic(args.lam, args.mu, P, Q, args.g, n)))
     return out
 
 

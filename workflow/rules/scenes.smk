@@ -51,3 +51,13 @@ rule plot:
         scene="|".join(ALL_FIGURES),
     script:
         "../scripts/plot_scene.py"
+
+
+rule animate_pendulum_cycle:
+    input:
+        PLOT_SOURCES,
+        data="results/data/fig14.json",
+    output:
+        "results/figures/pendulum_cycle.gif",
+    script:
+        "../scripts/animate_pendulum.py"

@@ -30,7 +30,7 @@ from dataclasses import dataclass, fields
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from flutterfriction.errors import ParameterError, check_nonnegative, check_positive
+from flutterfriction.errors import check_nonnegative, check_positive
 
 
 @dataclass(frozen=True)
@@ -44,10 +44,6 @@ class RodGroups:
     def __post_init__(self) -> None:
         for f in fields(self):
             object.__setattr__(self, f.name, check_nonnegative(f.name, getattr(self, f.name)))
-
-    @property
-    def mass_ratio(self) -> float:
-        return self.tan_alpha
 
     @property
     def damped(self) -> bool:
@@ -148,9 +144,3 @@ def characteristic_function(p: ArrayLike, w: ArrayLike, g: RodGroups,
          + a * L1 * L2 * (L2 - L1) * S1 * s2
          - w**2 * g.tan_alpha * (L1 + L2) * (S1 * c2 - C1 * s2))
     return (F, sigma) if with_exponent else F
-
-
-def check_load(p: float) -> float:
-    if not math.isfinite(p):
-        raise ParameterError(f"p must be finite, got {p!r}")
-    return float(p)

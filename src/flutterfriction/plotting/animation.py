@@ -1,0 +1,56 @@
+"""Animations (GIF) of computed motions, drawn with the same code as the figures."""
+
+from __future__ import annotations
+
+import os
+import tempfile
+from pathlib import Path
+from typing import Any
+
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.animation import FuncAnimation, PillowWriter
+
+from flutterfriction.io import make_readable
+from flutterfriction.models.ziegler import ZieglerPendulum
+from flutterfriction.plotting.pendulum import draw_pendulum
+
+
+def pendulum_cycle_gif(data: dict[str, Any], path: str | os.PathLike, n_periods: float = 2.0,
+                       frames: int = 60, fps: int = 20) -> None:
+    """The pendulum on its limit cycle (the last ``n_periods`` of the Fig. 14 data), written
+    atomically to ``path``."""
+    p = ZieglerPendulum.from_mapping(data["params"]["pendulum"])
+    t = np.array(data["t"])
+    alpha = np.array(data["alpha"])
+    T = data["limit_cycle"]["period_s"]
+    pick = np.searchsorted(t, np.linspace(t[-1] - n_periods * T, t[-1], frames))
+    pick = np.clip(pick, 0, len(t) - 1)
+    fig, ax = plt.subplots(figsize=(3.6, 3.6))
+    L = p.l1 + p.l2
+    masses = {"m1": p.m1, "m2": p.m2, "m3": p.m3}
+
+    def frame(i):
+        ax.clear()
+        k = pick[i]
+        pos = p.positions(alpha[0, k], alpha[1, k])
+        draw_pendulum(ax, {key: v for key, v in pos.items()}, masses, scale=0.5 * p.l1)
+        ax.set_xlim(-0.2 * L, 1.05 * L)
+        ax.set_ylim(-0.92 * L, 0.92 * L)
+        ax.set_aspect("equal")
+        ax.set_axis_off()
+        ax.set_title(f"limit cycle, t = {t[k]:.2f} s", fontsize=8)
+
+    anim = FuncAnimation(fig, frame, frames=len(pick))
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".gif")
+    os.close(fd)
+    try:
+        anim.save(tmp, writer=PillowWriter(fps=fps))
+        make_readable(tmp)
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        plt.close(fig)
