@@ -26,7 +26,7 @@ def pendulum_cycle_gif(data: dict[str, Any], path: str | os.PathLike, n_periods:
     T = data["limit_cycle"]["period_s"]
     pick = np.searchsorted(t, np.linspace(t[-1] - n_periods * T, t[-1], frames))
     pick = np.clip(pick, 0, len(t) - 1)
-    fig, ax = plt.subplots(figsize=(3.6, 3.6))
+    fig, ax = plt.subplots(figsize=(3.6, 4.4))
     L = p.l1 + p.l2
     masses = {"m1": p.m1, "m2": p.m2, "m3": p.m3}
 
@@ -35,8 +35,8 @@ def pendulum_cycle_gif(data: dict[str, Any], path: str | os.PathLike, n_periods:
         k = pick[i]
         pos = p.positions(alpha[0, k], alpha[1, k])
         draw_pendulum(ax, {key: v for key, v in pos.items()}, masses, scale=0.5 * p.l1)
-        ax.set_xlim(-0.2 * L, 1.05 * L)
-        ax.set_ylim(-0.92 * L, 0.92 * L)
+        ax.set_xlim(-0.25 * L, 1.05 * L)
+        ax.set_ylim(-1.0 * L, 1.0 * L)
         ax.set_aspect("equal")
         ax.set_axis_off()
         ax.set_title(f"limit cycle, t = {t[k]:.2f} s", fontsize=8)
