@@ -34,9 +34,11 @@ class RodLimitCycle:
     wall_s: float
     n_rhs: int
     history: dict = field(default_factory=dict, repr=False)
+    final_state: list = field(default_factory=list, repr=False)
 
     def as_dict(self, with_history: bool = False) -> dict:
         d = asdict(self)
+        d.pop("final_state")
         if not with_history:
             d.pop("history")
         return d
@@ -53,7 +55,8 @@ def _tip_state(model: NonlinearRod, y: NDArray) -> NDArray:
 def beck_limit_cycle(rod: Rod, P: float, n_elements: int = 8, method: str = "BDF",
                      rtol: float = 1e-7, atol: float = 1e-9, tol: float = 1e-4,
                      t_max: float = 30.0, initial_tip_rotation: float = 0.05,
-                     samples_per_period: int = 200) -> RodLimitCycle:
+                     samples_per_period: int = 200,
+                     start: tuple[NonlinearRod, NDArray] | None = None) -> RodLimitCycle:
     """Integrate from a small bend (tip rotation ``initial_tip_rotation`` rad, linear in s)
     until the limit cycle converges to ``tol``; returns its measures and the tip's history."""
     if not P > 0:
@@ -62,6 +65,11 @@ def beck_limit_cycle(rod: Rod, P: float, n_elements: int = 8, method: str = "BDF
     n = model.n_dof
     y = np.zeros(2 * n)
     y[:n] = initial_tip_rotation * np.linspace(0, 1, n + 1)[1:]
+    if start is not None:  # mesh continuation: a state of a coarser model, interpolated
+        coarse, yc = start
+        nodes = np.linspace(0.0, rod.length, n + 1)[1:]
+        y[:n] = coarse.nodal_values_at(yc[:coarse.n_dof], nodes)
+        y[n:] = coarse.nodal_values_at(yc[coarse.n_dof:], nodes)
     counter = {"rhs": 0}
 
     def rhs(t, z):
@@ -120,7 +128,8 @@ def beck_limit_cycle(rod: Rod, P: float, n_elements: int = 8, method: str = "BDF
         energy_balance_error=abs(W_P - W_D) / W_D, transient_s=t_end, wall_s=wall,
         n_rhs=counter["rhs"],
         history={"t": th.tolist(), "u1": hist[:, 0].tolist(), "u2": hist[:, 1].tolist(),
-                 "u1_dot": hist[:, 2].tolist(), "u2_dot": hist[:, 3].tolist()})
+                 "u1_dot": hist[:, 2].tolist(), "u2_dot": hist[:, 3].tolist()},
+        final_state=state_at(t_end).tolist())
 
 
 def generalized_alpha(model: NonlinearRod, P: float, y0: NDArray, t_end: float, dt: float,

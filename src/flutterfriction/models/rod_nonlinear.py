@@ -91,6 +91,16 @@ class NonlinearRod:
         self.int_phi = self.w @ self.phi  # int phi_i
         self.int_phiphi = np.einsum("q,qi,qj->ij", self.w, self.phi, self.phi)
 
+    def nodal_values_at(self, q: NDArray, s: NDArray) -> NDArray:
+        """The P2 field with nodal values ``q`` evaluated at the abscissae ``s`` (e.g. the nodes
+        of a finer mesh: mesh continuation)."""
+        s = np.asarray(s, dtype=float)
+        full = np.concatenate([[0.0], np.asarray(q, dtype=float)])
+        e = np.clip((s // self.h).astype(int), 0, int(self.n_elements) - 1)
+        xi = 2 * (s - e * self.h) / self.h - 1
+        N0, N1, N2 = xi * (xi - 1) / 2, 1 - xi**2, xi * (xi + 1) / 2
+        return N0 * full[2 * e] + N1 * full[2 * e + 1] + N2 * full[2 * e + 2]
+
     # ------------------------------------------------------------------ cumulative integrals
     def _cumint(self, f: NDArray) -> tuple[NDArray, NDArray]:
         """``int_0^{s_q} f`` at every quadrature point and ``int_0^l f``; ``f`` (n_q, ...)."""

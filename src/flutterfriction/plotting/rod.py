@@ -105,8 +105,9 @@ def _tip(data):
 
 def _title(data, fig):
     c = data["cycle"]
-    return (f"{fig}: nonlinear Beck rod, list (119), P = {data['P']:g} N: tip amplitude "
-            f"{c['tip_amplitude_m'] * 1000:.1f} mm, period {c['period_s'] * 1000:.2f} ms")
+    return (f"{fig}: nonlinear Beck rod, list (119), P = {data['P']:g} N ({data['history_mesh']}"
+            f" elements): cycle amplitude {c['tip_amplitude_m'] * 1000:.1f} mm, period "
+            f"{c['period_s'] * 1000:.2f} ms")
 
 
 def plot_fig15(data: dict[str, Any]) -> Figure:
