@@ -100,6 +100,13 @@ show("fig21", width=900)
 # generalized-α structural integrator is the next step.
 
 # %%
+show("beck_linearisation")
+q = scene("beck_linearisation")["quantities"]
+display(Markdown(f"At 5.5 N with 32 elements: growth rate {q['growth_rate']['value']:.8f} 1/s "
+                 f"(exact {q['growth_rate']['independent']:.8f}), frequency "
+                 f"{q['frequency']['value']:.8f} rad/s (exact {q['frequency']['independent']:.8f})."))
+
+# %%
 d = scene("beck_limit_cycle")
 c, f = d["cycle"], d["cycle_fine"]
 m1, m2 = d["meshes"][-2], d["meshes"][-1]

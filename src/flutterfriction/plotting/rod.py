@@ -178,7 +178,28 @@ def plot_beck_work_precision(data: dict[str, Any]) -> Figure:
     return fig
 
 
+def plot_beck_linearisation(data: dict[str, Any]) -> Figure:
+    """Errors of the linearised nonlinear rod against the exact theory, per mesh."""
+    n = np.array(data["meshes"], float)
+    fig, ax = plt.subplots(figsize=(5.6, 3.8))
+    labels = {"P_flu": "flutter load, undamped", "P_flu_damped": "flutter load, damped",
+              "growth": f"growth rate at {data['P']:g} N",
+              "frequency": f"frequency at {data['P']:g} N"}
+    for key, label in labels.items():
+        ax.loglog(n, data["errors"][key], "o-", ms=4,
+                  label=f"{label} (last rate {data['rates'][key]:.2f})")
+    ax.loglog(n, data["errors"]["growth"][1] * (n[1] / n) ** 4, "k:", lw=1, label=r"$h^4$")
+    ax.set_xticks(n, [str(int(v)) for v in n])
+    ax.minorticks_off()
+    ax.set_xlabel("P2 elements for the rotation")
+    ax.set_ylabel("relative error vs the exact theory")
+    ax.legend(fontsize=7)
+    ax.set_title("The nonlinear rod model, linearised, converges to eq. (118)", fontsize=9)
+    return fig
+
+
 PLOTS = {
+    "beck_linearisation": plot_beck_linearisation,
     "beck_work_precision": plot_beck_work_precision,
     "fig15": plot_fig15,
     "fig16": plot_fig16,

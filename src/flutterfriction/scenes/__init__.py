@@ -48,6 +48,7 @@ SCENES: dict[str, SceneBuilder] = {
     "fig21": ziegler_nonlinear.fig21,
     "beck_limit_cycle": rod.beck_limit_cycle,
     "beck_work_precision": rod.beck_work_precision,
+    "beck_linearisation": rod.beck_linearisation,
     "limit_cycle_amplitude": ziegler_nonlinear.limit_cycle_amplitude,
 }
 

@@ -374,3 +374,66 @@ def beck_work_precision(params: dict[str, Any]) -> dict[str, Any]:
     # check flaky); the runs are reported as measured.
     out["quantities"] = {}
     return out
+
+
+def beck_linearisation(params: dict[str, Any]) -> dict[str, Any]:
+    """The nonlinear rod model linearised about the straight rod converges to the exact linear
+    theory: flutter loads (undamped and with internal damping) and the growth rate and
+    frequency at ``P_N`` against the number of P2 elements, with the measured rates."""
+    from flutterfriction.analysis.damped import flutter_onset
+    from flutterfriction.analysis.stability import _refine_roots, discriminant, pencil_eigenvalues
+    from flutterfriction.models.rod_nonlinear import NonlinearRod
+
+    _take(params, {"rod", "P_N", "meshes"})
+    rod = _rod(params)
+    P = check_positive("P_N", params["P_N"], "N")
+    meshes = [int(n) for n in params["meshes"]]
+    u = rod.load_unit
+    exact_flu = ar.critical_loads(RodGroups()).p_flu * u
+    exact_flu_d = ar.critical_loads(rod.groups()).p_flu * u
+    w = ar.eigenvalues(P / u, rod.groups(), n_modes=3) / rod.time_scale
+    s_exact = w[np.argmax(w.real)]
+    rows = []
+    for n in meshes:
+        m = NonlinearRod(rod, n)
+        M0, C, K, K1 = m.linear_matrices()
+
+        def low(loads, M0=M0, K=K, K1=K1):
+            mu = pencil_eigenvalues(K, K1, M0, loads)
+            idx = np.argsort(np.abs(mu), axis=-1)[..., :6]
+            return np.take_along_axis(mu, idx, axis=-1)
+
+        grid = np.linspace(0.0, 3 * exact_flu, 301)
+        p_u = _refine_roots(lambda x, low=low: float(discriminant(low(np.array([x])))[0]),
+                            grid, discriminant(low(grid)))[0]
+        p_d = flutter_onset(M0, C, K, K1, load_max=3 * exact_flu_d, n_scan=64)
+        k = m.n_dof
+        A = np.block([[np.zeros((k, k)), np.eye(k)],
+                      [-np.linalg.solve(M0, K + P * K1), -np.linalg.solve(M0, C)]])
+        ev = np.linalg.eigvals(A)
+        s = ev[np.argmax(ev.real)]
+        rows.append({"elements": n, "P_flu": p_u, "P_flu_damped": p_d, "growth": s.real,
+                     "frequency": abs(s.imag)})
+
+    def rel(key, exact):
+        return [abs(r[key] - exact) / abs(exact) for r in rows]
+
+    errors = {"P_flu": rel("P_flu", exact_flu), "P_flu_damped": rel("P_flu_damped", exact_flu_d),
+              "growth": rel("growth", s_exact.real),
+              "frequency": rel("frequency", abs(s_exact.imag))}
+    rates = {k: float(np.log2(v[-2] / v[-1])) for k, v in errors.items()}
+    last = rows[-1]
+    label = f"linearised nonlinear model, {meshes[-1]} P2 elements"
+    return {
+        "meshes": meshes, "rows": rows, "errors": errors, "rates": rates, "P": P,
+        "exact": {"P_flu": exact_flu, "P_flu_damped": exact_flu_d, "growth": s_exact.real,
+                  "frequency": abs(s_exact.imag)},
+        "quantities": {
+            "growth_rate": _quantity(last["growth"], float(s_exact.real), label,
+                                     EXACT + " (eigenvalue / T)", "1/s"),
+            "frequency": _quantity(last["frequency"], float(abs(s_exact.imag)), label,
+                                   EXACT + " (eigenvalue / T)", "rad/s"),
+            "growth_rate_order": _quantity(rates["growth"], 4.0,
+                                           "log2 of successive error ratios",
+                                           "P2 elements for theta = v': O(h^4)", ""),
+        }}
