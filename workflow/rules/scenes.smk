@@ -61,3 +61,13 @@ rule animate_pendulum_cycle:
         "results/figures/pendulum_cycle.gif",
     script:
         "../scripts/animate_pendulum.py"
+
+
+rule animate_rod_cycle:
+    input:
+        PLOT_SOURCES,
+        data="results/data/beck_limit_cycle.json",
+    output:
+        "results/figures/beck_cycle.gif",
+    script:
+        "../scripts/animate_rod.py"

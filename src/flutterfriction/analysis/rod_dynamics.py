@@ -35,10 +35,13 @@ class RodLimitCycle:
     n_rhs: int
     history: dict = field(default_factory=dict, repr=False)
     final_state: list = field(default_factory=list, repr=False)
+    shapes: list = field(default_factory=list, repr=False)  # the rod over one period (GIF)
 
     def as_dict(self, with_history: bool = False) -> dict:
         d = asdict(self)
         d.pop("final_state")
+        if not with_history:
+            d.pop("shapes")
         if not with_history:
             d.pop("history")
         return d
@@ -118,6 +121,13 @@ def beck_limit_cycle(rod: Rod, P: float, n_elements: int = 8, method: str = "BDF
     powers = np.array([model.power_balance(s[:n], s[n:], P) for s in states])
     W_P = float(np.trapezoid(powers[:, 0], tt))
     W_D = float(np.trapezoid(powers[:, 1], tt))
+    # The rod's shape at 41 instants of the last period (for the animation only).
+    shapes = []
+    for s_ in states[:: max(1, samples_per_period // 40)]:
+        theta = model.phi @ s_[:n]
+        x_q, x_tip = model._cumint(np.stack([np.cos(theta), np.sin(theta)], axis=-1))
+        shape = np.vstack([[0.0, 0.0], x_q, x_tip])
+        shapes.append(shape.round(6).tolist())
     # History of the tip for the figures: the whole transient, 100 points per period.
     th = np.linspace(0.0, t_end, max(200, int(100 * t_end / T)))
     hist = np.array([_tip_state(model, state_at(t)) for t in th])
@@ -129,7 +139,7 @@ def beck_limit_cycle(rod: Rod, P: float, n_elements: int = 8, method: str = "BDF
         n_rhs=counter["rhs"],
         history={"t": th.tolist(), "u1": hist[:, 0].tolist(), "u2": hist[:, 1].tolist(),
                  "u1_dot": hist[:, 2].tolist(), "u2_dot": hist[:, 3].tolist()},
-        final_state=state_at(t_end).tolist())
+        final_state=state_at(t_end).tolist(), shapes=shapes)
 
 
 def generalized_alpha(model: NonlinearRod, P: float, y0: NDArray, t_end: float, dt: float,

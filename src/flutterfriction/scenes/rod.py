@@ -306,6 +306,7 @@ def beck_limit_cycle(params: dict[str, Any]) -> dict[str, Any]:
         "P": P, "meshes": meshes, "cycle": main.as_dict(), "cycle_fine": fine.as_dict(),
         "cycles": {str(n): r.as_dict() for n, r in zip(meshes, runs, strict=True)},
         "history": runs[0].history, "history_mesh": meshes[0],
+        "shapes": main.shapes, "shapes_mesh": meshes[-2],
         "quantities": {
             "tip_amplitude": _quantity(main.tip_amplitude_m, fine.tip_amplitude_m, prim, check,
                                        "m"),
