@@ -3,15 +3,13 @@
 from __future__ import annotations
 
 import os
-import tempfile
-from pathlib import Path
 from typing import Any
 
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.animation import FuncAnimation, PillowWriter
 
-from flutterfriction.io import make_readable
+from flutterfriction.io import atomic_path
 from flutterfriction.models.ziegler import ZieglerPendulum
 from flutterfriction.plotting.pendulum import draw_pendulum
 
@@ -42,17 +40,10 @@ def pendulum_cycle_gif(data: dict[str, Any], path: str | os.PathLike, n_periods:
         ax.set_title(f"limit cycle, t = {t[k]:.2f} s", fontsize=8)
 
     anim = FuncAnimation(fig, frame, frames=len(pick))
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".gif")
-    os.close(fd)
     try:
-        anim.save(tmp, writer=PillowWriter(fps=fps))
-        make_readable(tmp)
-        os.replace(tmp, path)
+        with atomic_path(path) as tmp:
+            anim.save(tmp, writer=PillowWriter(fps=fps))
     finally:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
         plt.close(fig)
 
 
@@ -79,15 +70,8 @@ def rod_cycle_gif(data: dict[str, Any], path: str | os.PathLike, fps: int = 15) 
                      f"({data['shapes_mesh']} elements)", fontsize=8)
 
     anim = FuncAnimation(fig, frame, frames=len(shapes))
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".gif")
-    os.close(fd)
     try:
-        anim.save(tmp, writer=PillowWriter(fps=fps))
-        make_readable(tmp)
-        os.replace(tmp, path)
+        with atomic_path(path) as tmp:
+            anim.save(tmp, writer=PillowWriter(fps=fps))
     finally:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
         plt.close(fig)
