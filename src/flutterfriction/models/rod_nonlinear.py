@@ -85,6 +85,7 @@ class NonlinearRod:
         self.dphi = dphi[:, 1:]
         self.S = _integration_matrix(xg) * h / 2  # within-element cumulative integral
         self.wg = wg * h / 2
+        self.sqrt_w = np.sqrt(self.w)
         stiff = np.einsum("q,qi,qj->ij", self.w, self.dphi, self.dphi)
         self.K = self.rod.B * stiff
         self.C = self.rod.D * stiff
@@ -105,11 +106,13 @@ class NonlinearRod:
     def _cumint(self, f: NDArray) -> tuple[NDArray, NDArray]:
         """``int_0^{s_q} f`` at every quadrature point and ``int_0^l f``; ``f`` (n_q, ...)."""
         N, ng = int(self.n_elements), int(self.n_gauss)
-        fe = f.reshape(N, ng, *f.shape[1:])
-        within = np.einsum("ab,eb...->ea...", self.S, fe)
-        full = np.einsum("b,eb...->e...", self.wg, fe)
-        before = np.concatenate([np.zeros_like(full[:1]), np.cumsum(full, axis=0)[:-1]], axis=0)
-        return (before[:, None] + within).reshape(f.shape), full.sum(axis=0)
+        # matmul, not einsum: this runs on every right-hand side and BLAS is ~5x faster here.
+        fe = f.reshape(N, ng, -1)
+        within = self.S @ fe
+        full = self.wg @ fe
+        before = np.cumsum(full, axis=0) - full
+        return ((before[:, None] + within).reshape(f.shape),
+                full.sum(axis=0).reshape(f.shape[1:]))
 
     def kinematics(self, q: NDArray):
         theta = self.phi @ q
@@ -126,21 +129,26 @@ class NonlinearRod:
     # ------------------------------------------------------------------ equations of motion
     def mass_matrix(self, G: NDArray, G_tip: NDArray) -> NDArray:
         r = self.rod
-        return (r.rho * np.einsum("q,qci,qcj->ij", self.w, G, G)
-                + r.tip_mass * G_tip.T @ G_tip)
+        A = (G * self.sqrt_w[:, None, None]).reshape(-1, self.n_dof)
+        return r.rho * (A.T @ A) + r.tip_mass * (G_tip.T @ G_tip)
 
-    def accelerations(self, q: NDArray, v: NDArray, P: float) -> NDArray:
+    def dynamic_terms(self, q: NDArray, v: NDArray, P: float) -> tuple[NDArray, NDArray]:
+        """``(M(q), g(q, v))`` with ``M(q) q_ddot + g = 0``: ``g = h + K q + C v - F``."""
         r = self.rod
         theta, t, G, G_tip = self.kinematics(q)
         M = self.mass_matrix(G, G_tip)
         theta_dot = self.phi @ v
         a_c, a_c_tip = self._cumint(-t * theta_dot[:, None] ** 2)
-        h = r.rho * np.einsum("q,qci,qc->i", self.w, G, a_c) + r.tip_mass * G_tip.T @ a_c_tip
+        Gw = (G * self.w[:, None, None]).reshape(-1, self.n_dof)
+        h = r.rho * (Gw.T @ a_c.reshape(-1)) + r.tip_mass * (G_tip.T @ a_c_tip)
         F = -P * (self.w * np.sin(q[-1] - theta)) @ self.phi
         if r.kappa > 0:
-            xdot = np.einsum("qci,i->qc", G, v)
-            F = F - r.kappa * np.einsum("q,qci,qc->i", self.w, G, xdot)
-        return np.linalg.solve(M, F - self.K @ q - self.C @ v - h)
+            F = F - r.kappa * (Gw.T @ (G.reshape(-1, self.n_dof) @ v))
+        return M, h + self.K @ q + self.C @ v - F
+
+    def accelerations(self, q: NDArray, v: NDArray, P: float) -> NDArray:
+        M, g = self.dynamic_terms(q, v, P)
+        return np.linalg.solve(M, -g)
 
     def rhs(self, t: float, y: NDArray, P: float) -> NDArray:
         n = self.n_dof
