@@ -23,11 +23,16 @@ from pathlib import Path
 import numpy as np
 from IPython.display import Image, Markdown, display
 
+from flutterfriction.io import merge_timings
+
 DATA, FIGS = Path("results/data"), Path("results/figures")
 
 
 def scene(name):
-    return json.loads((DATA / f"{name}.json").read_text())
+    """A scene's data, with its wall-clock timings (kept in results/benchmarks/) merged back."""
+    data = json.loads((DATA / f"{name}.json").read_text())
+    timings = Path("results/benchmarks") / f"{name}.timings.json"
+    return merge_timings(data, json.loads(timings.read_text()) or None)
 
 
 def show(name, width=620):

@@ -2,12 +2,15 @@
 
 from __future__ import annotations
 
+import json
 import os
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
-from flutterfriction.io import read_json, write_json, write_text
+from flutterfriction.io import merge_timings, read_json, split_timings, write_json, write_text
 
 
 def test_write_json_is_deterministic_and_leaves_no_temp_files(tmp_path):
@@ -27,3 +30,27 @@ def test_failed_write_keeps_the_old_file(tmp_path):
         write_json(path, {"bad": object()})
     assert path.read_text() == "old"
     assert os.listdir(tmp_path) == ["x.json"]
+
+
+json_values = st.recursive(
+    st.none() | st.booleans() | st.integers() | st.floats(allow_nan=False) | st.text(max_size=5),
+    lambda children: st.lists(children, max_size=4)
+    | st.dictionaries(st.sampled_from(["a", "b", "wall_s", "time_s", "runs"]), children,
+                      max_size=4),
+    max_leaves=20)
+
+
+@settings(max_examples=200)
+@given(json_values)
+def test_timings_split_and_merge_round_trip(data):
+    kept, timings = split_timings(data)
+    assert merge_timings(kept, timings) == data
+    text = json.dumps(kept)
+    assert '"wall_s"' not in text and '"time_s"' not in text
+
+
+def test_timings_are_taken_out_of_nested_runs():
+    data = {"runs": [{"err": 1e-3, "wall_s": 0.5}, {"err": 1e-6, "wall_s": 2.0}], "n": 3}
+    kept, timings = split_timings(data)
+    assert kept == {"runs": [{"err": 1e-3}, {"err": 1e-6}], "n": 3}
+    assert timings == {"runs": [{"wall_s": 0.5}, {"wall_s": 2.0}]}

@@ -9,7 +9,7 @@ import yaml
 
 from flutterfriction.errors import ParameterError
 
-TOP_LEVEL_KEYS = {"fidelity", "fidelity_presets", "scenes"}
+TOP_LEVEL_KEYS = {"fidelity", "fidelity_presets", "scenes", "sweep_parts"}
 
 
 def load_config(path: str | Path) -> dict[str, Any]:

@@ -63,3 +63,43 @@ def write_json(path: str | os.PathLike, data: Any) -> None:
 def read_json(path: str | os.PathLike) -> Any:
     with open(path, encoding="utf-8") as fh:
         return json.load(fh)
+
+
+#: Keys whose values are wall-clock measurements: they differ from run to run, so they are kept
+#: out of the data files (which reruns reproduce byte for byte) in a timings file beside the
+#: benchmarks.
+TIMING_KEYS = frozenset({"wall_s", "time_s"})
+
+
+def split_timings(data: Any) -> tuple[Any, Any]:
+    """``(data without timing keys, the timings at the same paths)``; dicts and lists are
+    walked recursively, and the timings are ``None`` where there are none."""
+    if isinstance(data, dict):
+        kept, timings = {}, {}
+        for k, v in data.items():
+            if k in TIMING_KEYS:
+                timings[k] = v
+                continue
+            kept[k], t = split_timings(v)
+            if t is not None:
+                timings[k] = t
+        return kept, (timings or None)
+    if isinstance(data, list):
+        pairs = [split_timings(v) for v in data]
+        timings = [t for _, t in pairs]
+        return [d for d, _ in pairs], (timings if any(t is not None for t in timings) else None)
+    return data, None
+
+
+def merge_timings(data: Any, timings: Any) -> Any:
+    """The inverse of :func:`split_timings`."""
+    if timings is None:
+        return data
+    if isinstance(data, dict):
+        out = dict(data)
+        for k, t in timings.items():
+            out[k] = t if k in TIMING_KEYS else merge_timings(data[k], t)
+        return out
+    if isinstance(data, list):
+        return [merge_timings(d, t) for d, t in zip(data, timings, strict=True)]
+    raise ValueError("timings do not match the data's structure")

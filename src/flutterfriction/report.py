@@ -108,7 +108,8 @@ def _check_table(rows: Iterable[CheckRow], errata: Mapping[str, Mapping[str, Any
 def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
                 errata: Mapping[str, Mapping[str, Any]],
                 figure_data: Mapping[str, str] | None = None,
-                extra_links: Iterable[tuple[str, str]] = ()) -> str:
+                extra_links: Iterable[tuple[str, str]] = (),
+                stress: list[Mapping[str, str]] | None = None) -> str:
     """The report's HTML. Paths are relative to ``results/reports/``.
 
     Parameters
@@ -123,7 +124,9 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
     figure_data
         Figures drawn from another scene's data (``{figure: scene}``).
     extra_links
-        ``(href, text)`` pairs listed at the top (stress report, benchmarks, ...).
+        ``(href, text)`` pairs listed at the top (benchmarks, ...).
+    stress
+        The stress tests (:mod:`flutterfriction.stress`, as dicts): what was tried, outcome.
     """
     figure_data = dict(figure_data or {})
     n_q = sum(r.kind == "quantity" for r in rows)
@@ -146,7 +149,7 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
     parts.append("<nav><ul>" + "".join(
         f'<li><a href="#s{k}">{html.escape(s["title"])}</a></li>'
         for k, s in enumerate(layout["sections"])) + '<li><a href="#check">The check</a></li>'
-        "</ul></nav>")
+        + ('<li><a href="#stress">Stress tests</a></li>' if stress else "") + "</ul></nav>")
     for k, section in enumerate(layout["sections"]):
         parts.append(f'<h2 id="s{k}">{html.escape(section["title"])}</h2>')
         if section.get("intro"):
@@ -176,8 +179,30 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
                  "against independent method (must be at most 1). Errata rows are yellow; open "
                  "<i>evidence</i> for the printed and corrected forms.</p>")
     parts.append(_check_table(rows, errata))
+    if stress:
+        parts.append(_stress_section(stress))
     parts.append("</body></html>")
     return "\n".join(parts)
+
+
+def _stress_section(stress: list[Mapping[str, str]]) -> str:
+    counts = {k: sum(r["outcome"] == k for r in stress) for k in ("correct", "refused", "WRONG")}
+    out = ['<h2 id="stress">Stress tests of numerical stability</h2>',
+           f'<p class="summary{" bad" if counts["WRONG"] else ""}">{len(stress)} cases: '
+           f'{counts["correct"]} correct, {counts["refused"]} refused clearly, '
+           f'<b>{counts["WRONG"]} silent wrong answers</b>. Each solver pushed where numerics '
+           "break, against an independent reference (50-digit mpmath, exact arithmetic). "
+           '<a href="stress.md">stress.md</a></p>',
+           '<div class="wide"><table><thead><tr><th>area</th><th>case</th><th>tried</th>'
+           "<th>expected</th><th>got</th><th>outcome</th></tr></thead><tbody>"]
+    for r in stress:
+        cls = {"correct": "pass", "refused": "pass"}.get(r["outcome"], "fail")
+        out.append(f'<tr class="{cls}">' + "".join(
+            f"<td>{html.escape(str(r[k]))}</td>" for k in ("area", "case", "tried", "expected",
+                                                          "got"))
+            + f'<td class="status">{html.escape(r["outcome"])}</td></tr>')
+    out.append("</tbody></table></div>")
+    return "\n".join(out)
 
 
 class _Links(HTMLParser):

@@ -2,10 +2,24 @@
 # (results/reports/index.html) that shows the figures, the notebooks and this check.
 
 
+rule stress:
+    input:
+        SOLVER_SOURCES,
+        "src/flutterfriction/stress.py",
+    output:
+        json="results/checks/stress.json",
+        md="results/reports/stress.md",
+    benchmark:
+        "results/benchmarks/stress.tsv"
+    script:
+        "../scripts/stress.py"
+
+
 rule check:
     input:
         reference="workflow/reference.yaml",
         layout="workflow/report.yaml",
+        stress="results/checks/stress.json",
         data=expand("results/data/{scene}.json", scene=ALL_SCENES),
         figures=expand("results/figures/{scene}.{ext}", scene=ALL_FIGURES, ext=["pdf", "png"]),
         animations=["results/figures/pendulum_cycle.gif", "results/figures/beck_cycle.gif"],

@@ -57,6 +57,7 @@ rule report_limit_cycles:
     input:
         notebook="notebooks/limit_cycles.py",
         data=expand("results/data/{scene}.json", scene=CYCLE_SCENES),  # incl. the rod cycle
+        timings=expand("results/benchmarks/{scene}.timings.json", scene=CYCLE_SCENES),
         figures=expand("results/figures/{scene}.png", scene=CYCLE_FIGURES),
     output:
         "results/reports/limit_cycles.html",

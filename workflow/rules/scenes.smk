@@ -20,15 +20,45 @@ CYCLE_SCENES = ["fig13", "fig14", "fig20", "fig21", "beck_limit_cycle",
 # Figures drawn from another scene's data (one computation, several views).
 FIGURE_DATA = {"fig15": "beck_limit_cycle", "fig16": "beck_limit_cycle",
                "fig17": "beck_limit_cycle"}
+# Sweeps (bifurcation diagrams, stability maps): their points scatter over `sweep_parts` jobs
+# (one SLURM job each on a cluster), gathered by the scene's solve job.
+SWEEP_SCENES = ["limit_cycle_amplitude", "rod_stability_map"]
 ALL_FIGURES = ZIEGLER_FIGURES + PARADOX_FIGURES + ROD_FIGURES + SOLID_FIGURES + CYCLE_FIGURES
 ALL_SCENES = ZIEGLER_SCENES + PARADOX_SCENES + ROD_SCENES + SOLID_SCENES + CYCLE_SCENES
+
+
+def sweep_parts(wildcards):
+    if wildcards.scene not in SWEEP_SCENES:
+        return []
+    n = config.get("sweep_parts", 2)
+    return [f"results/data/parts/{wildcards.scene}/{k}-of-{n}.json" for k in range(n)]
+
+
+rule solve_part:
+    input:
+        SOLVER_SOURCES,
+    output:
+        "results/data/parts/{scene}/{part}-of-{n}.json",
+    params:
+        cfg=lambda w: scene_params(config, w.scene),
+    wildcard_constraints:
+        scene="|".join(SWEEP_SCENES),
+        part=r"\d+",
+        n=r"\d+",
+    benchmark:
+        "results/benchmarks/{scene}.part{part}-of-{n}.tsv"
+    script:
+        "../scripts/solve_part.py"
 
 
 rule solve:
     input:
         SOLVER_SOURCES,
+        parts=sweep_parts,
     output:
-        "results/data/{scene}.json",
+        data="results/data/{scene}.json",
+        # wall-clock measurements, kept out of the data so that reruns are byte-identical
+        timings="results/benchmarks/{scene}.timings.json",
     params:
         # The resolved parameters: editing one scene's config reruns that scene only.
         cfg=lambda w: scene_params(config, w.scene),
@@ -44,6 +74,7 @@ rule plot:
     input:
         PLOT_SOURCES,
         data=lambda w: f"results/data/{FIGURE_DATA.get(w.scene, w.scene)}.json",
+        timings=lambda w: f"results/benchmarks/{FIGURE_DATA.get(w.scene, w.scene)}.timings.json",
     output:
         pdf="results/figures/{scene}.pdf",
         png="results/figures/{scene}.png",

@@ -4,7 +4,7 @@ any mismatch or on a report link that does not resolve."""
 import sys
 from pathlib import Path
 
-from flutterfriction.io import write_text
+from flutterfriction.io import read_json, write_text
 from flutterfriction.reference import (
     failed,
     load_reference,
@@ -29,7 +29,8 @@ if drawn != shown:
                     f"unknown figures {sorted(shown - drawn)}")
 errata = {e["id"]: e for e in reference.get("errata", [])}
 write_text(snakemake.output.html,
-           build_index(layout, rows, errata, figure_data=snakemake.params.figure_data))
+           build_index(layout, rows, errata, figure_data=snakemake.params.figure_data,
+                       stress=read_json(snakemake.input.stress)))
 bad_links = broken_links(snakemake.output.html)
 if bad_links:
     problems.append(f"results/reports/index.html: links that do not resolve: {bad_links}")

@@ -1,8 +1,9 @@
 """Draw one scene's figure from its data (thin: JSON in, PDF + PNG out)."""
 
-from flutterfriction.io import read_json
+from flutterfriction.io import merge_timings, read_json
 from flutterfriction.plotting import save_figure
 from flutterfriction.plotting.registry import PLOTS
 
-fig = PLOTS[snakemake.wildcards.scene](read_json(snakemake.input.data))
+data = merge_timings(read_json(snakemake.input.data), read_json(snakemake.input.timings) or None)
+fig = PLOTS[snakemake.wildcards.scene](data)
 save_figure(fig, snakemake.output.pdf, snakemake.output.png)

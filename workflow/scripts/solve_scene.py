@@ -1,6 +1,15 @@
-"""Compute one scene's data (thin: parameters in, package call, JSON out)."""
+"""Compute one scene's data (thin: parameters in, package call, JSON out); a sweep scene is
+gathered from its parts. Wall-clock timings go to their own file, so the data file is the same
+byte for byte on every rerun."""
 
-from flutterfriction.io import write_json
-from flutterfriction.scenes import build_scene
+from flutterfriction.io import read_json, split_timings, write_json
+from flutterfriction.scenes import build_scene, combine_scene_parts
 
-write_json(snakemake.output[0], build_scene(snakemake.wildcards.scene, snakemake.params.cfg))
+scene, params = snakemake.wildcards.scene, snakemake.params.cfg
+if snakemake.input.parts:
+    data = combine_scene_parts(scene, params, [read_json(p) for p in snakemake.input.parts])
+else:
+    data = build_scene(scene, params)
+data, timings = split_timings(data)
+write_json(snakemake.output.data, data)
+write_json(snakemake.output.timings, timings or {})

@@ -9,6 +9,7 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq, minimize
 
 from flutterfriction.analysis.stability import Regime
+from flutterfriction.errors import ParameterError
 from flutterfriction.models.solid import acoustic_vectors, elastic_acoustic_tensor
 
 
@@ -105,7 +106,16 @@ def flutter_interval_bruteforce(E: NDArray, P: ArrayLike, Q: ArrayLike, n: Array
     """Intervals of ``g`` in ``[g_max 10^-decades, g_max]`` where the acoustic tensor
     (eq. 161) has complex eigenvalues: sign changes of :func:`cubic_discriminant` of
     ``A(n; g)`` on a logarithmic scan in ``x = 1/g``, refined with Brent's method. Uses no
-    closed form. An interval touching an end of the scan is cut there."""
+    closed form. An interval touching an end of the scan is cut there.
+
+    The discriminant is evaluated from the tensor's invariants, whose terms cancel more and more
+    as ``g`` falls below the elastic scale: beyond 8 decades its sign is no longer resolved in
+    double precision (noise intervals appear), so wider scans are refused."""
+    decades = float(decades)
+    if not 0.0 < decades <= 8.0:
+        raise ParameterError(f"decades must be in (0, 8], got {decades:g}: further below the "
+                             "elastic scale the discriminant's sign is not resolved in double "
+                             "precision")
     n = np.asarray(n, dtype=float)
     Ael = elastic_acoustic_tensor(E, n)
     p, q = acoustic_vectors(E, P, Q, n)

@@ -12,6 +12,7 @@ from typing import Any
 
 from flutterfriction.errors import ParameterError
 from flutterfriction.scenes import rod, solids, ziegler, ziegler_damped, ziegler_nonlinear
+from flutterfriction.scenes.sweep import Sweep, combine_parts, compute_part
 
 SceneBuilder = Callable[[dict[str, Any]], dict[str, Any]]
 
@@ -51,6 +52,30 @@ SCENES: dict[str, SceneBuilder] = {
     "beck_linearisation": rod.beck_linearisation,
     "limit_cycle_amplitude": ziegler_nonlinear.limit_cycle_amplitude,
 }
+
+
+#: Scenes computed as sweeps: the workflow scatters their points over ``sweep_parts`` jobs.
+SWEEPS: dict[str, Sweep] = {
+    "limit_cycle_amplitude": ziegler_nonlinear.LIMIT_CYCLE_AMPLITUDE,
+    "rod_stability_map": rod.ROD_STABILITY_MAP,
+}
+
+
+def build_scene_part(name: str, params: dict[str, Any], part: int, n_parts: int
+                     ) -> dict[str, Any]:
+    """Block ``part`` of ``n_parts`` of the sweep scene ``name``."""
+    if name not in SWEEPS:
+        raise ParameterError(f"{name!r} is not a sweep; sweeps: {sorted(SWEEPS)}")
+    return {"scene": name, **compute_part(SWEEPS[name], dict(params), part, n_parts)}
+
+
+def combine_scene_parts(name: str, params: dict[str, Any], parts: list[dict[str, Any]]
+                        ) -> dict[str, Any]:
+    """The sweep scene ``name`` gathered from its parts (same data as :func:`build_scene`)."""
+    if name not in SWEEPS:
+        raise ParameterError(f"{name!r} is not a sweep; sweeps: {sorted(SWEEPS)}")
+    return {"scene": name, "params": params,
+            **combine_parts(SWEEPS[name], dict(params), parts)}
 
 
 def build_scene(name: str, params: dict[str, Any]) -> dict[str, Any]:

@@ -19,6 +19,7 @@ from flutterfriction.errors import (
 )
 from flutterfriction.models.rod import Rod, RodGroups
 from flutterfriction.models.rod_fe import assemble
+from flutterfriction.scenes.sweep import Sweep
 from flutterfriction.scenes.ziegler import _n_points, _quantity, _take
 
 EXACT = "Newton on the exact characteristic function, eq. (118)"
@@ -185,39 +186,58 @@ def rod_fe_convergence(params: dict[str, Any]) -> dict[str, Any]:
 
 
 # ---------------------------------------------------------------------- stability map
-def rod_stability_map(params: dict[str, Any]) -> dict[str, Any]:
-    """Flutter and divergence loads against the tip-mass ratio, undamped and with vanishing
-    internal damping (the rod's Ziegler paradox over the whole family)."""
+def _map_points(params: dict[str, Any]) -> list[list[Any]]:
+    """(case, tip-mass ratio) for the undamped rod and the rod with vanishing damping."""
     _take(params, {"log10_ratio_range", "n_ratios", "eta_small"})
     lo, hi = params.get("log10_ratio_range", [-2.0, 2.0])
     n = int(params.get("n_ratios", 41))
     if n < 3 or not lo < hi:
         raise ParameterError("need n_ratios >= 3 and log10_ratio_range [lo, hi] with lo < hi")
     ratios = [0.0, *np.logspace(lo, hi, n).tolist()]  # 0 is the Beck rod
+    return [[case, r] for case in ("undamped", "vanishing_damping") for r in ratios]
+
+
+def _map_compute(params: dict[str, Any], points: list[list[Any]]) -> list[dict[str, Any]]:
     eta = check_positive("eta_small", params.get("eta_small", 1e-6))
-    out: dict[str, Any] = {"mass_ratio": ratios}
-    for name, e in (("undamped", 0.0), ("vanishing_damping", eta)):
-        flu, div = [], []
-        prev = None
-        for r in ratios:
-            g = RodGroups(tan_alpha=r, eta=e)
-            c = None
-            if prev is not None and (prev.p_div is not None or r < 0.3):
-                try:  # continuation in the mass ratio (ms); a fresh FE-guessed solve otherwise
-                    c = ar.continue_critical_loads(g, prev)
-                except Exception:
-                    c = None
-            if c is None:
-                c = ar.critical_loads(g)
-            flu.append(c.p_flu)
-            div.append(c.p_div)
-            prev = c
-        out[name] = {"p_flu": flu, "p_div": div}
+    out, prev, prev_case = [], None, None
+    for case, r in points:
+        g = RodGroups(tan_alpha=r, eta=0.0 if case == "undamped" else eta)
+        c = None
+        if prev is not None and case == prev_case and (prev.p_div is not None or r < 0.3):
+            try:  # continuation in the mass ratio (ms); a fresh FE-guessed solve otherwise
+                c = ar.continue_critical_loads(g, prev)
+            except Exception:
+                c = None
+        if c is None:
+            c = ar.critical_loads(g)
+        out.append({"p_flu": c.p_flu, "p_div": c.p_div})
+        prev, prev_case = c, case
+    return out
+
+
+def _map_combine(params: dict[str, Any], results: list[dict[str, Any]]) -> dict[str, Any]:
+    points = _map_points(params)
+    eta = check_positive("eta_small", params.get("eta_small", 1e-6))
+    out: dict[str, Any] = {"mass_ratio": [r for case, r in points if case == "undamped"]}
+    for name in ("undamped", "vanishing_damping"):
+        rows = [res for (case, _), res in zip(points, results, strict=True) if case == name]
+        out[name] = {"p_flu": [x["p_flu"] for x in rows], "p_div": [x["p_div"] for x in rows]}
     beck = ar.critical_loads(RodGroups(eta=eta))
     out["quantities"] = {"beck_vanishing_damping": _quantity(
         beck.p_flu, ar.fe_critical_loads(RodGroups(eta=eta), 64).p_flu, EXACT,
         "finite elements (64 Hermite elements)", "")}
     return out
+
+
+#: Flutter and divergence loads against the tip-mass ratio, undamped and with vanishing
+#: internal damping (the rod's Ziegler paradox over the whole family): a sweep that the
+#: workflow scatters over jobs (continuation in the ratio within each block).
+ROD_STABILITY_MAP = Sweep(_map_points, _map_compute, _map_combine)
+
+
+def rod_stability_map(params: dict[str, Any]) -> dict[str, Any]:
+    """The rod's stability map in one process (see ``ROD_STABILITY_MAP``)."""
+    return ROD_STABILITY_MAP.run(params)
 
 
 # ---------------------------------------------------------------------- §2.8 self-adjointness
@@ -373,8 +393,8 @@ def beck_work_precision(params: dict[str, Any]) -> dict[str, Any]:
         y_s = next(ye for ye in first.y_events[0] if _tip_state(m, ye)[1] > 0)
         t_ref = _time.perf_counter()
         T_ref, u_ref, _ = one_period(y_s, "LSODA", 1e-11)
-        out["references"][f"{n_el}_wall_s"] = _time.perf_counter() - t_ref
-        out["references"][str(n_el)] = {"period_s": T_ref, "tip_amplitude_m": u_ref}
+        out["references"][str(n_el)] = {"period_s": T_ref, "tip_amplitude_m": u_ref,
+                                        "wall_s": _time.perf_counter() - t_ref}
 
         def record(method, setting, wall, n_rhs, T_k=None, u_k=None, n_el=n_el, T_ref=T_ref,
                    u_ref=u_ref):

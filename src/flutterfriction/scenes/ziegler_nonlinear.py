@@ -13,9 +13,11 @@ from flutterfriction.analysis.ziegler import (
     damped_divergence_load,
     damped_flutter_load,
     linear_response,
+    spectrum,
 )
 from flutterfriction.closed_forms.ziegler_damped import eq54_flutter_gamma, viscosity_groups
 from flutterfriction.errors import check_positive, check_real
+from flutterfriction.scenes.sweep import Sweep
 from flutterfriction.scenes.ziegler import _pendulum, _quantity, _take
 
 
@@ -126,42 +128,59 @@ def fig21(params: dict[str, Any]) -> dict[str, Any]:
             "scratch": scratch.tolist(), "plate_speed": v}
 
 
-def limit_cycle_amplitude(params: dict[str, Any]) -> dict[str, Any]:
-    """Bifurcation diagram of the viscous Ziegler pendulum: limit-cycle amplitude and period
-    against the load, from the (damped) flutter load upwards. Supercritical Hopf: amplitude
-    ~ sqrt(P - P_flu), period -> 2 pi / Omega_flu, and no cycle below P_flu even from a large
-    initial amplitude."""
-    from flutterfriction.analysis.ziegler import spectrum
-
+def _amplitude_points(params: dict[str, Any]) -> list[list[Any]]:
+    """The bifurcation diagram's points: one cycle per load factor, and the decay test below
+    the flutter load."""
     _take(params, {"pendulum", "load_factors", "below_factor", "tol"})
+    factors = [check_positive("load_factors", f) for f in params["load_factors"]]
+    below = check_positive("below_factor", params.get("below_factor", 0.98))
+    return [["cycle", f] for f in factors] + [["below", below]]
+
+
+def _amplitude_compute(params: dict[str, Any], points: list[list[Any]]) -> list[dict[str, Any]]:
     p = _pendulum(params)
     P_flu = damped_flutter_load(p, "routh")
-    factors = [float(f) for f in params["load_factors"]]
     tol = float(params.get("tol", 1e-7))
-    amps1, amps2, periods = [], [], []
-    for f in factors:
-        lc = dy.limit_cycle(p, f * P_flu, [0.3, 0.3, 0.0, 0.0], tol=tol, t_max=5000.0)
-        amps1.append(lc.alpha1_amplitude_rad)
-        amps2.append(lc.alpha2_amplitude_rad)
-        periods.append(lc.period_s)
+    out = []
+    for kind, f in points:
+        if kind == "cycle":
+            lc = dy.limit_cycle(p, f * P_flu, [0.3, 0.3, 0.0, 0.0], tol=tol, t_max=5000.0)
+            out.append({"alpha1": lc.alpha1_amplitude_rad, "alpha2": lc.alpha2_amplitude_rad,
+                        "period": lc.period_s})
+            continue
+        # From 0.6 rad below P_flu: the envelope (largest |alpha1| in windows of about one
+        # period) of a supercritical Hopf point decreases monotonically towards the
+        # equilibrium; a subcritical one would settle on a large cycle instead.
+        s = spectrum(p, P_flu)
+        T0 = 2 * math.pi / float(np.abs(s[np.argmax(s.real)].imag))
+        t_b = np.linspace(0.0, 400.0, 40001)
+        sol = dy.simulate(p, f * P_flu, [0.6, 0.6, 0.0, 0.0], 400.0, t_eval=t_b)
+        win = max(1, int(T0 / (t_b[1] - t_b[0])))
+        env = np.abs(sol.y[0, : len(t_b) // win * win]).reshape(-1, win).max(axis=1)
+        out.append({"decays": bool(np.all(np.diff(env[5:]) <= 1e-9) and env[-1] < 0.5 * env[0]),
+                    "envelope_first": float(env[0]), "envelope_last": float(env[-1])})
+    return out
+
+
+def _amplitude_combine(params: dict[str, Any], results: list[dict[str, Any]]) -> dict[str, Any]:
+    points = _amplitude_points(params)
+    p = _pendulum(params)
+    P_flu = damped_flutter_load(p, "routh")
+    cycles = [r for (kind, _), r in zip(points, results, strict=True) if kind == "cycle"]
+    factors = [f for kind, f in points if kind == "cycle"]
+    below, decay = next((f, r) for (kind, f), r in zip(points, results, strict=True)
+                        if kind == "below")
+    amps1 = [c["alpha1"] for c in cycles]
+    periods = [c["period"] for c in cycles]
     mu = np.array(factors) - 1.0
     slope = float(np.polyfit(np.log(mu[:3]), np.log(amps1[:3]), 1)[0])
     s = spectrum(p, P_flu)
     omega_flu = float(np.abs(s[np.argmax(s.real)].imag))
-    below = float(params.get("below_factor", 0.98))
-    T0 = 2 * math.pi / omega_flu
-    t_b = np.linspace(0.0, 400.0, 40001)
-    sol = dy.simulate(p, below * P_flu, [0.6, 0.6, 0.0, 0.0], 400.0, t_eval=t_b)
-    # Envelope: the largest |alpha1| in consecutive windows of about one period. Below a
-    # supercritical Hopf point it decreases monotonically towards the equilibrium; a
-    # subcritical one would settle on a large cycle instead.
-    win = max(1, int(T0 / (t_b[1] - t_b[0])))
-    env = np.abs(sol.y[0, : len(t_b) // win * win]).reshape(-1, win).max(axis=1)
-    decays = bool(np.all(np.diff(env[5:]) <= 1e-9) and env[-1] < 0.5 * env[0])
+    decays = decay["decays"]
     return {
         "P_flu": P_flu, "load_factors": factors, "P": (np.array(factors) * P_flu).tolist(),
-        "alpha1_amplitude": amps1, "alpha2_amplitude": amps2, "period": periods,
-        "omega_flu": omega_flu,
+        "alpha1_amplitude": amps1, "alpha2_amplitude": [c["alpha2"] for c in cycles],
+        "period": periods, "omega_flu": omega_flu, "below": decay,
         "quantities": {
             "hopf_exponent": _quantity(slope, 0.5, "log-log slope of the amplitude near P_flu",
                                        "supercritical Hopf normal form: 1/2", ""),
@@ -173,3 +192,15 @@ def limit_cycle_amplitude(params: dict[str, Any]) -> dict[str, Any]:
                 "no cycle below P_flu" if decays else "cycle below P_flu",
                 "amplitude ~ sqrt(P - P_flu)",
                 f"from 0.6 rad at {below:g} P_flu the motion decays", "")}}
+
+
+#: Bifurcation diagram of the viscous Ziegler pendulum: limit-cycle amplitude and period against
+#: the load, from the (damped) flutter load upwards. Supercritical Hopf: amplitude
+#: ~ sqrt(P - P_flu), period -> 2 pi / Omega_flu, and no cycle below P_flu even from a large
+#: initial amplitude. Each load is independent: the workflow scatters them over jobs.
+LIMIT_CYCLE_AMPLITUDE = Sweep(_amplitude_points, _amplitude_compute, _amplitude_combine)
+
+
+def limit_cycle_amplitude(params: dict[str, Any]) -> dict[str, Any]:
+    """The pendulum's bifurcation diagram in one process (see ``LIMIT_CYCLE_AMPLITUDE``)."""
+    return LIMIT_CYCLE_AMPLITUDE.run(params)

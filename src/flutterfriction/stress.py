@@ -1,0 +1,338 @@
+"""Stress tests of numerical stability: each solver pushed where numerics break.
+
+Every case states what was tried, what the right answer is (from an independent computation,
+mostly 50-digit mpmath or exact rational arithmetic) and what the solver gave. The outcome is
+
+- ``correct``: the answer agrees with the reference within the stated tolerance;
+- ``refused``: the solver raised a clear :class:`ParameterError`/:class:`ConvergenceError`
+  instead of answering (acceptable where no reliable answer exists);
+- ``WRONG``: a silent wrong answer. The stress report must have none.
+
+The cases run in seconds; ``tests/test_stress.py`` asserts that none is ``WRONG`` and the
+workflow writes the report (``results/reports/stress.md``).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import asdict, dataclass
+from typing import Any
+
+import mpmath as mp
+import numpy as np
+
+from flutterfriction.errors import ConvergenceError, ParameterError
+
+CORRECT, REFUSED, WRONG = "correct", "refused", "WRONG"
+LIST47 = {"l1": 0.1, "l2": 0.1, "d": 0.1 / 3, "h": 0.1 / 3, "m1": 0.552, "m2": 0.046,
+          "m3": 0.138, "k1": 0.189, "k2": 0.189}
+
+
+@dataclass
+class StressResult:
+    area: str
+    case: str
+    tried: str
+    expected: str
+    got: str
+    outcome: str
+    note: str = ""
+
+    def as_dict(self) -> dict[str, str]:
+        return asdict(self)
+
+
+def _judge(area: str, case: str, tried: str, run: Callable[[], Any],
+           expected: Callable[[], Any], agree: Callable[[Any, Any], bool],
+           fmt: Callable[[Any], str] = str, note: str = "") -> StressResult:
+    ref = expected()
+    try:
+        got = run()
+    except (ParameterError, ConvergenceError) as exc:
+        return StressResult(area, case, tried, fmt(ref), f"refused: {exc}", REFUSED, note)
+    outcome = CORRECT if agree(got, ref) else WRONG
+    return StressResult(area, case, tried, fmt(ref), fmt(got), outcome, note)
+
+
+def _rel(a: float, b: float) -> float:
+    return abs(float(a) - float(b)) / abs(float(b))
+
+
+# ---------------------------------------------------------------------- pendulum, exact refs
+def _mp_flutter_load(params: dict[str, float], dps: int = 50) -> mp.mpf:
+    """Undamped flutter load [N] of a pendulum from its matrices in ``dps``-digit arithmetic:
+    the smaller root of the discriminant of det(K(P) - Omega^2 M) in Omega^2 (no closed form
+    of ours is used)."""
+    with mp.workdps(dps):
+        q = {k: mp.mpf(v) for k, v in params.items()}
+        l1, l2, d, h = q["l1"], q["l2"], q["d"], q["h"]
+        m1, m2, m3, k1, k2 = q["m1"], q["m2"], q["m3"], q["k1"], q["k2"]
+        # Mass matrix of eq. (11) (point masses at D, C and E), stiffness and follower terms.
+        M = mp.matrix([[m1 * d**2 + (m2 + m3) * l1**2, (m2 * l2 + m3 * h) * l1],
+                       [(m2 * l2 + m3 * h) * l1, m2 * l2**2 + m3 * h**2]])
+
+        def disc(P):
+            K = mp.matrix([[k1 + k2 - P * l1, P * l1 - k2], [-k2, k2]])
+            # det(K - x M) = a x^2 - b x + c
+            a = mp.det(M)
+            b = K[0, 0] * M[1, 1] + K[1, 1] * M[0, 0] - K[0, 1] * M[1, 0] - K[1, 0] * M[0, 1]
+            c = mp.det(K)
+            return b**2 - 4 * a * c
+
+        # The discriminant is a quadratic in P: its smaller positive root is the flutter load.
+        d0, d1, d2 = disc(mp.mpf(0)), disc(mp.mpf(1)), disc(mp.mpf(2))
+        A2 = (d2 - 2 * d1 + d0) / 2
+        A1 = d1 - d0 - A2
+        roots = sorted([(-A1 - mp.sqrt(A1**2 - 4 * A2 * d0)) / (2 * A2),
+                        (-A1 + mp.sqrt(A1**2 - 4 * A2 * d0)) / (2 * A2)])
+        return min(r for r in roots if r > 0)
+
+
+def exceptional_point_cases() -> list[StressResult]:
+    """Loads within a relative ``delta`` of the flutter load (an exceptional point, where the
+    eigenvalues are square-root sensitive): the regime from the eigenvalues against the sign of
+    ``P - P_flu`` with P_flu in 50 digits."""
+    from flutterfriction.analysis.ziegler import follower_critical_loads, regime
+    from flutterfriction.models.ziegler import ZieglerPendulum
+
+    p = ZieglerPendulum(**LIST47)
+    P_mp = _mp_flutter_load(LIST47)
+    out = [_judge("exceptional point", "flutter load of list (47)",
+                  "coalescence load (Brent on the discriminant) vs 50-digit mpmath",
+                  lambda: follower_critical_loads(p)[0], lambda: float(P_mp),
+                  lambda g, r: _rel(g, r) < 1e-13, lambda x: f"{x:.15g} N")]
+    for delta in (1e-4, 1e-8, 1e-12, 1e-14):
+        for sign in (-1, 1):
+            P = float(P_mp * (1 + sign * mp.mpf(delta)))
+            truth = "flutter" if mp.mpf(P) > P_mp else "stable"
+            out.append(_judge(
+                "exceptional point", f"P = P_flu (1 {'+' if sign > 0 else '-'} {delta:g})",
+                "regime from the eigenvalues of the first-order form",
+                lambda P=P: str(regime(p, P)), lambda truth=truth: truth,
+                lambda g, r: g == r,
+                note="refusal expected where |P - P_flu| is below what double precision "
+                     "resolves (the eigenvalues split like sqrt(delta))"))
+    return out
+
+
+def vanishing_viscosity_cases() -> list[StressResult]:
+    """Hinge viscosity down to 1e-10 of the reference: exact Routh–Hurwitz against the closed
+    form (eq. 54 generalised, exact in eps)."""
+    from flutterfriction.analysis.ziegler import damped_flutter_load
+    from flutterfriction.closed_forms.ziegler_damped import damped_flutter_gamma, viscosity_groups
+    from flutterfriction.models.ziegler import ZieglerPendulum
+
+    out = []
+    for c in (1e-6, 1e-8, 1e-10):
+        p = ZieglerPendulum(**LIST47, c1=c, c2=c)
+        eps, cr = viscosity_groups(p)
+        exact = damped_flutter_gamma(p.groups(), eps, cr) * p.load_unit
+        for method, tol in (("routh", 1e-12), ("eigenvalues", 1e-5)):
+            out.append(_judge(
+                "vanishing viscosity", f"c1 = c2 = {c:g} N m s, {method}",
+                f"damped flutter load by {method}",
+                lambda p=p, method=method: damped_flutter_load(p, method),
+                lambda exact=exact: exact, lambda g, r, tol=tol: _rel(g, r) < tol,
+                lambda x: f"{x:.13g} N",
+                note="the eigenvalue crossing is expected to lose digits like 1e-16/eps"
+                if method == "eigenvalues" else ""))
+    return out
+
+
+def scale_cases() -> list[StressResult]:
+    """The same device in millimetres and in kilometres (lengths x 1e-3 and 1e3, masses
+    x 1e-6 and 1e6): the dimensionless flutter load ``P l2 / k2`` must not change."""
+    from flutterfriction.analysis.ziegler import follower_critical_loads
+    from flutterfriction.models.ziegler import ZieglerPendulum
+
+    base = ZieglerPendulum(**LIST47)
+    p_ref = follower_critical_loads(base)[0] * base.l2 / base.k2
+    out = []
+    for s_len, s_mass in ((1e-3, 1.0), (1e3, 1.0), (1.0, 1e-6), (1.0, 1e6), (1e-3, 1e-6)):
+        q = dict(LIST47)
+        for k in ("l1", "l2", "d", "h"):
+            q[k] *= s_len
+        for k in ("m1", "m2", "m3"):
+            q[k] *= s_mass
+        p = ZieglerPendulum(**q)
+        out.append(_judge(
+            "extreme scales", f"lengths x {s_len:g}, masses x {s_mass:g}",
+            "dimensionless flutter load P l2/k2",
+            lambda p=p: follower_critical_loads(p)[0] * p.l2 / p.k2, lambda: p_ref,
+            lambda g, r: _rel(g, r) < 1e-12, lambda x: f"{x:.15g}"))
+    return out
+
+
+# ---------------------------------------------------------------------- rods
+def _mp_eq118(p, w, ta, gam, eta):
+    """Eq. (118) literally (lambda2^2 = minus the second root of eq. 112), in mpmath."""
+    a = 1 + eta * w
+    r = mp.sqrt(p**2 - 4 * a * (gam * w + w**2))
+    L1 = (-p + r) / (2 * a)
+    L2 = (p + r) / (2 * a)
+    l1, l2 = mp.sqrt(L1), mp.sqrt(L2)
+    return (a * (L1**2 + L2**2) + 2 * a * L1 * L2 * mp.cosh(l1) * mp.cos(l2)
+            + a * L1 * L2 * (L2 - L1) * mp.sinh(l1) / l1 * mp.sin(l2) / l2
+            - w**2 * ta * (L1 + L2) * (mp.sinh(l1) / l1 * mp.cos(l2)
+                                       - mp.cosh(l1) * mp.sin(l2) / l2))
+
+
+def rod_cases() -> list[StressResult]:
+    """High modes and large loads, where eq. (118) overflows if evaluated as printed: the
+    eigenvalues of the stable form, each polished as a root of the literal eq. (118) in
+    40-digit mpmath."""
+    from flutterfriction.analysis import rod as ar
+    from flutterfriction.models.rod import RodGroups
+
+    out = []
+    for p, n_modes, g in ((10.0, 8, RodGroups()), (200.0, 4, RodGroups()),
+                          (2000.0, 3, RodGroups(eta=1e-3)), (5.0, 6, RodGroups(tan_alpha=1.0))):
+        def run(p=p, n_modes=n_modes, g=g):
+            w = ar.eigenvalues(p, g, n_modes=n_modes)
+            if not np.all(np.isfinite(w)):
+                raise AssertionError("non-finite eigenvalue")  # a silent failure: judged WRONG
+            return w
+
+        def polish(w, p=p, g=g):
+            with mp.workdps(40):
+                return [complex(mp.findroot(lambda z: _mp_eq118(mp.mpf(p), z, g.tan_alpha,
+                                                                g.gamma, g.eta),
+                                            mp.mpc(x.real, x.imag))) for x in w]
+
+        def agree(got, _ref, polish=polish):
+            try:
+                exact = polish(got)
+            except (ZeroDivisionError, ValueError):
+                return False
+            return all(abs(a - b) <= 1e-9 * abs(b) for a, b in zip(got, exact, strict=True))
+
+        out.append(_judge(
+            "rod: high modes, large loads", f"p = {p:g}, {n_modes} modes, tan a = "
+            f"{g.tan_alpha:g}, eta = {g.eta:g}",
+            "eigenvalues of the stable eq. (118) vs roots of the literal eq. (118), 40 digits",
+            run, lambda: "roots of eq. (118) in mpmath", agree,
+            lambda x: x if isinstance(x, str) else f"{len(x)} finite roots, max |w| "
+            f"{max(abs(v) for v in x):.4g}"))
+    return out
+
+
+def long_integration_cases() -> list[StressResult]:
+    """The §2.9 pendulum on its limit cycle for 200 more periods: the cycle must stay put
+    (drift of amplitude and period below 1e-7), i.e. no secular accumulation of error."""
+    from flutterfriction.analysis import dynamics as dy
+    from flutterfriction.closed_forms.ziegler_damped import eq54_flutter_gamma, viscosity_groups
+    from flutterfriction.models.ziegler import ZieglerPendulum
+
+    p = ZieglerPendulum(l1=0.1, l2=0.1, d=0.1, h=0.0, m1=0.2, m2=0.2, m3=0.0, k1=0.189,
+                        k2=0.189, c1=0.006, c2=0.006)
+    eps, _ = viscosity_groups(p)
+    P = 1.5 * eq54_flutter_gamma(eps) * p.load_unit
+    lc = dy.limit_cycle(p, P, [0.1, 0.1, 0.0, 0.0], tol=1e-9)
+
+    def run():
+        x = np.array(lc.section_state)
+        sol = dy.simulate(p, P, x, 200 * lc.period_s)
+        later = dy.limit_cycle(p, P, sol.y[:, -1], tol=1e-9)
+        return later.alpha1_amplitude_rad, later.period_s
+
+    below = _judge("long integration", "limit cycle asked for at 0.9 P_flu (none exists)",
+                   "Poincaré-section search for 100 s",
+                   lambda: dy.limit_cycle(p, 0.9 * P / 1.5, [0.1, 0.1, 0.0, 0.0], t_max=100.0),
+                   lambda: "no cycle: refusal", lambda g, r: False,
+                   lambda x: x if isinstance(x, str) else f"a cycle of amplitude "
+                   f"{x.alpha1_amplitude_rad:.3g} rad")
+    return [below, _judge("long integration", "200 periods on the §2.9 cycle (DOP853, rtol 1e-11)",
+                   "amplitude and period after 200 periods vs at the start",
+                   run, lambda: (lc.alpha1_amplitude_rad, lc.period_s),
+                   lambda g, r: _rel(g[0], r[0]) < 1e-7 and _rel(g[1], r[1]) < 1e-7,
+                   lambda x: f"alpha1 {x[0]:.10f} rad, T {x[1]:.10f} s")]
+
+
+def random_pendulum_cases(n: int = 40, seed: int = 20261122) -> list[StressResult]:
+    """Random devices (masses, lengths, stiffnesses over four decades each): the numerical
+    flutter load against 50-digit mpmath; the worst case is reported."""
+    from flutterfriction.analysis.ziegler import follower_critical_loads
+    from flutterfriction.models.ziegler import ZieglerPendulum
+
+    rng = np.random.default_rng(seed)
+    worst, worst_case, refused = 0.0, "", 0
+    for _ in range(n):
+        l1, l2 = 10 ** rng.uniform(-2, 2, 2)
+        q = {"l1": l1, "l2": l2, "d": l1 * rng.uniform(0.05, 1.0),
+             "h": l2 * rng.uniform(0.0, 1.0), "m1": 10 ** rng.uniform(-2, 2),
+             "m2": 10 ** rng.uniform(-2, 2), "m3": 10 ** rng.uniform(-2, 2),
+             "k1": 10 ** rng.uniform(-2, 2), "k2": 10 ** rng.uniform(-2, 2)}
+        try:
+            got = follower_critical_loads(ZieglerPendulum(**q))[0]
+        except (ParameterError, ConvergenceError):
+            refused += 1
+            continue
+        err = _rel(got, float(_mp_flutter_load(q)))
+        if err > worst:
+            worst, worst_case = err, ", ".join(f"{k}={v:.3g}" for k, v in q.items())
+    outcome = CORRECT if worst < 1e-10 else WRONG
+    return [StressResult("random parameters", f"{n} random pendulums (seed {seed})",
+                         "numerical flutter load vs 50-digit mpmath from the matrices",
+                         "relative error < 1e-10", f"worst {worst:.2g} ({worst_case}); "
+                         f"{refused} refused", outcome)]
+
+
+def bad_input_cases() -> list[StressResult]:
+    """Inputs with no meaning must be refused with a message naming the parameter."""
+    from flutterfriction.analysis.acoustic import flutter_interval_bruteforce
+    from flutterfriction.models.rod import Rod
+    from flutterfriction.models.ziegler import ZieglerPendulum
+
+    def pendulum(**over):
+        return lambda: ZieglerPendulum(**{**LIST47, **over})
+
+    tries = [("pendulum m1 = NaN", pendulum(m1=math.nan), "m1"),
+             ("pendulum k2 = -1", pendulum(k2=-1.0), "k2"),
+             ("pendulum d > l1", pendulum(d=0.2), "d"),
+             ("rod length = 0", lambda: Rod(length=0.0, B=1.0, rho=1.0), "length"),
+             ("rod B = inf", lambda: Rod(length=1.0, B=math.inf, rho=1.0), "B"),
+             ("acoustic scan over 12 decades",
+              lambda: flutter_interval_bruteforce(np.eye(9).reshape(3, 3, 3, 3),
+                                                  np.eye(3), np.eye(3), [1.0, 0, 0], 1.0,
+                                                  decades=12), "decades")]
+    out = []
+    for case, make, name in tries:
+        try:
+            make()
+        except ParameterError as exc:
+            ok = name in str(exc)
+            out.append(StressResult("bad input", case, "construct / call", f"refusal naming "
+                                    f"{name!r}", f"refused: {exc}", REFUSED if ok else WRONG))
+            continue
+        out.append(StressResult("bad input", case, "construct / call",
+                                f"refusal naming {name!r}", "accepted", WRONG))
+    return out
+
+
+ALL_CASES: dict[str, Callable[[], list[StressResult]]] = {
+    "exceptional point": exceptional_point_cases,
+    "vanishing viscosity": vanishing_viscosity_cases,
+    "extreme scales": scale_cases,
+    "rod": rod_cases,
+    "long integration": long_integration_cases,
+    "random parameters": random_pendulum_cases,
+    "bad input": bad_input_cases,
+}
+
+
+def run_all() -> list[StressResult]:
+    return [r for make in ALL_CASES.values() for r in make()]
+
+
+def stress_markdown(results: list[StressResult]) -> str:
+    n_wrong = sum(r.outcome == WRONG for r in results)
+    lines = ["# Stress tests of numerical stability", "",
+             f"{len(results)} cases: {sum(r.outcome == CORRECT for r in results)} correct, "
+             f"{sum(r.outcome == REFUSED for r in results)} refused clearly, "
+             f"**{n_wrong} silent wrong answers**.", "",
+             "| area | case | tried | expected | got | outcome |", "|---|---|---|---|---|---|"]
+    for r in results:
+        lines.append(f"| {r.area} | {r.case} | {r.tried} | {r.expected} | "
+                     f"{r.got.replace('|', '/')} | {r.outcome} |")
+    return "\n".join(lines) + "\n"

@@ -1,0 +1,13 @@
+"""Run the stress tests; write what was tried and the outcome; fail on a silent wrong answer."""
+
+import sys
+
+from flutterfriction.io import write_json, write_text
+from flutterfriction.stress import WRONG, run_all, stress_markdown
+
+results = run_all()
+write_json(snakemake.output.json, [r.as_dict() for r in results])
+write_text(snakemake.output.md, stress_markdown(results))
+wrong = [f"{r.area}: {r.case}" for r in results if r.outcome == WRONG]
+if wrong:
+    sys.exit(f"stress tests: silent wrong answers in {wrong}")
