@@ -13,6 +13,7 @@ validate(config, "workflow/schemas/config.schema.yaml")
 include: "workflow/rules/common.smk"
 include: "workflow/rules/scenes.smk"
 include: "workflow/rules/reports.smk"
+include: "workflow/rules/benchmarks.smk"
 include: "workflow/rules/check.smk"
 
 

@@ -56,7 +56,8 @@ def load_layout(path: str | Path) -> dict[str, Any]:
     with open(path, encoding="utf-8") as fh:
         layout = yaml.safe_load(fh)
     for section in layout.get("sections", []):
-        unknown = set(section) - {"title", "intro", "figures", "notebook", "animations"}
+        unknown = set(section) - {"title", "intro", "figures", "notebook", "animations",
+                                  "images"}
         if unknown:
             raise ParameterError(f"report layout: unknown keys {sorted(unknown)} in section "
                                  f"{section.get('title')!r}")
@@ -167,6 +168,13 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
                 f"<figcaption><b>{scene}</b>: {html.escape(caption)}<br>"
                 f'<a href="../figures/{scene}.pdf">PDF</a>'
                 f'<a href="../data/{data}.json">data</a></figcaption></figure>')
+        for path, spec in section.get("images", {}).items():
+            links = "".join(f'<a href="../{html.escape(h)}">{html.escape(t)}</a>'
+                            for t, h in spec.get("links", {}).items())
+            parts.append(
+                f'<figure><a href="../{path}"><img src="../{path}" alt="{path}" '
+                f'loading="lazy"></a><figcaption>{html.escape(spec["caption"])}<br>{links}'
+                "</figcaption></figure>")
         for gif, caption in section.get("animations", {}).items():
             parts.append(
                 f'<figure><a href="../figures/{gif}"><img src="../figures/{gif}" alt="{gif}" '

@@ -17,9 +17,11 @@ rule stress:
 
 rule check:
     input:
+        code=[str(PKG / "reference.py"), str(PKG / "report.py")],
         reference="workflow/reference.yaml",
         layout="workflow/report.yaml",
         stress="results/checks/stress.json",
+        work_precision=rules.work_precision.output,
         data=expand("results/data/{scene}.json", scene=ALL_SCENES),
         figures=expand("results/figures/{scene}.{ext}", scene=ALL_FIGURES, ext=["pdf", "png"]),
         animations=["results/figures/pendulum_cycle.gif", "results/figures/beck_cycle.gif"],

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
-from scipy.optimize import brentq, minimize
+from scipy.optimize import minimize
 
 from flutterfriction.analysis.stability import Regime
 from flutterfriction.errors import ParameterError
@@ -100,36 +100,65 @@ def max_localization_modulus(E: NDArray, P: ArrayLike, Q: ArrayLike,
     return float(best_val), best_n
 
 
-def flutter_interval_bruteforce(E: NDArray, P: ArrayLike, Q: ArrayLike, n: ArrayLike,
-                                g_max: float, decades: float = 8.0,
-                                n_scan: int = 4000) -> list[tuple[float, float]]:
-    """Intervals of ``g`` in ``[g_max 10^-decades, g_max]`` where the acoustic tensor
-    (eq. 161) has complex eigenvalues: sign changes of :func:`cubic_discriminant` of
-    ``A(n; g)`` on a logarithmic scan in ``x = 1/g``, refined with Brent's method. Uses no
-    closed form. An interval touching an end of the scan is cut there.
+def discriminant_polynomial(E: NDArray, P: ArrayLike, Q: ArrayLike, n: ArrayLike
+                            ) -> np.polynomial.Polynomial:
+    """The cubic discriminant of ``A(n; g) = A_el - p (x) q / g`` (eq. 161) as a polynomial in
+    ``x = 1/g``. ``A`` is a rank-one update of ``A_el``, so its invariants are affine in ``x``:
+    ``I1 = tr A_el - x p.q``, ``I2 = I2_el - x (tr A_el p.q - q.A_el p)``,
+    ``I3 = det A_el - x q.adj(A_el) p`` (matrix determinant lemma), and the discriminant is a
+    quartic in ``x``. Its coefficients are formed once, so no cancellation grows with ``x``,
+    which is what limits evaluating the discriminant from the invariants at each ``g``."""
+    from numpy.polynomial import Polynomial
 
-    The discriminant is evaluated from the tensor's invariants, whose terms cancel more and more
-    as ``g`` falls below the elastic scale: beyond 8 decades its sign is no longer resolved in
-    double precision (noise intervals appear), so wider scans are refused."""
-    decades = float(decades)
-    if not 0.0 < decades <= 8.0:
-        raise ParameterError(f"decades must be in (0, 8], got {decades:g}: further below the "
-                             "elastic scale the discriminant's sign is not resolved in double "
-                             "precision")
     n = np.asarray(n, dtype=float)
     Ael = elastic_acoustic_tensor(E, n)
     p, q = acoustic_vectors(E, P, Q, n)
-    pq = np.outer(p, q)
+    t, pq = float(np.trace(Ael)), float(p @ q)
+    i2_el = 0.5 * (t**2 - float(np.trace(Ael @ Ael)))
+    adj = np.linalg.det(Ael) * np.linalg.inv(Ael)
+    i1 = Polynomial([t, -pq])
+    i2 = Polynomial([i2_el, -(t * pq - float(q @ Ael @ p))])
+    i3 = Polynomial([float(np.linalg.det(Ael)), -float(q @ adj @ p)])
+    b, c, d = -i1, i2, -i3  # eta^3 + b eta^2 + c eta + d
+    return 18 * b * c * d - 4 * b**3 * d + b**2 * c**2 - 4 * c**3 - 27 * d**2
 
-    def disc(x: float) -> float:
-        return float(cubic_discriminant(Ael - x * pq))
 
-    xs = np.geomspace(1.0 / g_max, 10.0**decades / g_max, n_scan)
-    vals = cubic_discriminant(Ael[None] - xs[:, None, None] * pq[None])
-    edges = [float(xs[0])] if vals[0] < 0 else []
-    edges += [brentq(disc, a, b, xtol=1e-15 * b)
-              for a, b, fa, fb in zip(xs[:-1], xs[1:], vals[:-1], vals[1:], strict=True)
-              if fa * fb < 0]
-    if vals[-1] < 0:
-        edges.append(float(xs[-1]))
-    return sorted((1.0 / b, 1.0 / a) for a, b in zip(edges[::2], edges[1::2], strict=True))
+def flutter_interval_bruteforce(E: NDArray, P: ArrayLike, Q: ArrayLike, n: ArrayLike,
+                                g_max: float, decades: float = 8.0) -> list[tuple[float, float]]:
+    """Intervals of ``g`` in ``[g_max 10^-decades, g_max]`` where the acoustic tensor (eq. 161)
+    has complex eigenvalues, from the tensors alone (no closed form): the discriminant of the
+    eigenvalue problem as a quartic in ``x = 1/g`` (:func:`discriminant_polynomial`), its real
+    roots polished by Newton on the polynomial, and its sign between them. An interval
+    touching an end of the range is cut there."""
+    g_max, decades = float(g_max), float(decades)
+    if not (np.isfinite(g_max) and g_max > 0):
+        raise ParameterError(f"g_max must be finite and > 0, got {g_max}")
+    if not (np.isfinite(decades) and 0.0 < decades <= 300.0):
+        raise ParameterError(f"decades must be in (0, 300], got {decades}")
+    disc = discriminant_polynomial(E, P, Q, n)
+    ddisc = disc.deriv()
+    lo, hi = 1.0 / g_max, 10.0**decades / g_max
+
+    def polish(x: float) -> float:  # Newton on the polynomial, kept only when it helps
+        for _ in range(3):
+            slope = float(ddisc(x))
+            if slope == 0.0:
+                break
+            x_new = x - float(disc(x)) / slope
+            if not abs(float(disc(x_new))) < abs(float(disc(x))):
+                break
+            x = x_new
+        return x
+
+    # Candidate ends: the real parts of all roots (a near-double root may come out as a
+    # complex pair), polished and clipped to the range; the sign is read inside each piece.
+    cands = sorted({float(np.clip(polish(r.real), lo, hi)) for r in disc.roots()
+                    if abs(r.imag) <= 1e-6 * abs(r)} | {lo, hi})
+    intervals: list[tuple[float, float]] = []
+    for a, b in zip(cands[:-1], cands[1:], strict=True):
+        if b > a and float(disc(np.sqrt(a * b))) < 0:
+            if intervals and intervals[-1][0] == 1.0 / a:  # adjacent pieces: one interval
+                intervals[-1] = (1.0 / b, intervals[-1][1])
+            else:
+                intervals.append((1.0 / b, 1.0 / a))
+    return sorted(intervals)

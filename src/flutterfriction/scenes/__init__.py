@@ -51,6 +51,7 @@ SCENES: dict[str, SceneBuilder] = {
     "beck_work_precision": rod.beck_work_precision,
     "beck_linearisation": rod.beck_linearisation,
     "limit_cycle_amplitude": ziegler_nonlinear.limit_cycle_amplitude,
+    "pendulum_work_precision": ziegler_nonlinear.pendulum_work_precision,
 }
 
 

@@ -16,7 +16,8 @@ from flutterfriction.analysis.ziegler import (
     spectrum,
 )
 from flutterfriction.closed_forms.ziegler_damped import eq54_flutter_gamma, viscosity_groups
-from flutterfriction.errors import check_positive, check_real
+from flutterfriction.errors import ConvergenceError, check_positive, check_real
+from flutterfriction.models.ziegler import ZieglerPendulum
 from flutterfriction.scenes.sweep import Sweep
 from flutterfriction.scenes.ziegler import _pendulum, _quantity, _take
 
@@ -204,3 +205,90 @@ LIMIT_CYCLE_AMPLITUDE = Sweep(_amplitude_points, _amplitude_compute, _amplitude_
 def limit_cycle_amplitude(params: dict[str, Any]) -> dict[str, Any]:
     """The pendulum's bifurcation diagram in one process (see ``LIMIT_CYCLE_AMPLITUDE``)."""
     return LIMIT_CYCLE_AMPLITUDE.run(params)
+
+
+def pendulum_work_precision(params: dict[str, Any]) -> dict[str, Any]:
+    """Accuracy against cost of the pendulum's solver families (for the work-precision scene):
+
+    - undamped flutter load: the closed form (eq. 39 corrected) and the eigenvalue
+      coalescence (Brent on the discriminant), against 50-digit mpmath from the matrices;
+    - damped flutter load at hinge viscosities down to ``c_values``: exact Routh–Hurwitz and the
+      eigenvalue crossing, against the closed form (exact in eps);
+    - the §2.9 limit cycle: one return to the Poincaré section from the converged orbit with
+      each integrator and tolerance, errors of period and amplitude against shooting at
+      rtol 1e-12.
+
+    Times are medians of ``repeats`` runs."""
+    import time as _time
+
+    from scipy.integrate import solve_ivp
+
+    from flutterfriction.analysis.ziegler import follower_critical_loads
+    from flutterfriction.closed_forms.ziegler import critical_loads_closed_form
+    from flutterfriction.closed_forms.ziegler_damped import damped_flutter_gamma
+    from flutterfriction.stress import _mp_flutter_load
+
+    _take(params, {"pendulum", "cycle_pendulum", "c_values", "methods", "rtols", "repeats",
+                   "load_factor"})
+    p = _pendulum(params)
+    repeats = int(params.get("repeats", 5))
+
+    def timed(fun):
+        times, value = [], None
+        for _ in range(repeats):
+            t0 = _time.perf_counter()
+            value = fun()
+            times.append(_time.perf_counter() - t0)
+        return value, float(np.median(times))
+
+    P_mp = float(_mp_flutter_load({k: getattr(p, k) for k in
+                                   ("l1", "l2", "d", "h", "m1", "m2", "m3", "k1", "k2")}))
+    runs = []
+    for name, fun in (("closed form eq. (39)", lambda: critical_loads_closed_form(p).P_flu),
+                      ("eigenvalue coalescence", lambda: follower_critical_loads(p)[0])):
+        v, t = timed(fun)
+        runs.append({"family": "pendulum flutter load", "method": name, "setting": None,
+                     "error": abs(v - P_mp) / P_mp, "wall_s": t})
+    for c in params["c_values"]:
+        pd = p.with_(c1=float(c), c2=float(c))
+        eps, cr = viscosity_groups(pd)
+        exact = damped_flutter_gamma(pd.groups(), eps, cr) * pd.load_unit
+        for method in ("routh", "eigenvalues"):
+            v, t = timed(lambda pd=pd, method=method: damped_flutter_load(pd, method))
+            runs.append({"family": "pendulum damped flutter load", "method": method,
+                         "setting": float(c), "error": abs(v - exact) / exact, "wall_s": t})
+    # The §2.9 cycle: reference orbit by shooting, then one period per integrator.
+    pc = ZieglerPendulum.from_mapping(params["cycle_pendulum"])
+    eps, _ = viscosity_groups(pc)
+    P = float(params.get("load_factor", 1.5)) * eq54_flutter_gamma(eps) * pc.load_unit
+    lc = dy.limit_cycle(pc, P, [0.1, 0.1, 0.0, 0.0], tol=1e-9)
+    ref = dy.shoot_periodic_orbit(pc, P, lc)
+    x0 = np.array(ref.section_state)
+
+    def section(t, x):
+        return x[2]
+
+    section.direction = -1.0
+    for method in params["methods"]:
+        for rtol in params["rtols"]:
+            kw = {}
+            if method in ("Radau", "BDF", "LSODA"):
+                kw["jac"] = lambda t, x: dy.jacobian(pc, x, P)
+
+            def one(method=method, rtol=rtol, kw=kw):
+                s = solve_ivp(lambda t, x: pc.equations_of_motion(x, P), (0, 1.5 * ref.period_s),
+                              x0, method=method, rtol=rtol, atol=rtol * 1e-2, events=section,
+                              **kw)
+                te = [(t, y) for t, y in zip(s.t_events[0], s.y_events[0], strict=True)
+                      if t > 0.5 * ref.period_s and y[0] > 0]
+                if not te:
+                    raise ConvergenceError(f"{method}: no return to the section")
+                return te[0]
+
+            (T, y), t = timed(one)
+            runs.append({"family": "pendulum limit cycle (one period)", "method": method,
+                         "setting": float(rtol),
+                         "error": float(max(abs(T - ref.period_s) / ref.period_s,
+                                            abs(y[0] - x0[0]) / abs(x0[0]))), "wall_s": t})
+    return {"runs": runs, "P_flu_mpmath": P_mp, "cycle_reference": ref.as_dict(),
+            "quantities": {}}

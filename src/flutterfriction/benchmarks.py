@@ -1,0 +1,114 @@
+"""The work-precision scene: accuracy against cost of every solver family, and the wall time
+and memory of every workflow job.
+
+The studies themselves are scenes (``pendulum_work_precision``, ``rod_fe_convergence``,
+``beck_work_precision``, ``beck_limit_cycle``); this module only gathers their runs into one
+table of ``(family, method, setting, error, wall_s)`` rows, and reads Snakemake's
+``benchmark:`` files.
+"""
+
+from __future__ import annotations
+
+import csv
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+
+def _row(family: str, method: str, setting: Any, error: float | None, wall_s: float | None
+         ) -> dict[str, Any]:
+    return {"family": family, "method": method, "setting": setting,
+            "error": None if error is None else float(error),
+            "wall_s": None if wall_s is None else float(wall_s)}
+
+
+def gather_runs(pendulum: Mapping[str, Any], rod_fe: Mapping[str, Any],
+                rod_cycle_integrators: Mapping[str, Any], rod_cycle: Mapping[str, Any]
+                ) -> list[dict[str, Any]]:
+    """One list of runs from the four studies' data (with their timings merged back).
+
+    Errors are relative: against 50-digit mpmath or exact closed forms (pendulum loads), the
+    exact characteristic equation (rod FE), a tight reference integration (one period on a
+    cycle), and the finest mesh (rod cycle, mesh continuation)."""
+    rows = [_row(r["family"], r["method"], r["setting"], r["error"], r["wall_s"])
+            for r in pendulum["runs"]]
+    for name, case in rod_fe["cases"].items():
+        for n, e, t in zip(rod_fe["elements"], case["rel_error_p"], case["time_s"], strict=True):
+            rows.append(_row("rod flutter load: finite elements vs exact", f"FE, {name}", n,
+                             e, t))
+    for r in rod_cycle_integrators["runs"]:
+        err = None if r["failed"] else max(r["period_error"], r["amplitude_error"])
+        rows.append(_row("rod limit cycle (one period)", f"{r['method']}, {r['mesh']} el.",
+                         r["setting"], err, r["wall_s"]))
+    cycles, meshes = rod_cycle["cycles"], rod_cycle["meshes"]
+    finest = cycles[str(meshes[-1])]
+    wall = 0.0
+    for n in meshes[:-1]:
+        c = cycles[str(n)]
+        wall += c["wall_s"]  # the chain: each mesh starts from the previous one
+        err = max(abs(c[k] - finest[k]) / abs(finest[k])
+                  for k in ("tip_amplitude_m", "period_s", "tip_rotation_amplitude_rad"))
+        rows.append(_row("rod limit cycle: mesh (vs finest)", "mesh continuation", n, err, wall))
+    return rows
+
+
+def read_benchmarks(paths: list[str | Path]) -> list[dict[str, Any]]:
+    """Wall time [s], peak resident memory [MB] and CPU time [s] of each job, from Snakemake's
+    ``benchmark:`` files (the last line of each, the latest run)."""
+    jobs = []
+    for path in map(Path, paths):
+        with open(path, encoding="utf-8") as fh:
+            rows = list(csv.DictReader(fh, delimiter="\t"))
+        if not rows:
+            continue
+        last = rows[-1]
+
+        def num(key, last=last):
+            try:
+                return float(last[key])
+            except (KeyError, ValueError):
+                return None
+
+        jobs.append({"job": path.name.removesuffix(".tsv"), "wall_s": num("s"),
+                     "max_rss_mb": num("max_rss"), "cpu_s": num("cpu_time")})
+    return sorted(jobs, key=lambda j: -(j["wall_s"] or 0.0))
+
+
+def _fmt(x: Any, spec: str) -> str:
+    return "" if x is None else format(x, spec)
+
+
+def work_precision_markdown(runs: list[dict[str, Any]], jobs: list[dict[str, Any]]) -> str:
+    """The two tables: every run (family, method, setting, error, wall time), and every job's
+    wall time and peak memory."""
+    lines = ["# Work-precision and timings", "",
+             "Accuracy against cost of every solver family (errors relative; times are medians "
+             "or single runs on a shared 2-core machine, so compare ratios rather than absolute "
+             "values), then the wall time and peak memory of every workflow job.", "",
+             "## Solvers", "", "| family | method | setting | relative error | wall time [s] |",
+             "|---|---|---|---|---|"]
+    for r in runs:
+        setting = "" if r["setting"] is None else f"{r['setting']:g}"
+        lines.append(f"| {r['family']} | {r['method']} | {setting} | "
+                     f"{_fmt(r['error'], '.2e') or 'failed'} | {_fmt(r['wall_s'], '.4g')} |")
+    total = sum(j["wall_s"] or 0.0 for j in jobs)
+    lines += ["", "## Workflow jobs (Snakemake `benchmark:`)", "",
+              f"{len(jobs)} jobs, {total:.0f} s of job wall time in all (run on 2 cores).", "",
+              "| job | wall time [s] | peak RSS [MB] | CPU time [s] |", "|---|---|---|---|"]
+    for j in jobs:
+        lines.append(f"| {j['job']} | {_fmt(j['wall_s'], '.2f')} | "
+                     f"{_fmt(j['max_rss_mb'], '.0f')} | {_fmt(j['cpu_s'], '.2f')} |")
+    return "\n".join(lines) + "\n"
+
+
+def best_per_method(runs: list[dict[str, Any]]) -> dict[str, dict[str, float]]:
+    """``{family: {method: smallest error reached}}`` (for the notebook and the tests)."""
+    out: dict[str, dict[str, float]] = {}
+    for r in runs:
+        if r["error"] is None:
+            continue
+        fam = out.setdefault(r["family"], {})
+        fam[r["method"]] = float(np.minimum(fam.get(r["method"], np.inf), r["error"]))
+    return out

@@ -1,0 +1,35 @@
+"""The work-precision figure: error against wall time, one panel per solver family."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.figure import Figure
+
+FLOOR = 1e-17  # errors of exactly 0 (agreement to the last bit) are drawn here
+
+
+def plot_work_precision(runs: list[dict[str, Any]]) -> Figure:
+    families = list(dict.fromkeys(r["family"] for r in runs))
+    ncols = 3
+    nrows = int(np.ceil(len(families) / ncols))
+    fig, axes = plt.subplots(nrows, ncols, figsize=(13, 4.0 * nrows), squeeze=False)
+    for ax, family in zip(axes.flat, families, strict=False):
+        rows = [r for r in runs if r["family"] == family and r["error"] is not None]
+        for k, method in enumerate(dict.fromkeys(r["method"] for r in rows)):
+            pts = sorted((r["wall_s"], max(r["error"], FLOOR)) for r in rows
+                         if r["method"] == method)
+            ax.loglog(*zip(*pts, strict=True), "o-", ms=3.5, lw=1, color=f"C{k % 10}",
+                      label=method)
+        ax.set_title(family, fontsize=8)
+        ax.set_xlabel("wall time [s]")
+        ax.set_ylabel("relative error")
+        ax.legend(fontsize=6)
+    for ax in list(axes.flat)[len(families):]:
+        ax.set_visible(False)
+    fig.suptitle("Work-precision of every solver family (shared 2-core machine; "
+                 f"errors of 0 drawn at {FLOOR:g})", fontsize=9)
+    fig.tight_layout()
+    return fig

@@ -1,0 +1,59 @@
+"""The work-precision gathering: runs from every study, and Snakemake's benchmark files."""
+
+from flutterfriction.benchmarks import (
+    best_per_method,
+    gather_runs,
+    read_benchmarks,
+    work_precision_markdown,
+)
+
+
+def _studies():
+    pendulum = {"runs": [{"family": "pendulum flutter load", "method": "closed form",
+                          "setting": None, "error": 1e-16, "wall_s": 1e-5}]}
+    rod_fe = {"elements": [4, 8], "cases": {"beck": {"rel_error_p": [1e-5, 6e-7],
+                                                     "time_s": [0.01, 0.02]}}}
+    integrators = {"runs": [
+        {"mesh": 4, "method": "LSODA", "setting": 1e-7, "wall_s": 0.4, "failed": False,
+         "period_error": 2e-8, "amplitude_error": 5e-8},
+        {"mesh": 4, "method": "generalized-alpha", "setting": 1e-3, "wall_s": 0.1,
+         "failed": True, "period_error": None, "amplitude_error": None}]}
+    cycle = {"meshes": [4, 8, 16], "cycles": {
+        "4": {"wall_s": 19.0, "tip_amplitude_m": 0.2503, "period_s": 0.1362,
+              "tip_rotation_amplitude_rad": 1.4204},
+        "8": {"wall_s": 12.0, "tip_amplitude_m": 0.2502, "period_s": 0.1363,
+              "tip_rotation_amplitude_rad": 1.4194},
+        "16": {"wall_s": 10.0, "tip_amplitude_m": 0.2500, "period_s": 0.1363,
+               "tip_rotation_amplitude_rad": 1.4192}}}
+    return pendulum, rod_fe, integrators, cycle
+
+
+def test_every_study_contributes_runs():
+    runs = gather_runs(*_studies())
+    families = {r["family"] for r in runs}
+    assert families == {"pendulum flutter load", "rod flutter load: finite elements vs exact",
+                        "rod limit cycle (one period)", "rod limit cycle: mesh (vs finest)"}
+    lsoda = next(r for r in runs if r["method"] == "LSODA, 4 el.")
+    assert lsoda["error"] == 5e-8  # the larger of period and amplitude errors
+    failed = next(r for r in runs if r["method"].startswith("generalized-alpha"))
+    assert failed["error"] is None
+    mesh = [r for r in runs if r["family"].startswith("rod limit cycle: mesh")]
+    # the mesh chain's cost accumulates; the error is against the finest mesh
+    assert [r["wall_s"] for r in mesh] == [19.0, 31.0]
+    assert abs(mesh[0]["error"] - 0.0012) < 1e-12
+    best = best_per_method(runs)
+    assert best["rod flutter load: finite elements vs exact"]["FE, beck"] == 6e-7
+    assert "| failed |" in work_precision_markdown(runs, [])
+
+
+def test_benchmark_files_are_read_latest_line_and_sorted(tmp_path):
+    header = "s\th:m:s\tmax_rss\tmax_vms\tmax_uss\tmax_pss\tio_in\tio_out\tmean_load\tcpu_time\n"
+    (tmp_path / "a.solve.tsv").write_text(header + "9.0\t0:00:09\t100\t1\t1\t1\t0\t0\t50\t4.5\n"
+                                          + "2.0\t0:00:02\t120.5\t1\t1\t1\t0\t0\t50\t1.5\n")
+    (tmp_path / "b.tsv").write_text(header + "3.0\t0:00:03\t-\t1\t1\t1\t0\t0\t50\t2.0\n")
+    jobs = read_benchmarks(sorted(tmp_path.glob("*.tsv")))
+    assert [j["job"] for j in jobs] == ["b", "a.solve"]
+    assert jobs[1] == {"job": "a.solve", "wall_s": 2.0, "max_rss_mb": 120.5, "cpu_s": 1.5}
+    assert jobs[0]["max_rss_mb"] is None  # '-' where the platform does not measure it
+    md = work_precision_markdown([], jobs)
+    assert "2 jobs, 5 s of job wall time" in md

@@ -1,0 +1,35 @@
+# The work-precision scene: every solver family's accuracy against cost, and the wall time and
+# peak memory of every job (from the `benchmark:` files), in one figure and one table.
+
+NOTEBOOK_REPORTS = ["ziegler", "ziegler_paradox", "rods", "solids", "limit_cycles"]
+
+
+def benchmark_files(wildcards=None):
+    n = config.get("sweep_parts", 2)
+    return (expand("results/benchmarks/{scene}.solve.tsv", scene=ALL_SCENES)
+            + [f"results/benchmarks/{s}.part{k}-of-{n}.tsv" for s in SWEEP_SCENES
+               for k in range(n)]
+            + expand("results/benchmarks/report_{nb}.tsv", nb=NOTEBOOK_REPORTS)
+            + ["results/benchmarks/stress.tsv"])
+
+
+rule work_precision:
+    input:
+        PLOT_SOURCES,
+        str(PKG / "benchmarks.py"),
+        pendulum="results/data/pendulum_work_precision.json",
+        pendulum_timings="results/benchmarks/pendulum_work_precision.timings.json",
+        rod_fe="results/data/rod_fe_convergence.json",
+        rod_fe_timings="results/benchmarks/rod_fe_convergence.timings.json",
+        rod_integrators="results/data/beck_work_precision.json",
+        rod_integrators_timings="results/benchmarks/beck_work_precision.timings.json",
+        rod_cycle="results/data/beck_limit_cycle.json",
+        rod_cycle_timings="results/benchmarks/beck_limit_cycle.timings.json",
+        benchmarks=benchmark_files,
+    output:
+        json="results/benchmarks/work_precision.json",
+        md="results/benchmarks/work_precision.md",
+        pdf="results/benchmarks/work_precision.pdf",
+        png="results/benchmarks/work_precision.png",
+    script:
+        "../scripts/work_precision.py"
