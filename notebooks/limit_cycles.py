@@ -146,6 +146,30 @@ for k, v in scene("limit_cycle_amplitude")["quantities"].items():
                      f"({v['independent_method']})"))
 
 # %% [markdown]
+# ### Why the rod has no bifurcation diagram yet
+#
+# For the rod of list (119) the same diagram would start at the damped flutter load
+# (P = 2.965 N, Kelvin–Voigt). There the linear growth rate of the flutter mode (exact theory,
+# eq. 118) is tiny and rises steeply only towards the undamped Beck load, so a transient needs
+# minutes of simulated time to settle near the onset (a relaxation time ~1/(2 sigma)); the
+# diagram needs a periodic-orbit continuation (Newton shooting on the Poincaré map) instead
+# of transients. Measured growth rates:
+
+# %%
+from flutterfriction.analysis import rod as ar  # noqa: E402
+from flutterfriction.models.rod import Rod  # noqa: E402
+
+rod119 = Rod(**scene("beck_limit_cycle")["params"]["rod"])
+P_d = ar.critical_loads(rod119.groups()).p_flu * rod119.load_unit
+rows = []
+for f in (1.05, 1.1, 1.2, 1.5, 5.5 / P_d):
+    w = ar.eigenvalues(f * P_d / rod119.load_unit, rod119.groups(), n_modes=3)
+    s_max = w[np.argmax(w.real)] / rod119.time_scale
+    rows.append(f"| {f * P_d:.3f} | {f:.3f} | {s_max.real:.4f} | {abs(s_max.imag):.2f} |")
+display(Markdown("| P [N] | P / P_flu | growth rate [1/s] | frequency [rad/s] |\n|---|---|---|---|\n"
+                 + "\n".join(rows)))
+
+# %% [markdown]
 # ### Which integrator for the rod: work-precision
 #
 # What the cycle is measured by is the return map of the Poincaré section: from a state on the

@@ -68,3 +68,24 @@ def test_load_config_rejects_unknown_top_level_key(tmp_path):
     path.write_text("fidelity: paper\nfidelity_presets: {}\nscenes: {}\nextra: 1\n")
     with pytest.raises(ParameterError, match="extra"):
         load_config(path)
+
+
+def test_quick_preset_coarsens_one_scene_only(config):
+    quick = dict(config, fidelity="quick")
+    assert scene_params(quick, "beck_limit_cycle")["meshes"] == [3, 4, 6]
+    assert scene_params(config, "beck_limit_cycle")["meshes"] == [4, 8, 16]
+    # beck_linearisation also has 'meshes', but the override names beck_limit_cycle only
+    assert scene_params(quick, "beck_linearisation")["meshes"] == \
+        config["scenes"]["beck_linearisation"]["meshes"]
+
+
+@pytest.mark.parametrize("over, match", [({"no_such_scene": {"x": 1}}, "unknown scene"),
+                                         ({"eq46": {"meshes": [1]}}, "not parameters")])
+def test_preset_overrides_must_name_real_scenes_and_keys(tmp_path, config, over, match):
+    bad = dict(config)
+    bad["fidelity_presets"] = {**config["fidelity_presets"],
+                               "quick": {**config["fidelity_presets"]["quick"], "scenes": over}}
+    path = tmp_path / "config.yaml"
+    path.write_text(yaml.safe_dump(bad))
+    with pytest.raises(ParameterError, match=match):
+        load_config(path)

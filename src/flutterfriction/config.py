@@ -21,14 +21,29 @@ def load_config(path: str | Path) -> dict[str, Any]:
     unknown = sorted(set(config) - TOP_LEVEL_KEYS)
     if unknown:
         raise ParameterError(f"{path}: unknown key(s) {unknown}; allowed: {sorted(TOP_LEVEL_KEYS)}")
+    _check_preset_scenes(config)
     return config
+
+
+def _check_preset_scenes(config: dict[str, Any]) -> None:
+    """A preset's per-scene overrides must name existing scenes and keys they already have."""
+    scenes = config.get("scenes", {})
+    for name, preset in (config.get("fidelity_presets") or {}).items():
+        for scene, over in ((preset or {}).get("scenes") or {}).items():
+            if scene not in scenes:
+                raise ParameterError(f"fidelity_presets.{name}.scenes: unknown scene {scene!r}")
+            extra = sorted(set(over) - set(scenes[scene]))
+            if extra:
+                raise ParameterError(f"fidelity_presets.{name}.scenes.{scene}: keys {extra} "
+                                     f"are not parameters of {scene!r}")
 
 
 def scene_params(config: dict[str, Any], scene: str) -> dict[str, Any]:
     """Parameters of ``scene``, with the active fidelity preset overriding the keys it names.
 
     A preset only overrides keys the scene already has (e.g. ``n_points``), so a scene computes
-    only what it shows and presets never add parameters a scene does not accept.
+    only what it shows and presets never add parameters a scene does not accept. A preset's
+    ``scenes`` section overrides keys of one scene only (e.g. the meshes of the rod's cycle).
     """
     scenes = config.get("scenes", {})
     if scene not in scenes:
@@ -38,7 +53,10 @@ def scene_params(config: dict[str, Any], scene: str) -> dict[str, Any]:
     if fidelity not in presets:
         raise ParameterError(f"fidelity must be one of {sorted(presets)}, got {fidelity!r}")
     params = dict(scenes[scene])
-    params.update({k: v for k, v in presets[fidelity].items() if k in params})
+    preset = dict(presets[fidelity])
+    per_scene = preset.pop("scenes", {}) or {}
+    params.update({k: v for k, v in preset.items() if k in params})
+    params.update({k: v for k, v in per_scene.get(scene, {}).items() if k in params})
     return _canonical(params)
 
 
