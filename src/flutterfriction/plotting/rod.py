@@ -158,7 +158,7 @@ def plot_beck_work_precision(data: dict[str, Any]) -> Figure:
     against wall time, for each integrator and mesh."""
     from matplotlib.ticker import NullFormatter
 
-    fig, axes = plt.subplots(1, 2, figsize=(9.0, 4.0), sharex=True)
+    fig, axes = plt.subplots(1, 2, figsize=(9.5, 4.8), sharex=True, layout="constrained")
     styles = {4: "-", 8: "--", 16: ":"}
     colours = {"LSODA": "C0", "BDF": "C1", "Radau": "C2", "generalized-alpha": "C3"}
     keys = sorted({(r["method"], r["mesh"]) for r in data["runs"]})
@@ -177,7 +177,8 @@ def plot_beck_work_precision(data: dict[str, Any]) -> Figure:
         ax.xaxis.set_minor_formatter(NullFormatter())
         ax.set_xlabel("wall time for one period [s]")
         ax.set_ylabel(f"relative error of the {label}")
-    axes[0].legend(fontsize=6.5)
+    handles, labels = axes[0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="outside lower center", ncol=4, fontsize=7)
     fig.suptitle("Nonlinear Beck rod, list (119), 5.5 N: one return to the Poincaré section "
                  "near the cycle (adaptive tolerances; generalized-α: fixed steps; dotted: "
                  "the 0.1% target)", fontsize=8)
