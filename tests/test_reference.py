@@ -18,10 +18,10 @@ def reference():
     return load_reference(ROOT / "workflow" / "reference.yaml")
 
 
-# The nonlinear rod's cycle and its work-precision study take a minute between them; the
+# The nonlinear rod's cycle, its work-precision study and its Hopf branch take ~2 min; the
 # workflow's check (run by CI on every commit) covers their entries, and
 # tests/test_rod_nonlinear.py their solvers.
-WORKFLOW_ONLY = {"beck_limit_cycle", "beck_work_precision"}
+WORKFLOW_ONLY = {"beck_limit_cycle", "beck_work_precision", "beck_hopf"}
 
 
 @pytest.fixture(scope="module")

@@ -105,3 +105,19 @@ def test_generalized_alpha_converges_at_second_order():
         errs.append(np.abs(ys[-1, :n] - ref[:n]).max())
     rates = np.log2(np.array(errs[:-1]) / np.array(errs[1:]))
     assert np.all(rates > 1.7), (errs, rates)
+
+
+def test_cycle_branch_leaves_the_hopf_point_towards_higher_loads():
+    """Periodic-orbit continuation from the linear flutter mode (2 elements, a few small
+    cycles): the branch starts at the model's damped flutter load, P - P_flu grows like A^2,
+    and the period tends to 2 pi / omega_flu."""
+    from flutterfriction.analysis.rod_dynamics import cycle_branch
+
+    rod = Rod(length=0.35, B=0.0332, rho=0.0546, D=7.078e-6)
+    b = cycle_branch(rod, n_elements=2, A_first=0.01, A_max=0.03, rtol=1e-9, max_points=4,
+                     floquet_every=100)
+    A, dP = np.array(b.A), np.array(b.P) - b.P_flu
+    assert np.all(np.diff(A) > 0) and np.all(dP > 0)
+    ratio = (dP[-1] / dP[0]) / (A[-1] / A[0]) ** 2
+    assert abs(ratio - 1) < 0.1
+    assert abs(b.T[0] * b.omega_flu / (2 * np.pi) - 1) < 1e-3

@@ -14,10 +14,11 @@ SOLID_FIGURES = ["fig22", "acoustic_eigenvalues", "localization_directions", "fl
 SOLID_SCENES = SOLID_FIGURES + ["solids_statements", "errata_solids"]
 # §2.9–2.11: nonlinear dynamics and limit cycles (the Ziegler pendulum so far).
 CYCLE_FIGURES = ["fig13", "fig14", "fig20", "fig21", "fig15", "fig16", "fig17",
-                 "limit_cycle_amplitude", "beck_work_precision", "beck_linearisation"]
+                 "limit_cycle_amplitude", "beck_work_precision", "beck_linearisation",
+                 "beck_hopf"]
 CYCLE_SCENES = ["fig13", "fig14", "fig20", "fig21", "beck_limit_cycle",
                 "limit_cycle_amplitude", "beck_work_precision", "beck_linearisation",
-                "pendulum_work_precision"]
+                "pendulum_work_precision", "beck_hopf"]
 # Figures drawn from another scene's data (one computation, several views).
 FIGURE_DATA = {"fig15": "beck_limit_cycle", "fig16": "beck_limit_cycle",
                "fig17": "beck_limit_cycle"}

@@ -234,3 +234,169 @@ def generalized_alpha(model: NonlinearRod, P: float, y0: NDArray, t_end: float, 
             times.append(k * dt)
             states.append(np.concatenate([q, v]))
     return np.array(times), np.array(states), count["n"]
+
+
+@dataclass
+class CycleBranch:
+    """Limit cycles of the rod continued from the Hopf point: tip amplitude ``A`` [m] (half the
+    lateral peak-to-peak at the section), load ``P`` [N], period ``T`` [s]; the Floquet
+    multipliers' largest modulus (besides the trivial 1) at the points where it was computed."""
+
+    P_flu: float
+    omega_flu: float
+    A: list
+    P: list
+    T: list
+    floquet: dict  # {index: largest nontrivial |multiplier|}
+    integrations: int
+    wall_s: float
+    states: list = field(default_factory=list, repr=False)  # section states (y, T, P)
+
+    def as_dict(self) -> dict:
+        return asdict(self)
+
+
+def cycle_branch(rod: Rod, n_elements: int = 4, A_first: float = 0.01, A_max: float = 0.26,
+                 ds_max: float = 0.08, rtol: float = 1e-8, max_points: int = 60,
+                 floquet_every: int = 4, time_budget_s: float = 120.0) -> CycleBranch:
+    """The branch of limit cycles born at the (damped) flutter load, by periodic-orbit
+    continuation: no transient, so the slow approach near the onset costs nothing.
+
+    Unknowns: the state ``y`` on the Poincaré section, the period ``T`` and the load ``P``;
+    equations: ``phi_T(y; P) = y`` (periodicity), lateral tip velocity 0 (section) and a
+    pseudo-arclength condition in the scaled ``(A/A_max, P/P_flu)`` plane (so the branch may
+    turn). Start: the linear flutter mode at ``P_flu`` scaled to ``A_first``. Newton with a
+    finite-difference Jacobian refreshed when the residual stops contracting, Broyden updates
+    in between; the step halves on failure. The Floquet multipliers come from the
+    finite-difference monodromy at every ``floquet_every``-th point: a cycle is stable when all
+    but the trivial multiplier 1 lie inside the unit circle."""
+    from flutterfriction.analysis.damped import flutter_onset
+
+    start = time.perf_counter()
+    model = NonlinearRod(rod, n_elements)
+    n = model.n_dof
+    N = 2 * n
+    M0, C, K, K1 = model.linear_matrices()
+    P_flu = flutter_onset(M0, C, K, K1, load_max=40 * rod.load_unit, n_scan=64)
+    lin = np.block([[np.zeros((n, n)), np.eye(n)],
+                    [-np.linalg.solve(M0, K + P_flu * K1), -np.linalg.solve(M0, C)]])
+    ev, V = np.linalg.eig(lin)
+    k = int(np.argmax(ev.real))
+    omega, w = abs(ev[k].imag), V[:, k]
+    eps = 1e-7
+    cu = np.array([_tip_state(model, e * eps)[1] / eps for e in np.eye(N)])
+    count = {"n": 0}
+
+    def flow(y, T, P):
+        count["n"] += 1
+        sol = solve_ivp(lambda t, z: model.rhs(t, z, P), (0.0, T), y, method="LSODA",
+                        rtol=rtol, atol=rtol * 1e-3)
+        if not sol.success:
+            raise ConvergenceError(f"rod integration failed at P = {P:g} N: {sol.message}")
+        return sol.y[:, -1]
+
+    def amplitude(y):
+        return _tip_state(model, y)[1]
+
+    def residual(z, anchor):
+        y, T, P = z[:N], z[N], z[N + 1]
+        (A0, P0), (tA, tP), ds = anchor
+        arc = (amplitude(y) - A0) / A_max * tA + (P - P0) / P_flu * tP - ds
+        return np.concatenate([flow(y, T, P) - y, [_tip_state(model, y)[3], arc]])
+
+    def jacobian(z, R0, anchor):
+        J = np.empty((N + 2, N + 2))
+        y, P = z[:N], z[N + 1]
+        for j in range(N + 2):
+            if j == N:  # d phi_T / dT = f(phi_T): no integration needed
+                J[:, j] = 0.0
+                J[:N, j] = model.rhs(0.0, R0[:N] + y, P)
+                continue
+            h = 1e-6 * max(1.0, abs(z[j])) if j < N else 1e-6 * P
+            zp = z.copy()
+            zp[j] += h
+            J[:, j] = (residual(zp, anchor) - R0) / h
+        return J
+
+    def newton(z, anchor, J):
+        R = residual(z, anchor)
+        fresh = J is None
+        for _ in range(10):
+            if J is None:
+                J, fresh = jacobian(z, R, anchor), True
+            dz = np.linalg.solve(J, -R)
+            # keep the step physical: at most 5% in P and T, 30% of the state's size
+            scale = min(1.0, 0.05 * z[N + 1] / max(abs(dz[N + 1]), 1e-300),
+                        0.05 * z[N] / max(abs(dz[N]), 1e-300),
+                        0.3 * max(np.abs(z).max(), 1e-3) / max(np.abs(dz[:N]).max(), 1e-300))
+            dz *= scale
+            R_new = residual(z + dz, anchor)
+            if np.linalg.norm(R_new) > 0.7 * np.linalg.norm(R):
+                if not fresh:
+                    J = None  # stale Jacobian: recompute and retry from z
+                    continue
+            J = J + np.outer(R_new - R - J @ dz, dz) / (dz @ dz)  # Broyden
+            fresh = False
+            z, R = z + dz, R_new
+            if np.linalg.norm(R) < 1e-6 and np.linalg.norm(dz) < 1e-6 * np.linalg.norm(z):
+                return z, J
+        raise ConvergenceError("cycle continuation: Newton did not converge")
+
+    # First point: the linear mode at amplitude A_first, solved at fixed A (tangent (1, 0)).
+    c = A_first / (cu @ w)
+    z = np.concatenate([(c * w).real, [2 * np.pi / omega, P_flu]])
+    z, J = newton(z, ((A_first, P_flu), (1.0, 0.0), 0.0), None)
+    pts = [z]
+    As, Ps = [amplitude(z[:N])], [z[N + 1]]
+    floquet: dict[int, float] = {}
+
+    def multipliers(z):
+        """Largest non-trivial Floquet multiplier: central differences of the flow (h = 1e-4)
+        at rtol 1e-12, so that the multipliers near 1 (the slow amplitude mode) are resolved
+        to ~1e-6 (forward differences at the continuation's tolerance are not)."""
+        y, T, P = z[:N], z[N], z[N + 1]
+
+        def tight(y0):
+            return solve_ivp(lambda t, x: model.rhs(t, x, P), (0.0, T), y0, method="LSODA",
+                             rtol=1e-12, atol=1e-15).y[:, -1]
+
+        h = 1e-4
+        mono = np.column_stack([(tight(y + h * e) - tight(y - h * e)) / (2 * h)
+                                for e in np.eye(N)])
+        count["n"] += 2 * N
+        mu = np.linalg.eigvals(mono)
+        mu = mu[np.argsort(np.abs(mu - 1.0))][1:]  # drop the trivial (phase) multiplier
+        return float(np.abs(mu).max())
+
+    floquet[0] = multipliers(z)
+    ds = 0.02
+    while As[-1] < A_max and len(pts) < max_points and ds > 1e-4:
+        if time.perf_counter() - start > time_budget_s:
+            break
+        if len(pts) >= 2:
+            dA = (As[-1] - As[-2]) / A_max
+            dP = (Ps[-1] - Ps[-2]) / P_flu
+            norm = np.hypot(dA, dP)
+            tangent = (dA / norm, dP / norm)
+            guess = pts[-1] + (pts[-1] - pts[-2]) * ds / norm
+        else:
+            tangent, guess = (1.0, 0.0), pts[-1].copy()
+            guess[:N] *= (As[-1] + ds * A_max) / As[-1]
+        try:
+            z, J = newton(guess, ((As[-1], Ps[-1]), tangent, ds), J)
+        except ConvergenceError:
+            ds, J = ds / 2, None
+            continue
+        pts.append(z)
+        As.append(amplitude(z[:N]))
+        Ps.append(z[N + 1])
+        if (len(pts) - 1) % floquet_every == 0:
+            floquet[len(pts) - 1] = multipliers(z)
+        ds = min(1.5 * ds, ds_max)
+    if (len(pts) - 1) not in floquet:
+        floquet[len(pts) - 1] = multipliers(pts[-1])
+    return CycleBranch(P_flu=float(P_flu), omega_flu=float(omega), A=[float(a) for a in As],
+                       P=[float(p) for p in Ps], T=[float(p[N]) for p in pts],
+                       floquet={str(k): v for k, v in floquet.items()},
+                       integrations=count["n"], wall_s=time.perf_counter() - start,
+                       states=[p.tolist() for p in pts])

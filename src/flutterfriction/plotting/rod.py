@@ -185,6 +185,35 @@ def plot_beck_work_precision(data: dict[str, Any]) -> Figure:
     return fig
 
 
+def plot_beck_hopf(data: dict[str, Any]) -> Figure:
+    """The rod's branch of limit cycles from the Hopf point, and its Floquet multipliers
+    against the normal form."""
+    A, P = np.array(data["A"]), np.array(data["P"])
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(9.5, 3.9), layout="constrained")
+    ax1.plot(P, A, "o-", ms=4, label="limit cycles (periodic-orbit continuation)")
+    ax1.axvline(data["P_flu_exact"], color="k", ls=":", lw=1,
+                label=f"damped flutter load, exact: {data['P_flu_exact']:.4f} N")
+    dP = np.linspace(0, P.max() - data["P_flu_model"], 100)
+    c = A[1] / np.sqrt(P[1] - data["P_flu_model"])
+    ax1.plot(data["P_flu_model"] + dP, c * np.sqrt(dP), "C1--", lw=1,
+             label=r"$A \propto \sqrt{P - P_{flu}}$")
+    ax1.set_xlabel("follower load P [N]")
+    ax1.set_ylabel("tip amplitude A [m]")
+    ax1.legend(fontsize=7)
+    fl = sorted(data["floquet"].values(), key=lambda v: v["A"])
+    ax2.plot([v["A"] for v in fl], [1 - v["multiplier"] for v in fl], "o", ms=6,
+             label="1 - |Floquet multiplier| (monodromy)")
+    ax2.plot([v["A"] for v in fl], [1 - v["normal_form"] for v in fl], "x", ms=8,
+             label=r"normal form: $1 - e^{-2\sigma(P) T}$")
+    ax2.set_yscale("log")
+    ax2.set_xlabel("tip amplitude A [m]")
+    ax2.set_ylabel("distance of the multiplier inside the unit circle")
+    ax2.legend(fontsize=7)
+    fig.suptitle("Beck rod, list (119): the Hopf bifurcation at the damped flutter load is "
+                 "supercritical (stable cycles, branch towards higher loads)", fontsize=9)
+    return fig
+
+
 def plot_beck_linearisation(data: dict[str, Any]) -> Figure:
     """Errors of the linearised nonlinear rod against the exact theory, per mesh."""
     n = np.array(data["meshes"], float)
@@ -208,6 +237,7 @@ def plot_beck_linearisation(data: dict[str, Any]) -> Figure:
 PLOTS = {
     "beck_linearisation": plot_beck_linearisation,
     "beck_work_precision": plot_beck_work_precision,
+    "beck_hopf": plot_beck_hopf,
     "fig15": plot_fig15,
     "fig16": plot_fig16,
     "fig17": plot_fig17,

@@ -52,6 +52,7 @@ SCENES: dict[str, str] = {
     "beck_limit_cycle": "rod:beck_limit_cycle",
     "beck_work_precision": "rod:beck_work_precision",
     "beck_linearisation": "rod:beck_linearisation",
+    "beck_hopf": "rod:beck_hopf",
     "limit_cycle_amplitude": "ziegler_nonlinear:limit_cycle_amplitude",
     "pendulum_work_precision": "ziegler_nonlinear:pendulum_work_precision",
 }
