@@ -16,6 +16,8 @@ from typing import Any
 
 import numpy as np
 
+from flutterfriction.io import markdown_table
+
 
 def _row(family: str, method: str, setting: Any, error: float | None, wall_s: float | None
          ) -> dict[str, Any]:
@@ -87,24 +89,23 @@ def work_precision_markdown(runs: list[dict[str, Any]], jobs: list[dict[str, Any
              "Accuracy against cost of every solver family (errors relative; times are medians "
              "or single runs on a shared 2-core machine, so compare ratios rather than absolute "
              "values), then the wall time and peak memory of every workflow job.", "",
-             "## Solvers", "", "| family | method | setting | relative error | wall time [s] |",
-             "|---|---|---|---|---|"]
-    for r in runs:
-        setting = "" if r["setting"] is None else f"{r['setting']:g}"
-        lines.append(f"| {r['family']} | {r['method']} | {setting} | "
-                     f"{_fmt(r['error'], '.2e') or 'failed'} | {_fmt(r['wall_s'], '.4g')} |")
+             "## Solvers", ""]
+    lines += markdown_table(
+        ["family", "method", "setting", "relative error", "wall time [s]"],
+        [[r["family"], r["method"], "" if r["setting"] is None else f"{r['setting']:g}",
+          _fmt(r["error"], ".2e") or "failed", _fmt(r["wall_s"], ".4g")] for r in runs])
     total = sum(j["wall_s"] or 0.0 for j in jobs)
     lines += ["", "## Workflow jobs (Snakemake `benchmark:`)", "",
-              f"{len(jobs)} jobs, {total:.0f} s of job wall time in all (run on 2 cores).", "",
-              "| job | wall time [s] | peak RSS [MB] | CPU time [s] |", "|---|---|---|---|"]
-    for j in jobs:
-        lines.append(f"| {j['job']} | {_fmt(j['wall_s'], '.2f')} | "
-                     f"{_fmt(j['max_rss_mb'], '.0f')} | {_fmt(j['cpu_s'], '.2f')} |")
+              f"{len(jobs)} jobs, {total:.0f} s of job wall time in all (run on 2 cores).", ""]
+    lines += markdown_table(
+        ["job", "wall time [s]", "peak RSS [MB]", "CPU time [s]"],
+        [[j["job"], _fmt(j["wall_s"], ".2f"), _fmt(j["max_rss_mb"], ".0f"),
+          _fmt(j["cpu_s"], ".2f")] for j in jobs])
     return "\n".join(lines) + "\n"
 
 
 def best_per_method(runs: list[dict[str, Any]]) -> dict[str, dict[str, float]]:
-    """``{family: {method: smallest error reached}}`` (for the notebook and the tests)."""
+    """``{family: {method: smallest error reached}}``: the summary of the runs."""
     out: dict[str, dict[str, float]] = {}
     for r in runs:
         if r["error"] is None:

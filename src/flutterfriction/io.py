@@ -103,3 +103,12 @@ def merge_timings(data: Any, timings: Any) -> Any:
     if isinstance(data, list):
         return [merge_timings(d, t) for d, t in zip(data, timings, strict=True)]
     raise ValueError("timings do not match the data's structure")
+
+
+def markdown_table(header: list[str], rows: list[list[Any]]) -> list[str]:
+    """Lines of a Markdown table; ``|`` inside a cell is written as ``/`` so it cannot split
+    the row."""
+    def row(cells):
+        return "| " + " | ".join(str(c).replace("|", "/") for c in cells) + " |"
+
+    return [row(header), "|" + "---|" * len(header), *(row(r) for r in rows)]

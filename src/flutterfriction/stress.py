@@ -23,6 +23,7 @@ import mpmath as mp
 import numpy as np
 
 from flutterfriction.errors import ConvergenceError, ParameterError
+from flutterfriction.io import markdown_table
 
 CORRECT, REFUSED, WRONG = "correct", "refused", "WRONG"
 LIST47 = {"l1": 0.1, "l2": 0.1, "d": 0.1 / 3, "h": 0.1 / 3, "m1": 0.552, "m2": 0.046,
@@ -361,9 +362,8 @@ def stress_markdown(results: list[StressResult]) -> str:
     lines = ["# Stress tests of numerical stability", "",
              f"{len(results)} cases: {sum(r.outcome == CORRECT for r in results)} correct, "
              f"{sum(r.outcome == REFUSED for r in results)} refused clearly, "
-             f"**{n_wrong} silent wrong answers**.", "",
-             "| area | case | tried | expected | got | outcome |", "|---|---|---|---|---|---|"]
-    for r in results:
-        lines.append(f"| {r.area} | {r.case} | {r.tried} | {r.expected} | "
-                     f"{r.got.replace('|', '/')} | {r.outcome} |")
+             f"**{n_wrong} silent wrong answers**.", ""]
+    lines += markdown_table(["area", "case", "tried", "expected", "got", "outcome"],
+                            [[r.area, r.case, r.tried, r.expected, r.got, r.outcome]
+                             for r in results])
     return "\n".join(lines) + "\n"
