@@ -81,3 +81,30 @@ def test_categorical_statement_fails_when_regime_differs(testable, scene_data):
     data["eq47"]["quantities"]["regime_at_6.8N"]["value"] = "stable"
     rows = {r.id: r for r in run_check(testable, data)}
     assert rows["fig04_flutter_load_in_flutter_region"].status == "FAIL"
+
+
+def test_quick_tolerance_applies_only_at_quick_fidelity():
+    """A resolution-dependent entry may be looser at the quick preset, and only there."""
+    entry = {"id": "x", "source": "s", "scene": "sc", "key": "k", "quoted": 1.0,
+             "tolerance": {"rtol": 1e-4, "why": "paper"}, "agreement": {"rtol": 1e-4, "why": "p"},
+             "quick": {"tolerance": {"rtol": 1e-2, "why": "quick mesh, measured 3e-3"}}}
+    ref = {"quantities": [entry], "errata": []}
+    data = {"sc": {"quantities": {"k": {"value": 1.003, "independent": 1.003, "method": "m",
+                                        "independent_method": "i"}}}}
+    paper, = run_check(ref, data, "paper")
+    quick, = run_check(ref, data, "quick")
+    assert paper.status == "FAIL" and quick.status == "pass"
+    assert quick.note == "quick-preset tolerance" and "quick-preset" in summary_markdown([quick])
+    data["sc"]["quantities"]["k"]["value"] = 1.03  # beyond the quick tolerance too
+    assert run_check(ref, data, "quick")[0].status == "FAIL"
+
+
+def test_quick_block_needs_its_why(tmp_path):
+    import yaml
+
+    entry = {"id": "x", "source": "s", "scene": "sc", "key": "k", "quoted": 1.0,
+             "quick": {"tolerance": {"rtol": 1e-2}}}
+    path = tmp_path / "ref.yaml"
+    path.write_text(yaml.safe_dump({"quantities": [entry], "errata": []}))
+    with pytest.raises(ValueError, match="quick"):
+        load_reference(path)

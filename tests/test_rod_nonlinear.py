@@ -121,3 +121,45 @@ def test_cycle_branch_leaves_the_hopf_point_towards_higher_loads():
     ratio = (dP[-1] / dP[0]) / (A[-1] / A[0]) ** 2
     assert abs(ratio - 1) < 0.1
     assert abs(b.T[0] * b.omega_flu / (2 * np.pi) - 1) < 1e-3
+    # Floquet: the monodromy's trivial multiplier is 1; the slow (amplitude) one matches the
+    # normal form exp(-2 sigma T) with sigma the growth rate of this same 2-element model.
+    m = NonlinearRod(rod, 2)
+    M0, C, K, K1 = m.linear_matrices()
+    n = m.n_dof
+    for k, mu in b.floquet.items():
+        assert b.trivial_defect[k] < 1e-6
+        P, T = b.P[int(k)], b.T[int(k)]
+        lin = np.block([[np.zeros((n, n)), np.eye(n)],
+                        [-np.linalg.solve(M0, K + P * K1), -np.linalg.solve(M0, C)]])
+        sigma = np.linalg.eigvals(lin).real.max()
+        assert 0 < 1 - mu
+        assert abs((1 - mu) / (1 - np.exp(-2 * sigma * T)) - 1) < 0.01, (k, mu, sigma)
+
+
+def test_complex_step_jacobian_matches_central_differences():
+    from flutterfriction.analysis.rod_dynamics import rhs_jacobian
+
+    m = NonlinearRod(ROD, 3)
+    y = np.random.default_rng(1).normal(scale=0.3, size=2 * m.n_dof)
+    J = rhs_jacobian(m, y, 2.0)
+    h = 1e-6
+    Jd = np.column_stack([(m.rhs(0, y + h * e, 2.0) - m.rhs(0, y - h * e, 2.0)) / (2 * h)
+                          for e in np.eye(y.size)])
+    assert np.abs(J - Jd).max() <= 1e-7 * np.abs(J).max()
+
+
+def test_monodromy_of_the_straight_rod_is_the_matrix_exponential():
+    """At the equilibrium y = 0 the variational equations are linear with constant
+    coefficients: Phi(T) = expm(A T), A from the linear matrices (independent of the complex
+    step and of the orbit integration)."""
+    from scipy.linalg import expm
+
+    from flutterfriction.analysis.rod_dynamics import monodromy
+
+    m = NonlinearRod(ROD, 2)
+    M0, C, K, K1 = m.linear_matrices()
+    n, P, T = m.n_dof, 2.5, 0.05
+    A = np.block([[np.zeros((n, n)), np.eye(n)],
+                  [-np.linalg.solve(M0, K + P * K1), -np.linalg.solve(M0, C)]])
+    Phi = monodromy(m, np.zeros(2 * n), T, P, rtol=1e-10)
+    assert np.abs(Phi - expm(A * T)).max() <= 1e-8 * np.abs(Phi).max()

@@ -34,5 +34,6 @@ rule check:
         html="results/reports/index.html",
     params:
         figure_data=FIGURE_DATA,
+        fidelity=config.get("fidelity", "paper"),
     script:
         "../scripts/check.py"

@@ -16,7 +16,7 @@ from flutterfriction.reference import (
 from flutterfriction.report import broken_links, build_index, layout_figures, load_layout
 
 reference = load_reference(snakemake.input.reference)
-rows = run_check(reference, load_scene_data(snakemake.input.data))
+rows = run_check(reference, load_scene_data(snakemake.input.data), snakemake.params.fidelity)
 write_summary(rows, snakemake.output.json, snakemake.output.md)
 print(summary_markdown(rows))
 

@@ -548,6 +548,7 @@ def beck_hopf(params: dict[str, Any]) -> dict[str, Any]:
         w = ar.eigenvalues(P_eq / u, rod.groups(), n_modes=3) / rod.time_scale
         sigma = float(w[np.argmax(w.real)].real)
         normal_form[k_str] = {"A": float(A[k]), "P": float(P[k]), "multiplier": mu,
+                              "trivial_defect": b.trivial_defect[k_str],
                               "sigma": sigma, "normal_form": float(np.exp(-2 * sigma * T[k]))}
     dP = P - b.P_flu
     slope = float(np.polyfit(np.log(dP[:4]), np.log(A[:4]), 1)[0])
@@ -563,7 +564,8 @@ def beck_hopf(params: dict[str, Any]) -> dict[str, Any]:
                                             ""),
             "amplitude_decay": _quantity(
                 1 - first["multiplier"], 1 - first["normal_form"],
-                f"1 - Floquet multiplier of the cycle at A = {first['A']:.3f} m (monodromy)",
+                f"1 - Floquet multiplier of the cycle at A = {first['A']:.3f} m "
+                "(variational monodromy)",
                 "normal form 1 - exp(-2 sigma T), sigma from the exact eq. (118)", ""),
             "hopf_type": _quantity(
                 "supercritical" if stable and dP[-1] > dP[0] > 0 else "not supercritical",
