@@ -72,8 +72,11 @@ def test_load_config_rejects_unknown_top_level_key(tmp_path):
 
 def test_quick_preset_coarsens_one_scene_only(config):
     quick = dict(config, fidelity="quick")
-    assert scene_params(quick, "beck_limit_cycle")["meshes"] == [3, 4, 6]
-    assert scene_params(config, "beck_limit_cycle")["meshes"] == [4, 8, 16]
+    coarse = config["fidelity_presets"]["quick"]["scenes"]["beck_limit_cycle"]["meshes"]
+    fine = config["scenes"]["beck_limit_cycle"]["meshes"]
+    assert coarse != fine
+    assert scene_params(quick, "beck_limit_cycle")["meshes"] == coarse
+    assert scene_params(config, "beck_limit_cycle")["meshes"] == fine
     # beck_linearisation also has 'meshes', but the override names beck_limit_cycle only
     assert scene_params(quick, "beck_linearisation")["meshes"] == \
         config["scenes"]["beck_linearisation"]["meshes"]

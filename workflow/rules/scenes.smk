@@ -80,6 +80,9 @@ rule plot:
     output:
         pdf="results/figures/{scene}.pdf",
         png="results/figures/{scene}.png",
+    params:
+        # quick preset: cheaper PNG/PDF rendering (see plotting.save_figure)
+        draft=config.get("fidelity", "paper") == "quick",
     wildcard_constraints:
         scene="|".join(ALL_FIGURES),
     script:

@@ -6,4 +6,4 @@ from flutterfriction.plotting.registry import PLOTS
 
 data = merge_timings(read_json(snakemake.input.data), read_json(snakemake.input.timings) or None)
 fig = PLOTS[snakemake.wildcards.scene](data)
-save_figure(fig, snakemake.output.pdf, snakemake.output.png)
+save_figure(fig, snakemake.output.pdf, snakemake.output.png, draft=snakemake.params.draft)
