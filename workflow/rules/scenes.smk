@@ -25,6 +25,10 @@ FIGURE_DATA = {"fig15": "beck_limit_cycle", "fig16": "beck_limit_cycle",
 # Sweeps (bifurcation diagrams, stability maps): their points scatter over `sweep_parts` jobs
 # (one SLURM job each on a cluster), gathered by the scene's solve job.
 SWEEP_SCENES = ["limit_cycle_amplitude", "rod_stability_map"]
+# The slow solvers (~10-45 s each, the rest ~1 s) start first, so that the many short jobs
+# fill the other core around them instead of leaving a long tail.
+SLOW_SCENES = ["beck_hopf", "beck_limit_cycle", "beck_work_precision", "rod_fe_convergence",
+               "pendulum_work_precision"]
 ALL_FIGURES = ZIEGLER_FIGURES + PARADOX_FIGURES + ROD_FIGURES + SOLID_FIGURES + CYCLE_FIGURES
 ALL_SCENES = ZIEGLER_SCENES + PARADOX_SCENES + ROD_SCENES + SOLID_SCENES + CYCLE_SCENES
 
@@ -43,6 +47,7 @@ rule solve_part:
         "results/data/parts/{scene}/{part}-of-{n}.json",
     params:
         cfg=lambda w: scene_params(config, w.scene),
+    priority: 5
     wildcard_constraints:
         scene="|".join(SWEEP_SCENES),
         part=r"\d+",
@@ -64,6 +69,7 @@ rule solve:
     params:
         # The resolved parameters: editing one scene's config reruns that scene only.
         cfg=lambda w: scene_params(config, w.scene),
+    priority: lambda w: 10 if w.scene in SLOW_SCENES else 0
     wildcard_constraints:
         scene="|".join(ALL_SCENES),
     benchmark:

@@ -293,7 +293,7 @@ class CycleBranch:
 def cycle_branch(rod: Rod, n_elements: int = 4, A_first: float = 0.01, A_max: float = 0.26,
                  ds_max: float = 0.08, rtol: float = 1e-8, max_points: int = 60,
                  floquet_every: int = 4, floquet_rtol: float = 1e-9,
-                 time_budget_s: float = 120.0) -> CycleBranch:
+                 time_budget_s: float = 120.0, log=None) -> CycleBranch:
     """The branch of limit cycles born at the (damped) flutter load, by periodic-orbit
     continuation: no transient, so the slow approach near the onset costs nothing.
 
@@ -305,7 +305,8 @@ def cycle_branch(rod: Rod, n_elements: int = 4, A_first: float = 0.01, A_max: fl
     in between; the step halves on failure. The Floquet multipliers come from the
     variational monodromy (:func:`monodromy`, at ``floquet_rtol``) at every
     ``floquet_every``-th point and at the last: a cycle is stable when all but the trivial
-    multiplier 1 lie inside the unit circle."""
+    multiplier 1 lie inside the unit circle. ``log(message)``, if given, hears of every step
+    (accepted or halved)."""
     from flutterfriction.analysis.damped import flutter_onset
 
     start = time.perf_counter()
@@ -414,12 +415,17 @@ def cycle_branch(rod: Rod, n_elements: int = 4, A_first: float = 0.01, A_max: fl
             guess[:N] *= (As[-1] + ds * A_max) / As[-1]
         try:
             z, J = newton(guess, ((As[-1], Ps[-1]), tangent, ds), J)
-        except ConvergenceError:
+        except ConvergenceError as exc:
+            if log:
+                log(f"step ds = {ds:.3g} from A = {As[-1]:.4f} m failed ({exc}): halved")
             ds, J = ds / 2, None
             continue
         pts.append(z)
         As.append(amplitude(z[:N]))
         Ps.append(z[N + 1])
+        if log:
+            log(f"cycle {len(pts) - 1}: A = {As[-1]:.5f} m, P = {Ps[-1]:.5f} N, "
+                f"T = {z[N]:.5f} s, ds = {ds:.3g}, t = {time.perf_counter() - start:.1f} s")
         if (len(pts) - 1) % floquet_every == 0:
             multipliers(len(pts) - 1, z)
         ds = min(1.5 * ds, ds_max)
