@@ -11,6 +11,7 @@ Only the tip's history is stored (what the figures draw).
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import asdict, dataclass, field
 
 import numpy as np
@@ -236,13 +237,19 @@ def generalized_alpha(model: NonlinearRod, P: float, y0: NDArray, t_end: float, 
     return np.array(times), np.array(states), count["n"]
 
 
+def _rhs_and_jacobian(model: NonlinearRod, y: NDArray, P: float) -> tuple[NDArray, NDArray]:
+    """``(f(y), J(y))`` from the complex steps ``f(y + i h e_j) = f(y) + i h J e_j + O(h^2)``,
+    ``h = 1e-30``: the real part of any of them is ``f(y)`` (``h^2`` is far below rounding)."""
+    h = 1e-30
+    F = np.column_stack([model.rhs(0.0, y + 1j * h * e, P) for e in np.eye(y.size)])
+    return F[:, 0].real, F.imag / h
+
+
 def rhs_jacobian(model: NonlinearRod, y: NDArray, P: float) -> NDArray:
     """Jacobian of the rod's first-order right-hand side by the complex step,
     ``J e_j = Im f(y + i h e_j) / h`` with ``h = 1e-30``: exact to rounding (no subtractive
     cancellation, unlike finite differences), since every operation in ``f`` is analytic."""
-    h = 1e-30
-    return np.column_stack([np.imag(model.rhs(0.0, y + 1j * h * e, P)) / h
-                            for e in np.eye(y.size)])
+    return _rhs_and_jacobian(model, y, P)[1]
 
 
 def monodromy(model: NonlinearRod, y: NDArray, T: float, P: float,
@@ -254,13 +261,13 @@ def monodromy(model: NonlinearRod, y: NDArray, T: float, P: float,
     Differencing the flow instead (``(phi(y + h e) - phi(y - h e)) / 2h``) divides the
     integrator's tolerance-level, step-sequence-dependent error by ``h``: at rtol 1e-12 and
     h = 1e-4 the slow multiplier of the 1 cm cycle (1 - mu ~ 1.7e-5) came out anywhere in
-    0.84e-5..1.58e-5. Here it is 1.671112e-5 at rtol 1e-8 and 1e-10 alike."""
+    0.84e-5..1.58e-5. Here it is 1.671112e-5 at rtol 1e-8 and 1e-10 alike (for one converged
+    1 cm cycle of list 119, 4 elements)."""
     N = y.size
 
     def augmented(t, x):
-        Phi = x[N:].reshape(N, N)
-        return np.concatenate([model.rhs(t, x[:N], P),
-                               (rhs_jacobian(model, x[:N], P) @ Phi).ravel()])
+        f, J = _rhs_and_jacobian(model, x[:N], P)
+        return np.concatenate([f, (J @ x[N:].reshape(N, N)).ravel()])
 
     sol = solve_ivp(augmented, (0.0, T), np.concatenate([y, np.eye(N).ravel()]),
                     method="DOP853", rtol=rtol, atol=rtol * 1e-3)
@@ -293,7 +300,8 @@ class CycleBranch:
 def cycle_branch(rod: Rod, n_elements: int = 4, A_first: float = 0.01, A_max: float = 0.26,
                  ds_max: float = 0.08, rtol: float = 1e-8, max_points: int = 60,
                  floquet_every: int = 4, floquet_rtol: float = 1e-9,
-                 time_budget_s: float = 120.0, log=None) -> CycleBranch:
+                 time_budget_s: float = 120.0,
+                 log: Callable[[str], None] | None = None) -> CycleBranch:
     """The branch of limit cycles born at the (damped) flutter load, by periodic-orbit
     continuation: no transient, so the slow approach near the onset costs nothing.
 
