@@ -48,6 +48,14 @@ class CheckRow:
     status: str  # "pass" | "FAIL" | "verified erratum" | "UNVERIFIED erratum"
     note: str = ""
 
+    @property
+    def shown_status(self) -> str:
+        """The status as tables show it, with the note (e.g. a quick-preset tolerance)."""
+        return f"{self.status} ({self.note})" if self.note else self.status
+
+
+QUICK_NOTE = "quick-preset tolerance"
+
 
 def normalised_error(x: float, ref: float, tol: Mapping[str, float]) -> float:
     """``|x - ref| / (atol + rtol |ref|)``; pass when ``<= 1``."""
@@ -66,10 +74,10 @@ def load_reference(path: str | Path) -> dict[str, Any]:
                 if key not in entry:
                     raise ValueError(f"reference entry {entry.get('id', '?')} lacks '{key}'")
             quick = entry.get("quick")
-            if quick is not None:
-                bad = set(quick) - {"tolerance", "agreement"} if isinstance(quick, dict) else {1}
-                if bad or not all("why" in t for t in quick.values()):
-                    raise ValueError(f"reference entry {entry['id']}: 'quick' may hold only "
+            if quick is not None and (not isinstance(quick, dict)
+                                      or set(quick) - {"tolerance", "agreement"}
+                                      or not all("why" in t for t in quick.values())):
+                raise ValueError(f"reference entry {entry['id']}: 'quick' may hold only "
                                      "'tolerance' and 'agreement', each with its 'why'")
     return ref
 
@@ -80,8 +88,7 @@ def _tolerances(entry: dict[str, Any], fidelity: str) -> tuple[dict, dict, str]:
     override = entry.get("quick") if fidelity == "quick" else None
     if not override:
         return tol, agr, ""
-    return (override.get("tolerance", tol), override.get("agreement", agr),
-            "quick-preset tolerance")
+    return override.get("tolerance", tol), override.get("agreement", agr), QUICK_NOTE
 
 
 def _check_quantity(entry: dict[str, Any], data: Mapping[str, Any],
@@ -139,7 +146,7 @@ def _fmt(x: Any) -> str:
 
 def summary_markdown(rows: list[CheckRow]) -> str:
     bad = failed(rows)
-    loose = sum(r.note == "quick-preset tolerance" for r in rows)
+    loose = sum(r.note == QUICK_NOTE for r in rows)
     lines = [
         "# Reference check",
         "",
@@ -163,8 +170,7 @@ def summary_markdown(rows: list[CheckRow]) -> str:
             r.id, r.source, _fmt(r.quoted), r.unit, _fmt(r.reproduced), _fmt(r.independent),
             f"{r.method} / {r.independent_method}",
             "" if r.error is None else f"{r.error:.2e}",
-            "" if r.agreement is None else f"{r.agreement:.2e}",
-            f"{r.status} ({r.note})" if r.note else r.status]) + " |")
+            "" if r.agreement is None else f"{r.agreement:.2e}", r.shown_status]) + " |")
     return "\n".join(lines) + "\n"
 
 

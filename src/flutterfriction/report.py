@@ -87,7 +87,6 @@ def _check_table(rows: Iterable[CheckRow], errata: Mapping[str, Mapping[str, Any
             cls = "fail"
         err = "" if r.error is None else f"{r.error:.3g}"
         agr = "" if r.agreement is None else f"{r.agreement:.3g}"
-        status = f"{r.status} ({r.note})" if r.note else r.status
         ident = f'<a id="{html.escape(r.id)}"></a>{html.escape(r.id)}'
         method = html.escape(r.method)
         if r.kind == "erratum" and r.id in errata:
@@ -102,7 +101,7 @@ def _check_table(rows: Iterable[CheckRow], errata: Mapping[str, Mapping[str, Any
             f"{_cell(r.quoted, unit)}{_cell(r.reproduced)}"
             f"<td>{method}</td>{_cell(r.independent)}"
             f"<td>{html.escape(r.independent_method)}</td><td class=\"num\">{err} / {agr}</td>"
-            f'<td class="status">{html.escape(status)}</td></tr>')
+            f'<td class="status">{html.escape(r.shown_status)}</td></tr>')
     out.append("</tbody></table></div>")
     return "\n".join(out)
 
