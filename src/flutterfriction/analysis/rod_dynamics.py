@@ -61,7 +61,8 @@ def beck_limit_cycle(rod: Rod, P: float, n_elements: int = 8, method: str = "BDF
                      rtol: float = 1e-7, atol: float = 1e-9, tol: float = 1e-4,
                      t_max: float = 30.0, initial_tip_rotation: float = 0.05,
                      samples_per_period: int = 200,
-                     start: tuple[NonlinearRod, NDArray] | None = None) -> RodLimitCycle:
+                     start: tuple[NonlinearRod, NDArray] | None = None,
+                     progress: Callable[[str], None] | None = None) -> RodLimitCycle:
     """Integrate from a small bend (tip rotation ``initial_tip_rotation`` rad, linear in s), or
     from ``start`` (a state of another mesh, interpolated: mesh continuation), until the limit
     cycle converges to ``tol``; returns its measures and the tip's history.
@@ -71,7 +72,10 @@ def beck_limit_cycle(rod: Rod, P: float, n_elements: int = 8, method: str = "BDF
     geometric tail
     ``|d_k| mu / (1 - mu)``, ``mu`` the observed contraction), which matters where the
     approach is slow (near the flutter load the growth rate is tiny: 0.021 1/s at 1.1 times
-    the damped flutter load of list (119), so transients there last minutes)."""
+    the damped flutter load of list (119), so transients there last minutes).
+
+    ``progress(message)``, if given, hears of every section crossing (simulated time, tip
+    amplitude, the relative changes tested against ``tol``); it never changes the result."""
     if not P > 0:
         raise ParameterError(f"P must be > 0, got {P}")
     model = NonlinearRod(rod, n_elements)
@@ -121,6 +125,12 @@ def beck_limit_cycle(rod: Rod, P: float, n_elements: int = 8, method: str = "BDF
             d_c, d_b = us[-1] - us[-2], us[-2] - us[-3]
             mu = d_c / d_b if d_b != 0 else 0.0
             tail = abs(d_c) * mu / (1 - mu) if 0 < mu < 1 else 0.0
+            if progress:
+                progress(f"rod, {n_elements} elements, P = {P:g} N: t = {te:.3f} s, tip "
+                         f"amplitude {us[-1]:.5f} m, period spread "
+                         f"{np.ptp(periods) / periods[-1]:.1e}, amplitude spread "
+                         f"{np.ptp(us) / us[-1]:.1e}, tail {tail / us[-1]:.1e} "
+                         f"(converged below {tol:g})")
             if (np.ptp(periods) <= tol * periods[-1] and np.ptp(us) <= tol * us[-1]
                     and tail <= tol * us[-1] and mu < 1):
                 converged = True
