@@ -22,6 +22,7 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import re
 import sys
 from collections.abc import Sequence
 
@@ -38,6 +39,18 @@ ZIEGLER_PARAMS = {
     "k1": "rotational spring at A [N m/rad], > 0",
     "k2": "rotational spring at B [N m/rad], > 0",
 }
+
+
+#: Ranges of `limit-cycle beck` (refused outside, before any integration): beyond them the
+#: integration could run for hours or lose accuracy (absolute tolerances in SI units).
+BECK_ELEMENTS = (1, 16)  # the chapter's meshes go to 16 (beck_limit_cycle scene)
+BECK_LOAD_MAX = 3.0  # P / P_flu; at 3 P_flu (8.9 N, list 119) the cycle takes ~14 s simulated
+BECK_T_MAX_SCALES = 2000.0  # t_max / (l^2 sqrt(rho/B))
+BECK_T_MAX_DEFAULT_SCALES = 200.0
+BECK_ETA_MAX, BECK_GAMMA_MAX, BECK_TIP_MASS_RATIO_MAX = 10.0, 100.0, 100.0
+BECK_RANGES = {"length": (1e-6, 1e6, "m"), "B": (1e-12, 1e12, "N m^2"),
+               "rho": (1e-12, 1e12, "kg/m")}
+BECK_TOL = 1e-5  # the cycle's convergence tolerance (relative)
 
 
 class _Parser(argparse.ArgumentParser):
@@ -97,13 +110,26 @@ def build_parser() -> argparse.ArgumentParser:
         "acoustic", help="acoustic tensor of nonassociative elastoplasticity (§3.5)",
         description="Localization modulus, flutter interval and eigenvalues of the acoustic "
                     "tensor A(n) for isotropic elasticity (Lame constants), unit density, flow "
-                    "mode P and yield gradient Q (symmetric, Voigt order 11,22,33,23,13,12).")
-    a.add_argument("--lam", type=_number, required=True, help="Lame constant lambda [Pa]")
-    a.add_argument("--mu", type=_number, required=True, help="shear modulus mu [Pa], > 0")
-    a.add_argument("--P", type=_vector(6), required=True, help="p11,p22,p33,p23,p13,p12")
-    a.add_argument("--Q", type=_vector(6), required=True, help="q11,q22,q33,q23,q13,q12")
-    a.add_argument("--n", type=_vector(3), required=True, help="unit propagation direction")
-    a.add_argument("--g", type=_number, default=None, help="plastic modulus g [Pa], != 0")
+                    "mode P and yield gradient Q (symmetric, Voigt order 11,22,33,23,13,12). "
+                    "Vectors are numbers separated by spaces or commas, negative entries as "
+                    "typed: --P -1 0.5 0.5 0 0 0.8, --P -1,0.5,0.5,0,0,0.8 or "
+                    "--P=-1,0.5,0.5,0,0,0.8. Computed in scaled quantities (lam/mu, P/max|P|, "
+                    "Q/max|Q|): results must lie within [1e-300, 1e300] in magnitude, inputs "
+                    "that would leave it are refused.")
+    a.add_argument("--lam", type=_number, required=True,
+                   help="Lame constant lambda [Pa], -2/3 < lam/mu <= 1e150, |lam| <= 1e300")
+    a.add_argument("--mu", type=_number, required=True,
+                   help="shear modulus mu [Pa], 1e-300 <= mu <= 1e300")
+    vector = {"nargs": "+", "action": _VectorAction, "required": True}
+    a.add_argument("--P", type=_vector(6), metavar="NUM", **vector,
+                   help="flow mode: 6 numbers p11 p22 p33 p23 p13 p12 (spaces or commas)")
+    a.add_argument("--Q", type=_vector(6), metavar="NUM", **vector,
+                   help="yield gradient: 6 numbers q11 q22 q33 q23 q13 q12 (spaces or commas)")
+    a.add_argument("--n", type=_vector(3), metavar="NUM", **vector,
+                   help="propagation direction: 3 numbers n1 n2 n3, non-zero (normalised)")
+    a.add_argument("--g", type=_number, default=None,
+                   help="plastic modulus g [Pa], != 0 (a lower bound on |g| is stated if the "
+                        "eigenvalues would exceed 1e300)")
     a.add_argument("--json", action="store_true", help="print one JSON object")
     lc = sub.add_parser("limit-cycle", help="limit cycles of the nonlinear dynamics (§2.9)")
     lcs = lc.add_subparsers(dest="system", required=True, parser_class=_Parser)
@@ -123,92 +149,283 @@ def build_parser() -> argparse.ArgumentParser:
         "beck", help="limit cycle of the nonlinear Beck rod (defaults: list (119))",
         description="Geometrically exact inextensible rod with a tangential follower force and "
                     "Kelvin-Voigt viscosity (P2 elements for the rotation), integrated until "
-                    "the cycle on the Poincare section converges. SI units.")
-    for name, default, text in (("P", 5.5, "follower load [N]"), ("length", 0.35, "[m]"),
-                                ("B", 0.0332, "bending stiffness [N m^2]"),
-                                ("rho", 0.0546, "mass per length [kg/m]"),
-                                ("D", 7.078e-6, "Kelvin-Voigt viscosity [N m^2 s]"),
-                                ("kappa", 0.0, "external damping [N s/m^2]"),
-                                ("tip-mass", 0.0, "tip mass [kg]")):
+                    "the cycle on the Poincare section converges (takes 20-100 s; progress on "
+                    "stderr unless --quiet). SI units. A cycle exists only with viscosity "
+                    "(D > 0) and above the damped flutter load P_flu of the linearised rod "
+                    "(2.9645 N for list (119), 4 elements), computed first; loads too close to "
+                    "it, where the approach to the cycle outlasts --t-max, are refused.")
+    for name, default, text in (
+            ("P", 5.5, f"follower load [N], P_flu < P <= {BECK_LOAD_MAX:g} P_flu"),
+            ("length", 0.35, "rod length l [m], 1e-6..1e6"),
+            ("B", 0.0332, "bending stiffness [N m^2], 1e-12..1e12"),
+            ("rho", 0.0546, "mass per length [kg/m], 1e-12..1e12"),
+            ("D", 7.078e-6, f"Kelvin-Voigt viscosity [N m^2 s], > 0, with eta = "
+                            f"D/(B l^2) sqrt(B/rho) <= {BECK_ETA_MAX:g}"),
+            ("kappa", 0.0, f"external damping [N s/m^2], >= 0, with gamma = kappa l^2/"
+                           f"sqrt(rho B) <= {BECK_GAMMA_MAX:g}"),
+            ("tip-mass", 0.0, f"tip mass [kg], 0..{BECK_TIP_MASS_RATIO_MAX:g} rho l")):
         lb.add_argument(f"--{name}", type=_number, default=default,
                         help=f"{text} (default {default})")
-    lb.add_argument("--elements", type=int, default=4, help="P2 elements (default 4)")
+    lb.add_argument("--elements", type=int, default=4,
+                    help=f"P2 elements, {BECK_ELEMENTS[0]}..{BECK_ELEMENTS[1]} (default 4)")
+    lb.add_argument("--t-max", type=_number, default=None,
+                    help=f"simulated time allowed for the cycle to converge [s], at most "
+                         f"{BECK_T_MAX_SCALES:g} time scales l^2 sqrt(rho/B) (default "
+                         f"{BECK_T_MAX_DEFAULT_SCALES:g} of them: 31.4 s for list (119))")
+    lb.add_argument("--quiet", action="store_true",
+                    help="no progress messages on stderr")
     lb.add_argument("--json", action="store_true", help="print one JSON object")
     return parser
 
 
 def _limit_cycle_beck(args: argparse.Namespace) -> dict:
+    """Checks every parameter against the ranges of `BECK_*` and the load against the damped
+    flutter load of the linearised rod (cheap: eigenvalues of a few small matrices) before
+    integrating; progress on stderr unless ``--quiet``."""
+    import time
+
+    import numpy as np
+    from scipy.optimize import brentq
+
+    from flutterfriction.analysis.damped import flutter_onset
     from flutterfriction.analysis.rod_dynamics import beck_limit_cycle
     from flutterfriction.models.rod import Rod
+    from flutterfriction.models.rod_nonlinear import NonlinearRod
 
+    lo, hi = BECK_ELEMENTS
+    if not lo <= args.elements <= hi:
+        raise ParameterError(f"--elements must be in {lo}..{hi}, got {args.elements}")
+    for name, (a, b, unit) in BECK_RANGES.items():
+        if not a <= getattr(args, name) <= b:
+            raise ParameterError(f"--{name} must be in [{a:g}, {b:g}] {unit}, "
+                                 f"got {getattr(args, name)!r}")
+    if not args.D > 0:
+        raise ParameterError(f"--D must be > 0 N m^2 s: without viscosity the rod's motion is "
+                             f"reversible and has no attracting limit cycle, got {args.D!r}")
+    for option, value in (("--kappa", args.kappa), ("--tip-mass", args.tip_mass)):
+        if not value >= 0:
+            raise ParameterError(f"{option} must be >= 0, got {value!r}")
     rod = Rod(length=args.length, B=args.B, rho=args.rho, D=args.D, kappa=args.kappa,
               tip_mass=args.tip_mass)
-    if args.elements < 1:
-        raise ParameterError(f"--elements must be >= 1, got {args.elements}")
+    T = rod.time_scale
+    if not 1e-4 <= T <= 1e4:
+        raise ParameterError(f"--length, --B, --rho: the time scale l^2 sqrt(rho/B) must be in "
+                             f"[1e-4, 1e4] s (the integrator's absolute tolerances are in SI "
+                             f"units), got {T:.3g} s")
+    groups = rod.groups()
+    for option, value, limit, text in (
+            ("--D", groups.eta, BECK_ETA_MAX, "eta = D/(B l^2) sqrt(B/rho)"),
+            ("--kappa", groups.gamma, BECK_GAMMA_MAX, "gamma = kappa l^2/sqrt(rho B)"),
+            ("--tip-mass", groups.tan_alpha, BECK_TIP_MASS_RATIO_MAX, "M/(rho l)")):
+        if value > limit:
+            raise ParameterError(f"{option}: {text} must be <= {limit:g}, got {value:.4g}")
+    t_limit = BECK_T_MAX_SCALES * T
+    t_max = BECK_T_MAX_DEFAULT_SCALES * T if args.t_max is None else args.t_max
+    if not 0 < t_max <= t_limit:
+        raise ParameterError(f"--t-max must be in (0, {t_limit:.4g}] s ({BECK_T_MAX_SCALES:g} "
+                             f"time scales l^2 sqrt(rho/B) = {T:.4g} s), got {t_max!r}")
     if not args.P > 0:
-        raise ParameterError(f"--P must be > 0, got {args.P}")
-    return beck_limit_cycle(rod, args.P, n_elements=args.elements, method="LSODA", rtol=1e-8,
-                            atol=1e-10, tol=1e-5, initial_tip_rotation=1.2).as_dict()
+        raise ParameterError(f"--P must be > 0 N, got {args.P!r}")
+
+    M, C, K, K1 = NonlinearRod(rod, args.elements).linear_matrices()
+    try:
+        P_flu = flutter_onset(M, C, K, K1, load_max=40 * rod.load_unit, max_doublings=8)
+    except ConvergenceError:
+        raise ParameterError(f"--D, --kappa, --tip-mass: the linearised rod does not flutter "
+                             f"below {40 * 2**8 * rod.load_unit:.4g} N, so no cycle is "
+                             f"sought") from None
+    P_top = BECK_LOAD_MAX * P_flu
+    if not P_flu < args.P <= P_top:
+        raise ParameterError(
+            f"--P must be in ({P_flu:.6g}, {P_top:.6g}] N: above the damped flutter load "
+            f"P_flu = {P_flu:.6g} N of the linearised rod ({args.elements} elements; below it "
+            f"the motion decays to rest) and at most {BECK_LOAD_MAX:g} P_flu, got {args.P!r}")
+    Minv = np.linalg.inv(M)
+    n = M.shape[0]
+
+    def growth(P: float) -> float:  # max Re s of the linearised rod at load P [1/s]
+        A = np.block([[np.zeros((n, n)), np.eye(n)], [-Minv @ (K + P * K1), -Minv @ C]])
+        return float(np.linalg.eigvals(A).real.max())
+
+    # Near a Hopf point the cycle attracts at about twice the linear growth rate sigma, so
+    # converging from an O(1) distance to 1e-5 takes ~t_need = ln(1e4)/(2 sigma) (list 119 at
+    # 3.3 N: t_need = 188 s, converged at 145 s); far from onset the approach is slower than
+    # this. Refused when even half of it exceeds t_max: such a run could only fail.
+    sigma = growth(args.P)
+    above = 100 * (args.P / P_flu - 1)
+    t_need = math.log(1e4) / (2 * sigma)
+    if t_need / 2 > t_max:
+        hints = []
+        sigma_need = math.log(1e4) / (4 * t_max)
+        if growth(P_top) > sigma_need:
+            P_ok = brentq(lambda p: growth(p) - sigma_need, args.P, P_top, xtol=1e-6 * P_top)
+            hints.append(f"--P >= {P_ok:.4g} N")
+        if t_need <= t_limit:
+            hints.append(f"--t-max >= {t_need:.3g} s")
+        raise ParameterError(
+            f"--P = {args.P:g} N is only {above:.3g}% above the damped flutter load "
+            f"{P_flu:.6g} N: the motion grows at {sigma:.3g} 1/s there, so the cycle needs "
+            f"roughly {t_need:.3g} s of simulated time, far beyond --t-max = {t_max:.4g} s; "
+            f"give {' or '.join(hints) if hints else 'a larger --P'}")
+
+    say = _progress_printer(args.quiet)
+    say(f"damped flutter load P_flu = {P_flu:.6g} N ({args.elements} P2 elements); "
+        f"integrating the nonlinear rod at P = {args.P:g} N ({above:.3g}% above) until the "
+        f"Poincare section converges to {BECK_TOL:g}, at most {t_max:.4g} s simulated")
+    last = {"t": -math.inf}
+
+    def progress(message: str) -> None:  # at most one line a second (each crossing is heard)
+        now = time.monotonic()
+        if now - last["t"] >= 1.0:
+            last["t"] = now
+            say(message)
+
+    try:
+        cycle = beck_limit_cycle(rod, args.P, n_elements=args.elements, method="LSODA",
+                                 rtol=1e-8, atol=1e-10, tol=BECK_TOL, t_max=t_max,
+                                 initial_tip_rotation=1.2, progress=progress)
+    except ConvergenceError as exc:
+        if not str(exc).startswith("no rod limit cycle converged"):
+            raise
+        raise ConvergenceError(
+            f"no limit cycle converged to {BECK_TOL:g} within --t-max = {t_max:.4g} s of "
+            f"simulated time: P = {args.P:g} N is {above:.3g}% above the damped flutter load "
+            f"{P_flu:.6g} N, where the motion grows at {sigma:.3g} 1/s, and the approach to "
+            f"the cycle is slow; give a larger --t-max (at most {t_limit:.4g} s) or a larger "
+            f"--P") from None
+    say(f"converged at t = {cycle.transient_s:.4g} s simulated ({cycle.wall_s:.3g} s)")
+    return {**cycle.as_dict(), "P_N": args.P, "flutter_load_damped_N": P_flu,
+            "t_max_s": t_max}
+
+
+def _progress_printer(quiet: bool):
+    def say(message: str) -> None:
+        if not quiet:
+            print(f"flutterfriction: {message}", file=sys.stderr, flush=True)
+    return say
 
 
 def _limit_cycle(args: argparse.Namespace) -> dict:
+    """``limit-cycle ziegler``: refuses --alpha0-deg outside 0 < |alpha0| <= 180 and --P outside
+    the damped flutter interval (P_flu, P_div) before any integration; near P_flu the cycle is
+    continued from the linear flutter mode (see ``analysis.dynamics.ziegler_limit_cycle``)."""
     import math
 
-    from flutterfriction.analysis.dynamics import limit_cycle, shoot_periodic_orbit
+    from flutterfriction.analysis.dynamics import ziegler_limit_cycle
     from flutterfriction.models.ziegler import ZieglerPendulum
 
     pendulum = ZieglerPendulum(**{k: getattr(args, k) for k in (*ZIEGLER_PARAMS, "c1", "c2")})
     if pendulum.c1 <= 0 and pendulum.c2 <= 0:
         raise ParameterError("--c1/--c2: a limit cycle needs hinge viscosity (> 0)")
-    a0 = math.radians(args.alpha0_deg)
-    cycle = limit_cycle(pendulum, args.P, [a0, a0, 0.0, 0.0])
-    check = shoot_periodic_orbit(pendulum, args.P, cycle)
-    return {"alpha1_amplitude_rad": cycle.alpha1_amplitude_rad,
-            "alpha2_amplitude_rad": cycle.alpha2_amplitude_rad, "period_s": cycle.period_s,
-            "transient_s": cycle.transient_s,
-            "shooting_check": {"period_s": check.period_s,
-                               "alpha1_amplitude_rad": check.alpha1_amplitude_rad}}
+    if not 0 < abs(args.alpha0_deg) <= 180:
+        raise ParameterError(f"--alpha0-deg must be non-zero and within half a turn, "
+                             f"0 < |alpha0| <= 180, got {args.alpha0_deg:g}")
+    return ziegler_limit_cycle(pendulum, args.P, math.radians(args.alpha0_deg), P_name="--P",
+                               alpha0_name="--alpha0-deg")
 
 
 def _vector(size: int):
+    """Type of an option taking ``size`` numbers: each command-line word is a number or a list
+    of numbers separated by commas (or spaces, when quoted); :class:`_VectorAction` gathers the
+    words (``nargs="+"``) and checks the count."""
     def parse(text: str) -> list[float]:
-        parts = text.split(",")
-        if len(parts) != size:
-            raise argparse.ArgumentTypeError(f"needs {size} comma-separated numbers, got {text!r}")
+        parts = re.split(r"[,\s]+", text.strip())
         return [_number(x) for x in parts]
+    parse.vector_size = size
+    parse.__name__ = f"{size} numbers"
     return parse
 
 
+class _VectorAction(argparse.Action):
+    def __call__(self, parser, namespace, values, option_string=None):
+        flat = [x for word in values for x in word]
+        size = self.type.vector_size
+        if len(flat) != size:
+            raise argparse.ArgumentError(
+                self, f"needs {size} numbers (separated by spaces or commas), got {len(flat)}")
+        setattr(namespace, self.dest, flat)
+
+
+def _words_of_numbers(word: str) -> int:
+    """How many numbers ``word`` holds (``-1``, ``-1e-3``, ``-1,0.5``, ``nan``...), 0 if it is
+    not a list of numbers."""
+    parts = re.split(r"[,\s]+", word.strip())
+    try:
+        for x in parts:
+            float(x)
+    except ValueError:
+        return 0
+    return len(parts)
+
+
+def _numeric_options(parser: argparse.ArgumentParser) -> dict[str, int]:
+    """Option string -> how many numbers it takes (1 for ``_number``), for one (sub)parser."""
+    out = {}
+    for action in parser._actions:
+        size = getattr(action.type, "vector_size", 1 if action.type is _number else 0)
+        for option in action.option_strings if size else ():
+            out[option] = size
+    return out
+
+
+def _subcommands(parser: argparse.ArgumentParser) -> dict[str, argparse.ArgumentParser]:
+    for action in parser._actions:
+        if isinstance(action, argparse._SubParsersAction):
+            return dict(action.choices)
+    return {}
+
+
+def _numeric_argv(parser: argparse.ArgumentParser, argv: Sequence[str]) -> list[str]:
+    """Joins each numeric option with the numbers that follow it (``--P -1 0.5 ...``,
+    ``--P -1,0.5,...``, ``--lam -1e-3``) into one ``--P=-1,0.5,...`` word: argparse alone takes
+    a word starting with ``-`` for an option unless it is a plain negative number like ``-1``.
+    Only words that are numbers are gathered, and only as many as the option takes."""
+    out: list[str] = []
+    current, i, argv = parser, 0, list(argv)
+    while i < len(argv):
+        word = argv[i]
+        i += 1
+        if word == "--":
+            out.extend(argv[i - 1:])
+            break
+        subs = _subcommands(current)
+        if word in subs:
+            current = subs[word]
+            out.append(word)
+            continue
+        name, eq, value = word.partition("=")
+        options = _numeric_options(current)
+        if name.startswith("--") and name not in options:  # argparse's unique prefixes
+            matches = [o for o in current._option_string_actions if o.startswith(name)]
+            name = matches[0] if len(matches) == 1 else name
+        size = options.get(name, 0) if name.startswith("--") else 0
+        if not size:
+            out.append(word)
+            continue
+        words = [value] if eq else []
+        count = _words_of_numbers(value) if eq else 0
+        while count < size and i < len(argv):
+            k = _words_of_numbers(argv[i])
+            if not k or (size == 1 and k > 1):
+                break
+            words.append(argv[i])
+            count += k
+            i += 1
+        out.append(f"{name}={','.join(words)}" if words else word)
+    return out
+
+
 def _acoustic(args: argparse.Namespace) -> dict:
-    import numpy as np
+    from flutterfriction.analysis.acoustic import isotropic_acoustic
 
-    from flutterfriction.models import solid as so
-
-    so.isotropic_elasticity(args.lam, args.mu)  # validates lam, mu (positive definite)
-    P = so.voigt_to_tensor(args.P)
-    Q = so.voigt_to_tensor(args.Q)
-    n = np.asarray(args.n, dtype=float)
-    norm = float(np.linalg.norm(n))
-    if norm == 0:
-        raise ParameterError("--n must be a non-zero vector (a unit propagation direction)")
-    notes = []
-    if abs(norm - 1) > 1e-9:
-        notes.append(f"n normalised from |n| = {norm:.6g}")
-        n = n / norm
-    out = {"g_localization": so.localization_modulus_isotropic(args.lam, args.mu, P, Q, n),
-           "flutter_interval": None, "notes": notes}
-    interval = so.flutter_interval_isotropic(args.lam, args.mu, P, Q, n)
-    if interval is not None:
-        out["flutter_interval"] = list(interval)
-    if args.g is not None:
-        if args.g == 0:
-            raise ParameterError("--g must be non-zero (the plastic modulus divides)")
-        from flutterfriction.analysis.acoustic import classify_acoustic
-
-        eta = so.acoustic_eigenvalues_isotropic(args.lam, args.mu, P, Q, args.g, n)
-        out["eigenvalues"] = [[float(z.real), float(z.imag)] for z in eta]
-        out["regime"] = str(classify_acoustic(
-            so.acoustic_tensor_isotropic(args.lam, args.mu, P, Q, args.g, n)))
+    r = isotropic_acoustic(args.lam, args.mu, args.P, args.Q, args.n, args.g,
+                           names={k: f"--{k}" for k in ("lam", "mu", "P", "Q", "n", "g")})
+    out = {"g_localization": r.g_localization,
+           "flutter_interval": None if r.flutter_interval is None else list(r.flutter_interval),
+           "notes": list(r.notes)}
+    if r.eigenvalues is not None:
+        out["eigenvalues"] = [[z.real, z.imag] for z in r.eigenvalues]
+        out["regime"] = str(r.regime)
     return out
 
 
@@ -257,7 +474,7 @@ def _ziegler(args: argparse.Namespace) -> dict:
 
 def main(argv: Sequence[str] | None = None) -> int:
     parser = build_parser()
-    args = parser.parse_args(argv)
+    args = parser.parse_args(_numeric_argv(parser, sys.argv[1:] if argv is None else argv))
     try:
         if args.command == "limit-cycle" and args.system == "beck":
             result = _limit_cycle_beck(args)
@@ -270,6 +487,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     except ConvergenceError as exc:
         print(f"flutterfriction: solver did not converge: {exc}", file=sys.stderr)
         return 1
+    where = _non_finite(result)
+    if where is not None:  # a bug at the source: say so rather than print NaN or inf
+        print(f"flutterfriction: internal error: {where} is not finite (not printed)",
+              file=sys.stderr)
+        return 1
     try:
         _print(result, args.json)
     except BrokenPipeError:  # e.g. piped into `head`: not an error of ours
@@ -277,9 +499,24 @@ def main(argv: Sequence[str] | None = None) -> int:
     return 0
 
 
+def _non_finite(value: object, where: str = "result") -> str | None:
+    """The path of the first NaN or infinity in ``value`` (dicts, lists, floats), or None."""
+    if isinstance(value, dict):
+        items = ((f"{where}[{k!r}]", v) for k, v in value.items())
+    elif isinstance(value, (list, tuple)):
+        items = ((f"{where}[{i}]", v) for i, v in enumerate(value))
+    else:
+        return None if not isinstance(value, float) or math.isfinite(value) else where
+    for path, item in items:
+        found = _non_finite(item, path)
+        if found is not None:
+            return found
+    return None
+
+
 def _print(result: dict, as_json: bool) -> None:
     if as_json:
-        print(json.dumps(result))
+        print(json.dumps(result, allow_nan=False))
     elif "g_localization" in result or "period_s" in result:  # acoustic, limit cycles
         for key, value in result.items():
             print(f"{key} = {value}")

@@ -4,13 +4,20 @@ force (the independent twins of the isotropic closed forms in :mod:`..models.sol
 
 from __future__ import annotations
 
+import math
+from dataclasses import dataclass
+
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import minimize
 
 from flutterfriction.analysis.stability import Regime
-from flutterfriction.errors import ParameterError
-from flutterfriction.models.solid import acoustic_vectors, elastic_acoustic_tensor
+from flutterfriction.errors import ParameterError, check_real
+from flutterfriction.models.solid import (
+    acoustic_vectors,
+    elastic_acoustic_tensor,
+    voigt_to_tensor,
+)
 
 
 def cubic_discriminant(A: NDArray) -> NDArray:
@@ -46,13 +53,7 @@ def flutters_somewhere(E: NDArray, P: ArrayLike, Q: ArrayLike, directions: NDArr
 def classify_acoustic(A: NDArray, rtol: float = 1e-10) -> Regime:
     """§3.3 (Rice 1977): stable when all ``c^2`` are positive, flutter when two are complex
     conjugate, divergence when one is real and negative."""
-    eta = np.linalg.eigvals(np.asarray(A, dtype=float))
-    scale = max(np.abs(eta).max(), np.finfo(float).tiny)
-    if np.any(np.abs(eta.imag) > rtol * scale):
-        return Regime.FLUTTER
-    if np.any(eta.real < -rtol * scale):
-        return Regime.DIVERGENCE
-    return Regime.STABLE
+    return classify_eigenvalues(np.linalg.eigvals(np.asarray(A, dtype=float)), rtol)
 
 
 def fibonacci_sphere(n: int) -> NDArray:
@@ -162,3 +163,201 @@ def flutter_interval_bruteforce(E: NDArray, P: ArrayLike, Q: ArrayLike, n: Array
             else:
                 intervals.append((1.0 / b, 1.0 / a))
     return sorted(intervals)
+
+
+# ---------------------------------------------------------------------- isotropic, any scale
+#: Results and scales are kept within [RANGE_MIN, RANGE_MAX] (floats end at 1.8e308 and lose
+#: precision below 2.2e-308); what would leave that range is refused, never rounded to 0/inf.
+RANGE_MIN, RANGE_MAX = 1e-300, 1e300
+#: Largest lam/mu: the scaled vectors grow like lam/mu and their products like its square.
+LAM_OVER_MU_MAX = 1e150
+
+
+def classify_eigenvalues(eta: ArrayLike, rtol: float = 1e-10) -> Regime:
+    """:func:`classify_acoustic` from the eigenvalues themselves (same tolerances)."""
+    eta = np.asarray(eta, dtype=complex)
+    scale = max(float(np.abs(eta).max()), np.finfo(float).tiny)
+    if np.any(np.abs(eta.imag) > rtol * scale):
+        return Regime.FLUTTER
+    if np.any(eta.real < -rtol * scale):
+        return Regime.DIVERGENCE
+    return Regime.STABLE
+
+
+def _mul(*factors: float, divide: tuple[float, ...] = ()) -> tuple[float, int]:
+    """``prod(factors) / prod(divide)`` as ``(mantissa, exponent)`` (base 2): no overflow or
+    underflow in between, whatever the scales."""
+    m, e = 1.0, 0
+    for f in factors:
+        fm, fe = math.frexp(f)
+        m, k = math.frexp(m * fm)
+        e += fe + k
+    for d in divide:
+        dm, de = math.frexp(d)
+        m, k = math.frexp(m / dm)
+        e += k - de
+    return m, e
+
+
+def _as_float(me: tuple[float, int]) -> float:
+    """The float of :func:`_mul`'s pair, ``inf`` when it overflows."""
+    m, e = me
+    try:
+        return math.ldexp(m, e)
+    except OverflowError:
+        return math.copysign(math.inf, m)
+
+
+def _in_range(x: float) -> bool:
+    return x == 0.0 or RANGE_MIN <= abs(x) <= RANGE_MAX
+
+
+def _quadratic_roots(b: float, c: float) -> tuple[complex, complex]:
+    """Roots of ``eta^2 - b eta + c`` without overflow (scaled) or cancellation (the smaller
+    real root from the product ``c``), ascending (by imaginary part when complex)."""
+    m = max(abs(b), math.sqrt(abs(c)))
+    if m == 0.0:
+        return 0j, 0j
+    bs, cs = b / m, c / m / m
+    d = bs * bs - 4.0 * cs
+    if d < 0:
+        re, im = m * bs / 2, m * math.sqrt(-d) / 2
+        return complex(re, -im), complex(re, im)
+    big = m * (bs + math.copysign(math.sqrt(d), bs)) / 2
+    small = c / big if big != 0.0 else 0.0
+    lo, hi = sorted((small, big))
+    return complex(lo), complex(hi)
+
+
+@dataclass(frozen=True)
+class IsotropicAcoustic:
+    """What :func:`isotropic_acoustic` finds; moduli in the units of ``mu``."""
+
+    g_localization: float
+    flutter_interval: tuple[float, float] | None
+    eigenvalues: tuple[complex, complex, complex] | None = None
+    regime: Regime | None = None
+    notes: tuple[str, ...] = ()
+
+
+def isotropic_acoustic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike, n: ArrayLike,
+                       g: float | None = None, names: dict[str, str] | None = None
+                       ) -> IsotropicAcoustic:
+    """The localization modulus (eq. 185), the flutter interval (eq. 188 corrected) and, with
+    ``g``, the eigenvalues of ``A(n)`` (``mu`` and the roots of eq. 184) and their regime, for
+    isotropic elasticity and unit density, at any scale of the inputs.
+
+    Everything is computed in scaled quantities: ``lam' = lam/mu``, ``P^ = P/max|P|``,
+    ``Q^ = Q/max|Q|``, ``n`` normalised after division by ``max|n|``; moduli come in units of
+    ``S = mu max|P| max|Q|``, eigenvalues in units of ``mu``. The formulas are rearranged so
+    that the ``lam'^2`` terms, which cancel in eqs. (185) and (188), are never formed:
+    ``g^_E = r (lam' trP trQ + 2 trP qn + 2 trQ pn) + 4 (u.v - k pn qn)`` with ``u = P^ n``,
+    ``v = Q^ n``, ``pn = n.u``, ``qn = n.v``, ``r = lam'/(lam'+2)``, ``k = (lam'+1)/(lam'+2)``,
+    and ``N - p.q = 4 (pn qn - u.v)``; the smaller end of the flutter interval and the smaller
+    real eigenvalue come from products, not differences. Inputs whose results would leave
+    ``[1e-300, 1e300]`` are refused (:class:`ParameterError` naming the parameter and its
+    range), so no result is ever rounded to 0, inf or NaN. ``names`` relabels the parameters
+    in messages (e.g. ``{"lam": "--lam"}``)."""
+    nm = {k: k for k in ("lam", "mu", "P", "Q", "n", "g")} | (names or {})
+    if g is not None:
+        g = check_real(nm["g"], g)
+        if g == 0:
+            raise ParameterError(f"{nm['g']} must be non-zero (the plastic modulus divides)")
+    lam = check_real(nm["lam"], lam)
+    mu = check_real(nm["mu"], mu)
+    if not RANGE_MIN <= mu <= RANGE_MAX:
+        raise ParameterError(f"{nm['mu']} must be in [{RANGE_MIN:g}, {RANGE_MAX:g}], got {mu!r}")
+    if not -RANGE_MAX <= lam <= RANGE_MAX:
+        raise ParameterError(f"{nm['lam']} must be in [-1e+300, 1e+300], got {lam!r}")
+    lr = lam / mu  # finite: |lam| <= 1e300, mu >= 1e-300 gives at most 1e600 -> inf, refused
+    if not (lr > -2.0 / 3.0 and lr <= LAM_OVER_MU_MAX):
+        raise ParameterError(
+            f"{nm['lam']} must satisfy -2/3 < lam/mu <= {LAM_OVER_MU_MAX:g} (positive definite "
+            f"elasticity; beyond, the scaled products leave the float range), got lam/mu = "
+            f"{lr:.6g}")
+    arrays = {}
+    for key, value, size in (("P", P, 6), ("Q", Q, 6), ("n", n, 3)):
+        a = np.asarray(value, dtype=float)
+        if a.shape != (size,) or not np.all(np.isfinite(a)):
+            raise ParameterError(f"{nm[key]} must be {size} finite numbers")
+        arrays[key] = a
+    nv = arrays["n"]
+    n_max = float(np.abs(nv).max())
+    if n_max == 0.0:
+        raise ParameterError(f"{nm['n']} must be a non-zero vector (a propagation direction)")
+    n_scaled = nv / n_max
+    n_unit = n_scaled / float(np.linalg.norm(n_scaled))
+    notes = []
+    norm = _as_float(_mul(n_max, float(np.linalg.norm(n_scaled))))
+    if abs(norm - 1.0) > 1e-9:
+        notes.append(f"n normalised from |n| = {norm:.6g}")
+    sP, sQ = (float(np.abs(arrays[k]).max()) for k in ("P", "Q"))
+    Ph = voigt_to_tensor(arrays["P"] / sP) if sP > 0 else np.zeros((3, 3))
+    Qh = voigt_to_tensor(arrays["Q"] / sQ) if sQ > 0 else np.zeros((3, 3))
+    S = _as_float(_mul(mu, sP, sQ))
+    if not _in_range(S):
+        raise ParameterError(
+            f"{nm['P']}, {nm['Q']}, {nm['mu']}: the moduli scale as mu max|P| max|Q| = "
+            f"{_fmt(_mul(mu, sP, sQ))}, which must be 0 or in [{RANGE_MIN:g}, {RANGE_MAX:g}]")
+
+    trP, trQ = float(np.trace(Ph)), float(np.trace(Qh))
+    u, v = Ph @ n_unit, Qh @ n_unit
+    pn, qn, uv = float(n_unit @ u), float(n_unit @ v), float(u @ v)
+    p = lr * trP * n_unit + 2 * u  # eq. (180) over mu max|P|
+    q = lr * trQ * n_unit + 2 * v
+    p_n, q_n, pq = lr * trP + 2 * pn, lr * trQ + 2 * qn, float(p @ q)
+    r, k = lr / (lr + 2), (lr + 1) / (lr + 2)
+    gE = r * (lr * trP * trQ + 2 * trP * qn + 2 * trQ * pn) + 4 * (uv - k * pn * qn)
+    D = 4 * (pn * qn - uv)  # N - p.q, with N = (n.p)(n.q)
+
+    def physical(x: float, what: str) -> float:
+        value = _as_float(_mul(S, x))
+        if not math.isfinite(value) or abs(value) > RANGE_MAX:
+            raise ParameterError(
+                f"{nm['P']}, {nm['Q']}, {nm['mu']}: {what} = {_fmt(_mul(S, x))} exceeds "
+                f"{RANGE_MAX:g} in magnitude; mu max|P| max|Q| = {S:.3g} must be smaller here")
+        return value
+
+    g_loc = physical(gE, "g_localization")
+    interval = None
+    if p_n * q_n > 0 and D > 0:
+        root_n = math.sqrt(abs(p_n)) * math.sqrt(abs(q_n))
+        w = root_n + math.sqrt(D)
+        g1 = (pq / w) ** 2 / (lr + 1)  # (sqrt N - sqrt(N - pq))^2 = (pq / (sqrt N + ...))^2
+        g2 = w * w / (lr + 1)
+        interval = (physical(g1, "g1"), physical(g2, "g2"))
+    if g is None:
+        return IsotropicAcoustic(g_loc, interval, notes=tuple(notes))
+
+    # Eigenvalues over mu: 1 and the roots of eta^2 - b eta + c, with x = S/g,
+    # b = lam' + 3 - x p.q and c = (lam' + 2)(1 - x g^_E) (= det A / mu^3).
+    M = max(abs(pq), (lr + 2) * abs(gE))
+    g_min = _as_float(_mul(max(mu, 1.0), S, M, divide=(RANGE_MAX,)))
+    if not math.isfinite(g_min):
+        raise ParameterError(
+            f"{nm['P']}, {nm['Q']}, {nm['mu']}: no representable g keeps the eigenvalues (~ mu^2 "
+            f"max|P| max|Q| / |g|) below {RANGE_MAX:g}; reduce mu, P or Q")
+    if abs(g) < g_min:
+        raise ParameterError(
+            f"{nm['g']}: |g| must be >= {g_min:.3g} here (the eigenvalues, ~ mu^2 max|P| "
+            f"max|Q| / |g|, must stay below {RANGE_MAX:g}), got {g!r}")
+    x = _as_float(_mul(S, divide=(g,)))  # |x| M <= 1e300 / max(mu, 1); underflow to 0 is fine
+    b = lr + 3 - x * pq
+    c = (lr + 2) * (1 - x * gE)
+    roots = _quadratic_roots(b, c)
+    eta = (complex(mu), *(complex(z.real * mu, z.imag * mu) for z in roots))
+    if not all(math.isfinite(z.real) and math.isfinite(z.imag) for z in eta):
+        raise ParameterError(f"{nm['g']}: the eigenvalues leave the float range, |g| must be "
+                             f"larger than {g!r}")
+    regime = classify_eigenvalues([1.0, *roots])
+    return IsotropicAcoustic(g_loc, interval, eta, regime, tuple(notes))
+
+
+def _fmt(me: tuple[float, int]) -> str:
+    """``m 2^e`` as a decimal string even beyond the float range."""
+    m, e = me
+    if m == 0:
+        return "0"
+    exp10 = math.log10(abs(m)) + e * math.log10(2.0)
+    whole = math.floor(exp10)
+    return f"{math.copysign(10 ** (exp10 - whole), m):.3g}e{whole:+d}"
