@@ -341,6 +341,89 @@ def bad_input_cases() -> list[StressResult]:
     return out
 
 
+def paradox_limit_cases() -> list[StressResult]:
+    """The Ziegler paradox as the viscosity vanishes (issue 12): the eq. (54) pendulum (l1 = l2,
+    k1 = k2, m1 = m2, d = l1, m3 = 0, c1 = c2) with relative viscosity eps = c/(L sqrt(K m))
+    down to 1e-30. The damped flutter load must tend to 4/3 K/L (eq. 54: 4/3 + eps^2/2), the
+    damped divergence load to the undamped 4 K/L (eq. 48 with its divergence twin; measured
+    slope 4 eps: 4.0004 at eps = 1e-4, 4.00000004 at 1e-8), never "unstable at zero load"."""
+    from flutterfriction.analysis.ziegler import damped_divergence_load, damped_flutter_load
+    from flutterfriction.closed_forms.ziegler import two_mass_gammas
+    from flutterfriction.closed_forms.ziegler_damped import eq54_flutter_gamma
+    from flutterfriction.models.ziegler import ZieglerPendulum
+
+    base = {"l1": 1.0, "l2": 1.0, "d": 1.0, "h": 0.0, "m1": 1.0, "m2": 1.0, "m3": 0.0,
+            "k1": 1.0, "k2": 1.0}
+    p_div0 = two_mass_gammas(1.0, 1.0, 1.0, 1.0)[1]
+    out = []
+    for eps in (1e-10, 1e-20, 1e-30):
+        p = ZieglerPendulum(**base, c1=eps, c2=eps)
+        # Routh's verdict is exact for the float coefficients; their rounding (a few eps in
+        # p2 = 6 + eps^2 - 2 gamma) moves the load by a few ulps: 1e-14 leaves a margin.
+        out.append(_judge("vanishing viscosity", f"eq. (54) pendulum, eps = {eps:g}, flutter",
+                          "damped flutter load (exact Routh-Hurwitz) vs eq. (54)",
+                          lambda p=p: damped_flutter_load(p, "routh"),
+                          lambda eps=eps: eq54_flutter_gamma(eps),
+                          lambda g, r: _rel(g, r) < 1e-14, lambda x: f"{x:.16g} K/L"))
+        out.append(_judge("vanishing viscosity", f"eq. (54) pendulum, eps = {eps:g}, divergence",
+                          "damped divergence load (eigenvalues, scan from Routh's P_flu) vs "
+                          "the undamped 4 K/L",
+                          lambda p=p: damped_divergence_load(p),
+                          lambda: p_div0,
+                          lambda g, r, eps=eps: abs(g - r) <= 1e-14 * r + 5 * eps,
+                          lambda x: f"{x:.16g} K/L",
+                          note="tolerance 5 eps: the load's measured slope in eps is 4"))
+        out.append(_judge("vanishing viscosity", f"eq. (54) pendulum, eps = {eps:g}, eigenvalues",
+                          "damped flutter load from the eigenvalue crossing",
+                          lambda p=p: damped_flutter_load(p, "eigenvalues"),
+                          lambda eps=eps: eq54_flutter_gamma(eps),
+                          lambda g, r: _rel(g, r) < 1e-4, lambda x: f"{x:.16g} K/L",
+                          note="refusal expected: Re s ~ eps is below the eigenvalues' "
+                               "round-off (1e-16 of |s|)"))
+    return out
+
+
+def ziegler_extreme_input_cases() -> list[StressResult]:
+    """Issue 12: parameters far outside the pendulum's numerical range must be refused quickly
+    with a message naming them (they used to hang or raise OverflowError/LinAlgError), and a
+    device scaled as a whole (every parameter x 1e150) must give the base loads (the
+    dimensionless groups do not change)."""
+    from flutterfriction.analysis.ziegler import critical_loads
+    from flutterfriction.models.ziegler import ZieglerPendulum
+
+    base = dict(LIST47)
+    tries = [("m1 = 1e300", {"m1": 1e300}, "m1"), ("k1 = 1e300", {"k1": 1e300}, "k1"),
+             ("k1 = 1e-300", {"k1": 1e-300}, "k1"), ("k2 = 1e-300", {"k2": 1e-300}, "k2"),
+             ("m3 = 1e300", {"m3": 1e300}, "m3"), ("l1 = 1e300", {"l1": 1e300}, "l1"),
+             ("l2 = 1e-300 (h = 1e-300)", {"l2": 1e-300, "h": 1e-300}, "l2"),
+             ("m1/m2 = 2e13", {"m1": 0.046 * 2e13}, "m1"),
+             ("k1/k2 = 5e-16", {"k1": 0.189 * 5e-16}, "k1"),
+             ("c1 = 1e-200 N m s", {"c1": 1e-200}, "c1"),
+             ("m1 d^2 -> 0 with m3 = 0", {"m3": 0.0, "d": 1e-12}, "d")]
+    out = []
+    for case, over, name in tries:
+        def run(over=over):
+            return critical_loads(ZieglerPendulum(**{**base, **over}))
+
+        r = _judge("extreme input", case, "critical_loads", run,
+                   lambda name=name: f"refusal naming {name!r}", lambda g, r: False,
+                   lambda x: x if isinstance(x, str) else "loads returned")
+        if r.outcome == REFUSED and name not in r.got:
+            r.outcome = WRONG
+        out.append(r)
+    ref = critical_loads(ZieglerPendulum(**base))
+    big = ZieglerPendulum(**{k: v * 1e150 for k, v in base.items()})
+    out.append(_judge("extreme input", "every parameter x 1e150",
+                      "critical loads vs the base device (same groups, same load unit)",
+                      lambda: critical_loads(big), lambda: ref,
+                      lambda g, r: all(_rel(getattr(g, k), getattr(r, k)) < 1e-13
+                                       for k in ("P_flu", "P_div", "H_cr", "H_sup")),
+                      lambda x: f"P_flu {x.P_flu:.15g} N, H_cr {x.H_cr:.15g} N",
+                      note="1e-13: the two runs round the groups differently (measured 0 to "
+                           "a few ulps)"))
+    return out
+
+
 ALL_CASES: dict[str, Callable[[], list[StressResult]]] = {
     "exceptional point": exceptional_point_cases,
     "vanishing viscosity": vanishing_viscosity_cases,
@@ -350,6 +433,8 @@ ALL_CASES: dict[str, Callable[[], list[StressResult]]] = {
     "long integration": long_integration_cases,
     "random parameters": random_pendulum_cases,
     "bad input": bad_input_cases,
+    "vanishing viscosity (paradox limit)": paradox_limit_cases,
+    "extreme pendulum input": ziegler_extreme_input_cases,
 }
 
 

@@ -119,6 +119,16 @@ def flutter_onset(M: ArrayLike, C: ArrayLike, K0: ArrayLike, K1: ArrayLike, *,
             if up.size:
                 i = int(up[0])
                 if i == 0:
+                    s0 = sys_.spectra([grid[0]])[0]
+                    # Round-off of a computed eigenvalue: a modest multiple of eps ||A||, with
+                    # ||A|| >= max|s|; 1000 eps max|s| is the level below which Re s carries no
+                    # sign (as in :func:`~.stability.classify`).
+                    if g[0] <= 1000 * np.finfo(float).eps * float(np.max(np.abs(s0))):
+                        raise ConvergenceError(
+                            f"the growth rate at the start load {lo:g} is at round-off level "
+                            f"(max Re s = {g[0]:.3g}, max |s| = {np.max(np.abs(s0)):.3g}): the "
+                            f"damping is too small for the eigenvalue crossing to resolve; use "
+                            f"the exact Routh-Hurwitz method")
                     raise ConvergenceError(f"already unstable at the start load {lo:g}")
                 return float(brentq(growth, grid[i - 1], grid[i],
                                     xtol=4 * np.finfo(float).eps * abs(grid[i])))

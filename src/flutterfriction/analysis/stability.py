@@ -127,17 +127,71 @@ def _brent(f: Callable[[float], float], a: float, b: float) -> float:
     return float(root)
 
 
-def _refine_roots(f: Callable[[float], float], grid: NDArray, values: NDArray) -> list[float]:
+#: Round-off floor of the normalised discriminant, in units of ``eps (||A(p)||_F / scale)^2``
+#: (:func:`discriminant_noise_floor`). Where the digits come from: a pair's factor
+#: ``((mu_i - mu_j)/scale)^2`` is ``(tr^2 - 4 det)/scale^2`` of the pair's 2x2 block, and a
+#: backward-stable eigensolver (LAPACK: backward error a small multiple of ``eps ||A||``)
+#: perturbs it by a few ``eps ||A||^2``; 100 leaves a factor >= 10 of margin over the
+#: largest noise measured on pure round-off (pendulum with k1/k2 = 1e-30: |D| <= 8 eps ...,
+#: ``tests/test_extremes_ziegler.py::test_noise_floor_covers_roundoff``).
+NOISE_FLOOR_FACTOR = 100.0
+
+
+def discriminant_noise_floor(A0: ArrayLike, A1: ArrayLike, loads: ArrayLike,
+                             mu: NDArray) -> NDArray:
+    """Round-off level of :func:`discriminant` for the reduced matrices ``A0 + p A1`` with
+    spectra ``mu`` (shape (m, n)): ``NOISE_FLOOR_FACTOR eps (||A(p)||_F / scale)^2
+    4^(pairs - 1)`` (the other pairs' factors are at most 4 each). A sampled value below it
+    carries no sign information."""
+    A0 = np.asarray(A0, dtype=float)
+    A1 = np.asarray(A1, dtype=float)
+    p = np.atleast_1d(np.asarray(loads, dtype=float))
+    n = A0.shape[0]
+    norms = np.linalg.norm(A0[None] + p[:, None, None] * A1[None], axis=(1, 2))
+    scale = np.max(np.abs(mu), axis=-1)
+    scale = np.where(scale > 0, scale, 1.0)
+    pairs = n * (n - 1) // 2
+    return NOISE_FLOOR_FACTOR * np.finfo(float).eps * (norms / scale) ** 2 * 4.0 ** (pairs - 1)
+
+
+def _refine_roots(f: Callable[[float], float], grid: NDArray, values: NDArray,
+                  floor: NDArray | None = None) -> list[float]:
     """Roots of ``f`` from samples: every sign change is refined with Brent's method, and every
     sampled local minimum that stays positive is minimised on its bracket, so that a pair of
-    roots closer than the sampling step (a narrow flutter interval) is found too."""
-    roots = [float(x) for x, v in zip(grid, values, strict=True) if v == 0.0]
+    roots closer than the sampling step (a narrow flutter interval) is found too.
+
+    With ``floor`` (the round-off level of each sample, e.g. :func:`discriminant_noise_floor`)
+    samples are judged against it: a sign change or a local minimum with every sample at or
+    below the floor is round-off, not a root, and is refused (:class:`ConvergenceError`)
+    instead of being minimised (minimising noise finds noise, and costs a minimisation per
+    local minimum); only minima clearly above the floor are minimised. Without ``floor`` the
+    behaviour is the historical one (used by the rod code)."""
+    fl = np.zeros_like(values) if floor is None else np.asarray(floor, dtype=float)
+
+    def noise(lo: int, hi: int) -> None:
+        if floor is not None and np.all(np.abs(values[lo:hi + 1]) <= fl[lo:hi + 1]):
+            raise ConvergenceError(
+                f"the discriminant is at its round-off floor for loads {grid[lo]:.6g}.."
+                f"{grid[hi]:.6g}: a coalescence there is not resolved in double precision")
+
+    roots = []
+    for i, (x, v) in enumerate(zip(grid, values, strict=True)):
+        if v == 0.0:
+            noise(i, i)
+            roots.append(float(x))
     for i in range(len(grid) - 1):
         if values[i] * values[i + 1] < 0.0:
+            noise(i, i + 1)
             roots.append(_brent(f, grid[i], grid[i + 1]))
     for i in range(1, len(grid) - 1):
         v = values[i - 1:i + 2]
         if v.min() > 0.0 and v[1] <= v[0] and v[1] <= v[2]:
+            if floor is not None:
+                if v[1] <= fl[i]:
+                    noise(i - 1, i + 1)
+                    continue  # a neighbour is above the floor: a touch at round-off level
+                if min(v[0], v[2]) - v[1] <= fl[i]:
+                    continue  # a wiggle of round-off on a plateau, not a dip
             lo, hi = grid[i - 1], grid[i + 1]
             res = minimize_scalar(f, bounds=(lo, hi), method="bounded",
                                   options={"xatol": 4 * np.finfo(float).eps * abs(hi)})
@@ -147,7 +201,7 @@ def _refine_roots(f: Callable[[float], float], grid: NDArray, values: NDArray) -
 
 
 def coalescence_loads(K0: ArrayLike, K1: ArrayLike, M: ArrayLike, load_max: float,
-                      n_scan: int = 2048) -> list[float]:
+                      n_scan: int = 2048, noise_floor: bool = False) -> list[float]:
     """Loads in ``[0, load_max]`` where two eigenvalues of ``(K0 + p K1, M)`` coincide.
 
     For a follower load these are the flutter load (a pair of real ``Omega^2`` merges and leaves
@@ -155,15 +209,23 @@ def coalescence_loads(K0: ArrayLike, K1: ArrayLike, M: ArrayLike, load_max: floa
     Sign changes of :func:`discriminant` on a uniform scan are refined to machine precision with
     Brent's method; positive local minima of the samples are minimised to catch two coalescences
     closer than the scan step. Callers that know how many to expect (the pendulum: two) check
-    the count.
+    the count. With ``noise_floor`` the samples are judged against the discriminant's
+    round-off level (:func:`discriminant_noise_floor`): round-off is refused, not minimised.
     """
     grid = np.linspace(0.0, float(load_max), int(n_scan) + 1)
-    values = discriminant(pencil_eigenvalues(K0, K1, M, grid))
+    mu = pencil_eigenvalues(K0, K1, M, grid)
+    values = discriminant(mu)
+    floor = None
+    if noise_floor:
+        Linv = _cholesky_reduction(np.asarray(M, dtype=float))
+        A0 = Linv @ np.asarray(K0, dtype=float) @ Linv.T
+        A1 = Linv @ np.asarray(K1, dtype=float) @ Linv.T
+        floor = discriminant_noise_floor(A0, A1, grid, mu)
 
     def f(p: float) -> float:
         return float(discriminant(pencil_eigenvalues(K0, K1, M, [p]))[0])
 
-    return _refine_roots(f, grid, values)
+    return _refine_roots(f, grid, values, floor)
 
 
 def static_bifurcation_loads(K0: ArrayLike, K1: ArrayLike) -> NDArray:

@@ -6,6 +6,7 @@ nothing here uses the chapter's formulas (19)–(48).
 
 from __future__ import annotations
 
+import math
 from dataclasses import asdict, dataclass
 
 import numpy as np
@@ -19,10 +20,9 @@ from flutterfriction.analysis.stability import (
     coalescence_loads,
     first_order_matrix,
     state_eigenvalues,
-    static_bifurcation_loads,
 )
 from flutterfriction.errors import ConvergenceError, check_real
-from flutterfriction.models.ziegler import ZieglerPendulum
+from flutterfriction.models.ziegler import DimensionlessMatrices, ZieglerPendulum
 
 
 @dataclass(frozen=True)
@@ -46,39 +46,84 @@ class CriticalLoads:
         return asdict(self)
 
 
-def follower_critical_loads(pendulum: ZieglerPendulum, n_scan: int = 512,
-                            max_doublings: int = 60) -> tuple[float, float]:
-    """Flutter and divergence loads ``(P_flu, P_div)`` [N] under the follower load alone (H = 0).
+def _dimensionless(pendulum: ZieglerPendulum) -> DimensionlessMatrices:
+    """The pendulum's matrices in the units of eqs. (17), (29), (32), after refusing a pendulum
+    outside the model's numerical range (:meth:`ZieglerPendulum.check_numerical_range`).
 
-    Both are coalescence points of the eigenvalues ``Omega^2`` of ``(K + P dG/dP, M)`` (eq. 14),
-    found by :func:`~flutterfriction.analysis.stability.coalescence_loads`. The scan window
-    starts at ``4 k2/l1`` and doubles until both coalescences are bracketed.
-    """
-    K, G1, M = (pendulum.stiffness_matrix(), pendulum.follower_load_matrix(),
-                pendulum.mass_matrix())
-    load_max = 4.0 * max(pendulum.k1, pendulum.k2) / pendulum.l1
+    Loads come out in units of ``k2/l1`` (gamma, eta), so no SI scale can overflow; they are
+    converted to newtons by one multiplication at the end."""
+    pendulum.check_numerical_range()
+    return pendulum.dimensionless_matrices()
+
+
+def follower_critical_gammas(pendulum: ZieglerPendulum, n_scan: int = 512,
+                             max_doublings: int = 40) -> tuple[float, float]:
+    """Dimensionless ``(gamma_flu, gamma_div) = (P_flu, P_div) l1/k2`` under the follower load
+    alone, from the dimensionless matrices (see :func:`follower_critical_loads`).
+
+    The scan window starts at ``4 max(1, k1/k2)`` and doubles at most ``max_doublings`` times
+    (to ``4e12`` load units with 40: far above any coalescence in the model's numerical range,
+    where ``gamma_div`` stays below ``~1e8``). A discriminant at its round-off floor is refused
+    (:class:`ConvergenceError`), never minimised."""
+    m = _dimensionless(pendulum)
+    load_max = 4.0 * max(1.0, pendulum.k1 / pendulum.k2)
     for _ in range(max_doublings):
-        roots = coalescence_loads(K, G1, M, load_max, n_scan)
+        roots = coalescence_loads(m.K, m.G_follower, m.M, load_max, n_scan, noise_floor=True)
         if len(roots) >= 2:
             if len(roots) > 2:
-                raise ConvergenceError(f"expected two coalescence loads, found {roots}")
+                raise ConvergenceError(f"expected two coalescence loads, found {roots} "
+                                       f"(in units of k2/l1)")
             return roots[0], roots[1]
         load_max *= 2.0
     raise ConvergenceError(
-        f"no flutter/divergence coalescence bracketed up to P = {load_max:g} N "
-        f"(flutter interval narrower than the scan step?)")
+        f"no flutter/divergence coalescence bracketed up to P = {load_max:g} k2/l1")
+
+
+def follower_critical_loads(pendulum: ZieglerPendulum, n_scan: int = 512,
+                            max_doublings: int = 40) -> tuple[float, float]:
+    """Flutter and divergence loads ``(P_flu, P_div)`` [N] under the follower load alone (H = 0).
+
+    Both are coalescence points of the eigenvalues ``Omega^2`` of ``(K + P dG/dP, M)`` (eq. 14),
+    found by :func:`~flutterfriction.analysis.stability.coalescence_loads` on the
+    dimensionless matrices (loads in units of ``k2/l1``)."""
+    g_flu, g_div = follower_critical_gammas(pendulum, n_scan, max_doublings)
+    u = pendulum.load_unit
+    return g_flu * u, g_div * u
+
+
+def dead_critical_etas(pendulum: ZieglerPendulum) -> tuple[float, float]:
+    """Dimensionless ``(eta_cr, eta_sup) = (H_cr, H_sup) l1/k2`` (see :func:`dead_critical_loads`).
+
+    The symmetric-definite pencil ``K a = eta B a`` (``B = -dG/dH``, diagonal positive) is
+    reduced to ``S = B^-1/2 K B^-1/2``. Its larger eigenvalue ``(tr S + sqrt((S11 - S22)^2 +
+    4 S12^2))/2`` adds positive terms only (no cancellation), and the smaller one is
+    ``det S / larger`` with ``det S = det K / det B``, where ``det K = k1 k2`` is taken from the
+    factorised stiffness ``K = T^T diag(k1, k2) T`` (elastic energy of the two hinges,
+    ``T = [[1, 0], [1, -1]]``): the difference ``(k1 + k2) k2 - k2^2`` is never formed, so
+    ``H_cr`` keeps full precision when ``k1 << k2`` (``eigh`` on ``K`` loses ``eps k2/k1``)."""
+    m = _dimensionless(pendulum)
+    b = np.sqrt(-np.diag(m.G_dead))  # B^(1/2), B diagonal
+    S = m.K / np.outer(b, b)
+    tr_half = 0.5 * (S[0, 0] + S[1, 1])
+    upper = tr_half + math.hypot(0.5 * (S[0, 0] - S[1, 1]), S[0, 1])
+    T = np.array([[1.0, 0.0], [1.0, -1.0]])
+    det_K = (pendulum.k1 / pendulum.k2) * np.linalg.det(T) ** 2  # det(T^T diag(k, 1) T)
+    det_S = det_K / float(np.prod(b**2))
+    lower = det_S / upper
+    if not (0 < lower <= upper and math.isfinite(upper)):
+        raise ConvergenceError(f"dead buckling loads not resolved: {lower!r}, {upper!r}")
+    return float(lower), float(upper)
 
 
 def dead_critical_loads(pendulum: ZieglerPendulum) -> tuple[float, float]:
     """Buckling loads ``(H_cr, H_sup)`` [N] under the dead load alone (P = 0).
 
-    Quasi-static bifurcations ``det(K + H dG/dH) = 0``, from the symmetric-definite generalised
-    eigenproblem ``K a = H diag(l1, l2) a``.
-    """
-    loads = static_bifurcation_loads(pendulum.stiffness_matrix(), pendulum.dead_load_matrix())
-    if loads.size != 2:
-        raise ConvergenceError(f"expected two buckling loads, found {loads}")
-    return float(loads[0]), float(loads[1])
+    Quasi-static bifurcations ``det(K + H dG/dH) = 0``, i.e. the symmetric-definite generalised
+    eigenproblem ``K a = H diag(l1, l2) a``, solved in dimensionless form without cancellation
+    (:func:`dead_critical_etas`)."""
+    e_cr, e_sup = dead_critical_etas(pendulum)
+    u = pendulum.load_unit
+    return e_cr * u, e_sup * u
 
 
 def is_damped(pendulum: ZieglerPendulum) -> bool:
@@ -86,31 +131,44 @@ def is_damped(pendulum: ZieglerPendulum) -> bool:
 
 
 def _damped_args(pendulum: ZieglerPendulum, dead: bool = False) -> tuple:
-    K1 = pendulum.dead_load_matrix() if dead else pendulum.follower_load_matrix()
-    return (pendulum.mass_matrix(), pendulum.viscosity_matrix(), pendulum.stiffness_matrix(), K1)
+    """``(M, C, K, dG)`` dimensionless (loads in units of k2/l1), range-checked."""
+    m = _dimensionless(pendulum)
+    return (m.M, m.C, m.K, m.G_dead if dead else m.G_follower)
+
+
+def _window(pendulum: ZieglerPendulum) -> float:
+    return 4.0 * max(1.0, pendulum.k1 / pendulum.k2)
 
 
 def damped_flutter_load(pendulum: ZieglerPendulum, method: str = "routh") -> float:
     """Flutter load [N] with viscous hinges (eq. 27): the follower load at which a pair of
     eigenvalues crosses the imaginary axis. ``method``: ``"routh"`` (exact Routh–Hurwitz on the
-    characteristic polynomial, the accurate one at small viscosity) or ``"eigenvalues"``."""
+    characteristic polynomial, the accurate one at small viscosity) or ``"eigenvalues"``.
+
+    As the viscosity vanishes the load tends to its eps -> 0 limit (the Ziegler paradox,
+    eq. 54): the exact Routh verdict resolves it down to the smallest relative viscosity the
+    model accepts. The eigenvalue crossing cannot resolve a growth rate below its round-off
+    (``~1e-16`` of the spectral scale) and refuses (:class:`ConvergenceError`) when the
+    spectrum's real parts are at round-off already at zero load."""
     return flutter_onset(*_damped_args(pendulum), method=method,
-                         load_max=4 * max(pendulum.k1, pendulum.k2) / pendulum.l1)
+                         load_max=_window(pendulum)) * pendulum.load_unit
 
 
 def damped_divergence_load(pendulum: ZieglerPendulum, method: str = "eigenvalues") -> float:
     """Divergence load [N] with viscous hinges: the follower load at which the unstable pair
     becomes real. ``method``: ``"eigenvalues"`` or ``"algebraic"`` (Routh/Sturm root counts and
-    the resultant of the characteristic polynomial)."""
-    start = damped_flutter_load(pendulum, "eigenvalues" if method == "eigenvalues" else "routh")
-    return divergence_onset(*_damped_args(pendulum), method=method, start=start,
-                            load_max=2 * start)
+    the resultant of the characteristic polynomial). The scan starts at the damped flutter load
+    from the exact Routh criterion (resolved at any viscosity the model accepts)."""
+    args = _damped_args(pendulum)
+    start = flutter_onset(*args, method="routh", load_max=_window(pendulum))
+    return divergence_onset(*args, method=method, start=start,
+                            load_max=2 * start) * pendulum.load_unit
 
 
 def damped_dead_load_onset(pendulum: ZieglerPendulum, method: str = "routh") -> float:
     """First dead load [N] at which the damped pendulum loses stability (it is H_cr: §2.2)."""
     return flutter_onset(*_damped_args(pendulum, dead=True), method=method,
-                         load_max=4 * max(pendulum.k1, pendulum.k2) / pendulum.l1)
+                         load_max=_window(pendulum)) * pendulum.load_unit
 
 
 def critical_loads(pendulum: ZieglerPendulum) -> CriticalLoads:

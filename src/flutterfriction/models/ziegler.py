@@ -15,8 +15,9 @@ eq. (10) gives ``-l1 (P + H)``, as eq. (13) has it.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, fields, replace
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -24,6 +25,48 @@ from numpy.typing import ArrayLike, NDArray
 from flutterfriction.errors import ParameterError, check_nonnegative, check_positive, check_real
 
 Matrix = NDArray[np.float64]
+
+#: Numerical range of the model (see :meth:`ZieglerPendulum.check_numerical_range`): the
+#: largest allowed decimal exponent of the ratios m1/m2, m3/m2, l1/l2 and k1/k2 (each within
+#: [10^-RATIO_DECADES, 10^RATIO_DECADES]). Where the digits come from: one ratio at a time from
+#: list (47), the undamped P_flu, P_div and the dead H_cr, H_sup against 60-digit mpmath err
+#: at most 3e-14 up to 1e6 (0.1-1.4 s each); beyond, the flutter interval (relative width
+#: ~ sqrt(k a)/beta1) falls between the scan's samples or under the discriminant's round-off
+#: floor (l1/l2 = 1e7, m1/m2 = 1e10 refused), and some ratio combinations at 1e6 are refused
+#: too (ConvergenceError, never a wrong load).
+RATIO_DECADES = 6
+#: Smallest relative determinant of the mass matrix, det M/(M11 M22) (1 for two decoupled
+#: inertias, 0 when all the mass sits at C so that both rods carry one point mass). Measured:
+#: at 1e-12 (m3 = 0, m1 d^2 = 1e-12 m2 l1^2) the flutter loads err by 1.8e-11 against mpmath;
+#: below, Cholesky's factor of M loses the small inertia (at 1e-18 M is not positive definite
+#: in floating point).
+MIN_RELATIVE_MASS_DET = 1e-12
+#: Smallest non-zero relative viscosity c_i/(l2 sqrt(k2 m2)): below 1e-150 the products of two
+#: of them in the characteristic polynomial (eq. 30, order eps^2) leave the normal doubles
+#: (1e-300 > 2.2e-308). Nothing is lost: the damped loads depend on eps through eps^2 (eq. 54,
+#: and the damped divergence load), so from eps ~ 1e-8 on they equal their eps -> 0 limits
+#: (the Ziegler paradox values) to double precision.
+MIN_RELATIVE_VISCOSITY = 1e-150
+#: Largest relative viscosity: the damped loads grow like eps^2 (eq. 54); at 1e3 (5e5 load
+#: units) the Routh and eigenvalue flutter loads still agree to 3e-10 and the damped
+#: divergence load by eigenvalues and by Routh/Sturm to 6e-10, in under 10 s (measured).
+MAX_RELATIVE_VISCOSITY = 1e3
+#: Load unit k2/l1 [N] kept inside [1e-250, 1e250] so that loads up to 1e12 units (more than
+#: the range above allows) stay normal finite doubles when converted to newtons.
+LOAD_UNIT_RANGE = (1e-250, 1e250)
+
+
+class DimensionlessMatrices(NamedTuple):
+    """The pendulum's matrices divided by their natural units (eqs. 17, 29, 32):
+    ``M/(m2 l2^2)``, ``C/(l2 sqrt(k2 m2))``, ``K/k2`` and the geometric matrix per unit
+    dimensionless load, ``dG/dP l1^-1`` (follower, gamma = P l1/k2) and ``dG/dH l1^-1``
+    (dead, eta = H l1/k2). Built from the groups only, so they cannot overflow."""
+
+    M: Matrix
+    C: Matrix
+    K: Matrix
+    G_follower: Matrix
+    G_dead: Matrix
 
 
 @dataclass(frozen=True)
@@ -112,6 +155,70 @@ class ZieglerPendulum:
 
     def as_dict(self) -> dict[str, float]:
         return {f.name: getattr(self, f.name) for f in fields(self)}
+
+    # ------------------------------------------------------------------ numerical range
+    def check_numerical_range(self) -> None:
+        """Refuse a pendulum whose loads double precision cannot resolve (ParameterError).
+
+        The allowed ranges (one line naming the parameter): ``m1/m2``, ``m3/m2`` (when
+        m3 > 0), ``l1/l2`` and ``k1/k2`` within ``[1e-6, 1e6]`` (:data:`RATIO_DECADES`); the
+        mass matrix's relative determinant ``>= 1e-12`` (:data:`MIN_RELATIVE_MASS_DET`);
+        relative viscosities ``c_i/(l2 sqrt(k2 m2))``
+        zero or within ``[1e-150, 1e3]``; the load unit ``k2/l1`` within ``[1e-250, 1e250] N``.
+        Ratios are compared through logarithms, so no quotient can overflow here.
+        """
+        lo, hi = -RATIO_DECADES, RATIO_DECADES
+        rng = f"[1e-{RATIO_DECADES}, 1e{RATIO_DECADES}]"
+        checks = [("m1, m2", "m1/m2", self.m1, self.m2), ("l1, l2", "l1/l2", self.l1, self.l2),
+                  ("k1, k2", "k1/k2", self.k1, self.k2)]
+        if self.m3 > 0:
+            checks.append(("m3, m2", "m3/m2", self.m3, self.m2))
+        for name, ratio, num, den in checks:
+            e = math.log10(num) - math.log10(den)
+            if not lo <= e <= hi:
+                raise ParameterError(
+                    f"{name}: the ratio {ratio} = 10^{e:.3g} is outside the model's numerical "
+                    f"range {rng} (double precision cannot resolve the loads beyond it)")
+        g = self.groups()  # safe now: every ratio is within 1e+-6 (y1, y2 are in [0, 1])
+        # det M by Cauchy-Binet over the point masses (no cancellation), over M11 M22.
+        y2c = (self.l2 - self.h) / self.l2
+        det = g.lam**2 * (g.y1**2 * g.rho1 + y2c**2 * g.rho2 + (g.y1 * g.y2) ** 2 * g.rho1 * g.rho2)
+        rel = det / (g.lam**2 * (g.rho1 * g.y1**2 + 1 + g.rho2) * (1 + g.rho2 * g.y2**2))
+        if not rel >= MIN_RELATIVE_MASS_DET:
+            raise ParameterError(
+                f"m1, d: the mass matrix is singular to double precision, det M/(M11 M22) = "
+                f"{rel:.3g} must be >= {MIN_RELATIVE_MASS_DET:g} (inertia m1 d^2 at D or "
+                f"m3 (l2 - h)^2 at E too small against m2 l1^2)")
+        log_unit = math.log10(self.k2) - math.log10(self.l1)
+        ulo, uhi = (math.log10(x) for x in LOAD_UNIT_RANGE)
+        if not ulo <= log_unit <= uhi:
+            raise ParameterError(
+                f"k2: the load unit k2/l1 = 1e{log_unit:.4g} N is outside [1e{ulo:.0f}, "
+                f"1e{uhi:.0f}] N (loads would overflow or leave the normal doubles)")
+        scale = (math.log10(self.l2) + 0.5 * (math.log10(self.k2) + math.log10(self.m2)))
+        for name in ("c1", "c2"):
+            c = getattr(self, name)
+            if c == 0:
+                continue
+            e = math.log10(c) - scale
+            if not math.log10(MIN_RELATIVE_VISCOSITY) <= e <= math.log10(MAX_RELATIVE_VISCOSITY):
+                raise ParameterError(
+                    f"{name}: the relative viscosity {name}/(l2 sqrt(k2 m2)) = 1e{e:.4g} must be "
+                    f"0 or within [{MIN_RELATIVE_VISCOSITY:g}, {MAX_RELATIVE_VISCOSITY:g}]")
+
+    def dimensionless_matrices(self) -> DimensionlessMatrices:
+        """Matrices in the units of eqs. (17), (29), (32) (see :class:`DimensionlessMatrices`).
+
+        Call :meth:`check_numerical_range` first: then every entry is a normal double."""
+        g = self.groups()
+        M = np.array([[g.lam**2 * (g.rho1 * g.y1**2 + 1 + g.rho2), g.lam * (1 + g.rho2 * g.y2)],
+                      [g.lam * (1 + g.rho2 * g.y2), 1 + g.rho2 * g.y2**2]])
+        unit = self.l2 * math.sqrt(self.k2) * math.sqrt(self.m2)
+        e1, e2 = self.c1 / unit, self.c2 / unit
+        C = np.array([[e1 + e2, -e2], [-e2, e2]])
+        K = np.array([[g.k + 1, -1.0], [-1.0, 1.0]])
+        return DimensionlessMatrices(M=M, C=C, K=K, G_follower=np.array([[-1.0, 1.0], [0, 0]]),
+                                     G_dead=np.array([[-1.0, 0.0], [0.0, -1.0 / g.lam]]))
 
     # ------------------------------------------------------------------ dimensionless groups
     def groups(self) -> PendulumGroups:
