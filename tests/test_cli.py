@@ -154,3 +154,240 @@ def test_acoustic_regime(capsys):
             "--Q", "0.6,-0.3,-0.3,0,0,-0.8", "--n", "1,0,0", "--g", "0.5", "--json"]
     assert main(args) == 0
     assert json.loads(capsys.readouterr().out)["regime"] == "flutter"
+
+
+# ---------------------------------------------------------------- issue 12: vectors, scale, beck
+ACOUSTIC = ["acoustic", "--lam", "1", "--mu", "1", "--Q=0.6,-0.3,-0.3,0,0,-0.8", "--n", "1,0,0",
+            "--g", "0.5", "--json"]
+
+
+def _run(capsys, args):
+    code = main(args)
+    captured = capsys.readouterr()
+    return code, captured.out, captured.err
+
+
+def _strict(text):
+    return json.loads(text, parse_constant=lambda c: pytest.fail(f"non-strict JSON: {c}"))
+
+
+@pytest.mark.parametrize("P", [
+    ["--P", "-1,0.5,0.5,0,0,0.8"], ["--P", "-1", "0.5", "0.5", "0", "0", "0.8"],
+    ["--P=-1,0.5,0.5,0,0,0.8"], ["--P", "-1e0", "5e-1,0.5", "0", "-0", "0.8"],
+    ["--P", "-1, 0.5, 0.5, 0, 0, 0.8"], ["--P=-1", "0.5", "0.5", "0", "0", "0.8"]])
+def test_negative_vector_entries_as_typed(capsys, P):
+    """Issue 12, item 4: a vector may start with a negative number, comma- or space-separated."""
+    code, out, _ = _run(capsys, [*ACOUSTIC, *P])
+    assert code == 0
+    code_ref, ref, _ = _run(capsys, [*ACOUSTIC, "--P=-1,0.5,0.5,0,0,0.8"])
+    assert _strict(out) == _strict(ref)
+
+
+def test_negative_vector_entries_every_vector_option(capsys):
+    args = ["acoustic", "--lam", "-0.1", "--mu", "1", "--P", "-1", "0.5", "0.5", "0", "0", "0.8",
+            "--Q", "-0.6", "0.3", "0.3", "0", "0", "-0.8", "--n", "-1", "-1e-1", "0", "--g",
+            "-2e-1", "--json"]
+    code, out, _ = _run(capsys, args)
+    assert code == 0
+    assert _strict(out)["notes"]  # n was normalised
+
+
+def test_positive_comma_form_still_works(capsys):
+    code, out, _ = _run(capsys, [*ACOUSTIC, "--P", "1,-0.5,-0.5,0,0,0.8"])
+    assert code == 0 and _strict(out)["regime"] == "flutter"
+
+
+@pytest.mark.parametrize(("P", "text"), [(["--P", "-1", "0.5"], "needs 6 numbers"),
+                                         (["--P", "-1,0.5,0.5,0,0,0.8,1"], "needs 6 numbers"),
+                                         (["--P", "nan,0,0,0,0,0"], "finite")])
+def test_vector_count_and_values_checked(capsys, P, text):
+    code, _, err = _run_exit(capsys, [*ACOUSTIC, *P])
+    assert code == 2 and "--P" in err and text in err and "Traceback" not in err
+
+
+def _run_exit(capsys, args):
+    try:
+        code = main(args)
+    except SystemExit as exc:  # argparse's errors
+        code = exc.code
+    captured = capsys.readouterr()
+    return code, captured.out, captured.err
+
+
+def test_help_says_how_to_give_vectors(capsys):
+    code, out, _ = _run_exit(capsys, ["acoustic", "--help"])
+    assert code == 0
+    assert "spaces or commas" in out and "--P -1 0.5 0.5 0 0 0.8" in " ".join(out.split())
+
+
+def test_acoustic_huge_direction_is_normalised(capsys):
+    """Issue 12, item 5: |n| overflowed and n became zero (g_loc 0, "stable")."""
+    base = [a for a in ACOUSTIC if a not in ("--n", "1,0,0")]
+    P = "--P=1,-0.5,-0.5,0,0,0.8"
+    code, out, _ = _run(capsys, [*base, P, "--n", "1e300,1e300,0"])
+    assert code == 0
+    huge = _strict(out)
+    code, out, _ = _run(capsys, [*base, P, "--n", "1,1,0"])
+    unit = _strict(out)
+    assert huge["g_localization"] == pytest.approx(unit["g_localization"], rel=1e-14)
+    assert huge["g_localization"] != 0
+    assert _flat(huge["eigenvalues"]) == pytest.approx(_flat(unit["eigenvalues"]), rel=1e-14)
+
+
+def _flat(pairs):
+    return [x for pair in pairs for x in pair]
+
+
+def test_acoustic_tiny_g_keeps_the_finite_eigenvalue(capsys):
+    """Issue 12: at g = 1e-100 the finite root (33 here) came out as 0 (cancellation)."""
+    args = [a if a != "0.5" else "1e-100" for a in ACOUSTIC]
+    code, out, _ = _run(capsys, [*args, "--P=1,-0.5,-0.5,0,0,0.8"])
+    assert code == 0
+    eta = sorted(re for re, _ in _strict(out)["eigenvalues"])
+    assert eta[0] == pytest.approx(1.0) and eta[1] == pytest.approx(33.0, rel=1e-12)
+    assert eta[2] == pytest.approx(1.6e99, rel=1e-12)
+
+
+@pytest.mark.parametrize(("over", "name"), [
+    ({"--g": "1e-300"}, "--g"), ({"--g": "1e-320"}, "--g"), ({"--lam": "1e300"}, "--lam"),
+    ({"--mu": "1e300"}, "--mu"), ({"--mu": "1e-300"}, "--lam"), ({"--mu": "1e-320"}, "--mu"),
+    ({"--lam": "-1e300"}, "--lam"), ({"--mu": "2e300", "--lam": "0"}, "--mu"),
+    ({"--P": "1e300,-0.5e300,-0.5e300,0,0,0.8e300"}, "--P"),
+    ({"--P": "1e-200,0,0,0,0,0", "--Q": "1e-200,0,0,0,0,0"}, "--Q"),
+])
+def test_acoustic_out_of_range_refused(capsys, over, name):
+    """Issue 12: tracebacks, NaN and -Infinity next to "stable" before; now one line, exit 2."""
+    args = {"--lam": "1", "--mu": "1", "--P": "1,-0.5,-0.5,0,0,0.8",
+            "--Q": "0.6,-0.3,-0.3,0,0,-0.8", "--n": "1,0,0", "--g": "0.5"} | over
+    argv = ["acoustic", *[f"{k}={v}" for k, v in args.items()], "--json"]
+    code, out, err = _run_exit(capsys, argv)
+    assert code == 2 and out == ""
+    assert name in err and "Traceback" not in err and len(err.strip().splitlines()) == 1
+
+
+@pytest.mark.parametrize("scale", [1e-250, 1e-30, 1e30, 1e250])
+def test_acoustic_scale_invariance(capsys, scale):
+    """lam, mu and g times s: moduli and eigenvalues times s; P times s, g times s: moduli times
+    s, eigenvalues unchanged (eqs. 179-188 are homogeneous)."""
+    P, Q, n = "1,-0.5,-0.5,0,0,0.8", "0.6,-0.3,-0.3,0,0,-0.8", "0.9,0.1,-0.2"
+
+    def run(lam, mu, P, g):
+        code, out, _ = _run(capsys, ["acoustic", f"--lam={lam!r}", f"--mu={mu!r}", f"--P={P}",
+                                     f"--Q={Q}", f"--n={n}", f"--g={g!r}", "--json"])
+        assert code == 0
+        return _strict(out)
+
+    ref = run(1.0, 1.0, P, 0.5)
+    big = run(scale, scale, P, 0.5 * scale)
+    assert big["g_localization"] == pytest.approx(scale * ref["g_localization"], rel=1e-12)
+    assert big["flutter_interval"] == pytest.approx([scale * g for g in ref["flutter_interval"]],
+                                                    rel=1e-12)
+    assert _flat(big["eigenvalues"]) == pytest.approx(
+        [scale * x for x in _flat(ref["eigenvalues"])], rel=1e-12)
+    assert big["regime"] == ref["regime"]
+    Ps = ",".join(repr(scale * float(x)) for x in P.split(","))
+    bigP = run(1.0, 1.0, Ps, 0.5 * scale)
+    assert bigP["g_localization"] == pytest.approx(scale * ref["g_localization"], rel=1e-12)
+    assert _flat(bigP["eigenvalues"]) == pytest.approx(_flat(ref["eigenvalues"]), rel=1e-12)
+
+
+def test_acoustic_agrees_with_the_tensor(capsys):
+    """The scaled closed forms against numpy's eigenvalues of A(n), eq. (179)."""
+    import numpy as np
+
+    from flutterfriction.models import solid as so
+
+    rng = np.random.default_rng(12)
+    for _ in range(20):
+        mu = float(rng.uniform(0.2, 3))
+        lam = float(mu * rng.uniform(-0.6, 4))
+        P, Q, n = rng.normal(size=6), rng.normal(size=6), rng.normal(size=3)
+        g = float(rng.choice([-1, 1]) * 10 ** rng.uniform(-2, 2))
+        code, out, _ = _run(capsys, ["acoustic", f"--lam={lam!r}", f"--mu={mu!r}",
+                                     "--P=" + ",".join(map(str, P)),
+                                     "--Q=" + ",".join(map(str, Q)),
+                                     "--n=" + ",".join(map(str, n)), f"--g={g!r}", "--json"])
+        assert code == 0
+        res = _strict(out)
+        nu = n / np.linalg.norm(n)
+        A = so.acoustic_tensor_isotropic(lam, mu, so.voigt_to_tensor(P), so.voigt_to_tensor(Q),
+                                         g, nu)
+        expected = np.sort_complex(np.linalg.eigvals(A))
+        got = np.sort_complex(np.array([complex(a, b) for a, b in res["eigenvalues"]]))
+        assert np.abs(got - expected).max() <= 1e-10 * np.abs(expected).max()
+        assert res["g_localization"] == pytest.approx(so.localization_modulus_isotropic(
+            lam, mu, so.voigt_to_tensor(P), so.voigt_to_tensor(Q), nu), rel=1e-9, abs=1e-12)
+
+
+def test_non_finite_result_is_an_error_not_printed(capsys, monkeypatch):
+    """Strict JSON: a NaN reaching the output is reported (exit 1), never printed."""
+    import flutterfriction.cli as cli
+
+    monkeypatch.setattr(cli, "_acoustic", lambda args: {"g_localization": float("nan")})
+    code, out, err = _run(capsys, [*ACOUSTIC, "--P=1,0,0,0,0,0"])
+    assert code == 1 and out == "" and "not finite" in err and "g_localization" in err
+    with pytest.raises(ValueError):
+        cli._print({"x": float("inf")}, as_json=True)
+
+
+@pytest.mark.parametrize(("args", "name", "text"), [
+    (["--D", "0"], "--D", "> 0"), (["--P", "1e6"], "--P", "flutter load"),
+    (["--elements", "200"], "--elements", "1..16"), (["--P", "2"], "--P", "decays"),
+    (["--t-max", "1e9"], "--t-max", "time scales"), (["--length", "1e300"], "--length", "1e+06"),
+    (["--D", "1e3"], "--D", "eta"), (["--tip-mass", "1e300"], "--tip-mass", "100"),
+    (["--kappa", "-1e-3"], "--kappa", ">= 0"), (["--B", "1e-300"], "--B", "1e-12"),
+    (["--P", "3.0"], "--P", "2.96454"), (["--P", "3.3"], "--P", "--t-max >="),
+])
+def test_limit_cycle_beck_refused_up_front(capsys, args, name, text):
+    """Issue 12: --D 0, --P 1e6, --elements 200 hung; --P 3.0 said the motion decays (it grows,
+    slowly). Now refused at once, naming the parameter and its range."""
+    code, out, err = _run_exit(capsys, ["limit-cycle", "beck", *args, "--json"])
+    assert code == 2 and out == ""
+    assert name in err and text in err and "Traceback" not in err
+    assert len(err.strip().splitlines()) == 1
+
+
+def _fake_cycle(monkeypatch, calls, fail=False):
+    import flutterfriction.analysis.rod_dynamics as rd
+    from flutterfriction.errors import ConvergenceError
+
+    class Cycle:
+        transient_s, wall_s = 1.0, 0.1
+
+        def as_dict(self):
+            return {"tip_amplitude_m": 0.25, "period_s": 0.136}
+
+    def fake(rod, P, **kw):
+        calls.append(kw)
+        kw["progress"]("rod, 4 elements, P = 5.5 N: t = 0.385 s, tail 1e-3")
+        if fail:
+            raise ConvergenceError("no rod limit cycle converged to 1e-05 within 31 s (P = 5.5 N;"
+                                   " below the flutter load the motion decays)")
+        return Cycle()
+
+    monkeypatch.setattr(rd, "beck_limit_cycle", fake)
+
+
+def test_limit_cycle_beck_progress_on_stderr(capsys, monkeypatch):
+    """Issue 12: progress (what is integrated, simulated time, convergence) on stderr; stdout
+    stays one strict JSON object; --quiet silences it."""
+    calls = []
+    _fake_cycle(monkeypatch, calls)
+    code, out, err = _run(capsys, ["limit-cycle", "beck", "--json"])
+    assert code == 0
+    res = _strict(out)
+    assert res["flutter_load_damped_N"] == pytest.approx(2.9645354, rel=1e-6)
+    assert res["tip_amplitude_m"] == 0.25 and res["t_max_s"] == pytest.approx(31.419, rel=1e-4)
+    assert "flutter load" in err and "t = 0.385 s" in err and "converged" in err
+    assert calls[0]["t_max"] == pytest.approx(res["t_max_s"]) and calls[0]["tol"] == 1e-5
+    code, out, err = _run(capsys, ["limit-cycle", "beck", "--quiet", "--json"])
+    assert code == 0 and err == "" and _strict(out)["period_s"] == 0.136
+
+
+def test_limit_cycle_beck_timeout_message_is_true(capsys, monkeypatch):
+    """Above the flutter load the motion does not decay: the message says the approach is slow
+    and what to give instead."""
+    _fake_cycle(monkeypatch, [], fail=True)
+    code, out, err = _run(capsys, ["limit-cycle", "beck", "--quiet", "--P", "4.5", "--json"])
+    assert code == 1 and out == ""
+    assert "decays" not in err and "--t-max" in err and "above the damped flutter load" in err

@@ -208,10 +208,6 @@ def _as_float(me: tuple[float, int]) -> float:
         return math.copysign(math.inf, m)
 
 
-def _in_range(x: float) -> bool:
-    return x == 0.0 or RANGE_MIN <= abs(x) <= RANGE_MAX
-
-
 def _quadratic_roots(b: float, c: float) -> tuple[complex, complex]:
     """Roots of ``eta^2 - b eta + c`` without overflow (scaled) or cancellation (the smaller
     real root from the product ``c``), ascending (by imaginary part when complex)."""
@@ -294,8 +290,8 @@ def isotropic_acoustic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike, n: Arr
     sP, sQ = (float(np.abs(arrays[k]).max()) for k in ("P", "Q"))
     Ph = voigt_to_tensor(arrays["P"] / sP) if sP > 0 else np.zeros((3, 3))
     Qh = voigt_to_tensor(arrays["Q"] / sQ) if sQ > 0 else np.zeros((3, 3))
-    S = _as_float(_mul(mu, sP, sQ))
-    if not _in_range(S):
+    S = _as_float(_mul(mu, sP, sQ))  # 0 only when P or Q is 0 (no coupling): allowed
+    if sP > 0 and sQ > 0 and not RANGE_MIN <= S <= RANGE_MAX:
         raise ParameterError(
             f"{nm['P']}, {nm['Q']}, {nm['mu']}: the moduli scale as mu max|P| max|Q| = "
             f"{_fmt(_mul(mu, sP, sQ))}, which must be 0 or in [{RANGE_MIN:g}, {RANGE_MAX:g}]")
