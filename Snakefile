@@ -1,13 +1,22 @@
 # flutterfriction: `snakemake -j2` rebuilds every result into results/ and ends with the
 # tolerance check of every number the chapter quotes (results/checks/summary.md).
-from snakemake.utils import min_version, validate
+import sys
+
+from snakemake.utils import min_version
+
+from flutterfriction.config import validate_config
 
 min_version("8.0")
+
 
 configfile: "workflow/config.yaml"
 
 
-validate(config, "workflow/schemas/config.schema.yaml")
+# The whole configuration, every preset as it resolves, before the first job: one line per
+# problem naming the key (the schema, the pendulum and rod geometry, finite numbers, ranges).
+_problems = validate_config(config, "workflow/schemas/config.schema.yaml")
+if _problems:
+    sys.exit("invalid configuration:\n  " + "\n  ".join(_problems))
 
 
 include: "workflow/rules/common.smk"

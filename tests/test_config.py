@@ -92,3 +92,53 @@ def test_preset_overrides_must_name_real_scenes_and_keys(tmp_path, config, over,
     path.write_text(yaml.safe_dump(bad))
     with pytest.raises(ParameterError, match=match):
         load_config(path)
+
+
+SCHEMA_PATH = ROOT / "workflow" / "schemas" / "config.schema.yaml"
+
+
+def _with(config, path, value):
+    bad = copy.deepcopy(config)
+    node = bad
+    for key in path[:-1]:
+        node = node[key]
+    node[path[-1]] = value
+    return bad
+
+
+def test_validate_config_accepts_the_shipped_config(config):
+    from flutterfriction.config import validate_config
+
+    assert validate_config(config, SCHEMA_PATH) == []
+
+
+@pytest.mark.parametrize(("path", "value", "match"), [
+    # a misspelled per-scene preset override (was dropped silently: paper settings in quick)
+    (("fidelity_presets", "quick", "scenes", "beck_hopf", "n_elemnts"), 3, "n_elemnts"),
+    # a preset override outside the scene's range (checked as the preset resolves it)
+    (("fidelity_presets", "quick", "scenes", "beck_hopf", "n_elements"), -3,
+     "fidelity quick.*beck_hopf.n_elements"),
+    (("fidelity_presets", "quick", "floquet_evry"), 3, "floquet_evry"),
+    # cross-field geometry, caught before any job
+    (("scenes", "fig02", "pendulum", "d"), 5.0, "fig02.pendulum: d must lie on rod AB"),
+    (("scenes", "fig02", "pendulum", "h"), 5.0, "fig02.pendulum: h"),
+    (("scenes", "acoustic_eigenvalues", "g_min"), 1e9, "g_min: must be < g_max"),
+    # YAML's .nan and .inf pass a JSON schema's 'number'
+    (("scenes", "fig02", "pendulum", "m1"), float("nan"), "m1: must be a finite number"),
+    (("scenes", "beck_hopf", "A_max"), float("inf"), "A_max"),
+    (("sweep_parts",), 0, "sweep_parts"),
+])
+def test_validate_config_names_the_key(config, path, value, match):
+    from flutterfriction.config import validate_config
+
+    problems = validate_config(_with(config, path, value), SCHEMA_PATH)
+    assert problems and any(__import__("re").search(match, p) for p in problems), problems
+    # one short line per problem, never a schema dump
+    assert all("\n" not in p and len(p) < 400 for p in problems)
+
+
+def test_unknown_key_is_one_line(config):
+    from flutterfriction.config import validate_config
+
+    problems = validate_config(_with(config, ("scenes", "eq25", "n_pionts"), 3), SCHEMA_PATH)
+    assert len(problems) == 1 and "n_pionts" in problems[0]

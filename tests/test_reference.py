@@ -108,3 +108,26 @@ def test_quick_block_needs_its_why(tmp_path):
     path.write_text(yaml.safe_dump({"quantities": [entry], "errata": []}))
     with pytest.raises(ValueError, match="quick"):
         load_reference(path)
+
+
+@pytest.mark.parametrize(("edit", "match"), [
+    (lambda r: r["quantities"][3].update(tolerence=r["quantities"][3].pop("tolerance")),
+     r"quantities\[3\] \(id \w+\): unknown key\(s\) \['tolerence'\]"),
+    (lambda r: r["quantities"][5]["tolerance"].update(atol=float("inf")),
+     r"quantities\[5\] \(id \w+\): tolerance: atol and rtol must be finite"),
+    (lambda r: r["quantities"][5]["tolerance"].update(atol=0.0, rtol=0.0),
+     "needs atol > 0 or rtol > 0"),
+    (lambda r: r["errata"][0].pop("key"), r"errata\[0\] \(id erratum_eq1\w+\): 'key'"),
+    (lambda r: r["quantities"].append(dict(r["quantities"][0])), "duplicate id"),
+])
+def test_reference_file_errors_name_the_entry(reference, edit, match):
+    import copy
+    import re
+
+    from flutterfriction.reference import reference_problems
+
+    assert reference_problems(reference) == []
+    bad = copy.deepcopy(reference)
+    edit(bad)
+    problems = reference_problems(bad)
+    assert any(re.search(match, p) for p in problems), problems

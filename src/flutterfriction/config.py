@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import copy
+import math
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
@@ -68,3 +71,112 @@ def _canonical(value: Any) -> Any:
     if isinstance(value, list):
         return [_canonical(v) for v in value]
     return value
+
+
+# --------------------------------------------------------------------------- validation
+def _where(path) -> str:
+    return ".".join(str(p) for p in path) or "(top level)"
+
+
+def _schema_problems(config: dict[str, Any], schema: dict[str, Any], prefix: str) -> list[str]:
+    """One short line per schema violation (the offending instance is not dumped: a whole
+    scene section would print hundreds of lines)."""
+    import jsonschema
+
+    validator = jsonschema.Draft202012Validator(schema)
+    lines = []
+    for err in sorted(validator.iter_errors(config), key=lambda e: list(map(str, e.path))):
+        if err.validator == "additionalProperties":
+            allowed = sorted(err.schema.get("properties", {}))
+            extra = sorted(set(err.instance) - set(allowed))
+            message = f"unknown key(s) {extra}; allowed: {allowed}"
+        elif err.validator in ("required", "enum", "minimum", "maximum", "exclusiveMinimum",
+                               "exclusiveMaximum", "minItems", "maxItems", "type"):
+            message = err.message
+        else:
+            message = f"invalid value ({err.validator} {err.validator_value!r})"
+        if len(message) > 300:
+            message = message[:300] + " ..."
+        lines.append(f"{prefix}{_where(err.path)}: {message}")
+    return lines
+
+
+def _walk(value: Any, path: tuple = ()) -> Iterator[tuple[tuple, Any]]:
+    yield path, value
+    if isinstance(value, dict):
+        for k, v in value.items():
+            yield from _walk(v, (*path, k))
+    elif isinstance(value, list):
+        for i, v in enumerate(value):
+            yield from _walk(v, (*path, i))
+
+
+def _physical_problems(scene: str, params: dict[str, Any], prefix: str) -> list[str]:
+    """Constraints a JSON schema cannot state: the geometry of a pendulum (d <= l1, h <= l2)
+    and a rod, non-finite numbers, and ranges whose ends must be ordered."""
+    from flutterfriction.models.rod import Rod
+    from flutterfriction.models.ziegler import ZieglerPendulum
+
+    lines = []
+    for path, value in _walk(params):
+        where = f"{prefix}scenes.{scene}.{_where(path)}" if path else f"{prefix}scenes.{scene}"
+        if isinstance(value, float) and not math.isfinite(value):
+            lines.append(f"{where}: must be a finite number, got {value}")
+            continue
+        key = path[-1] if path else ""
+        try:
+            if key in ("pendulum", "cycle_pendulum") and isinstance(value, dict):
+                ZieglerPendulum(**value)
+            elif key == "rod" and isinstance(value, dict):
+                Rod(**value)
+        except (ParameterError, TypeError) as exc:
+            lines.append(f"{where}: {exc}")
+        if isinstance(key, str) and (key.endswith("_range") or key == "bracket") \
+                and isinstance(value, list) and len(value) == 2 \
+                and all(isinstance(v, int | float) for v in value) and not value[0] < value[1]:
+            lines.append(f"{where}: the range must be increasing, got {value}")
+        if isinstance(key, str) and key.endswith("_min") and isinstance(value, int | float):
+            upper = _lookup(params, (*path[:-1], key[:-4] + "_max"))
+            if isinstance(upper, int | float) and not value < upper:
+                lines.append(f"{where}: must be < {key[:-4]}_max = {upper}, got {value}")
+    return lines
+
+
+def _lookup(tree: Any, path: tuple) -> Any:
+    for p in path:
+        if not isinstance(tree, dict) or p not in tree:
+            return None
+        tree = tree[p]
+    return tree
+
+
+def validate_config(config: dict[str, Any], schema_path: str | Path) -> list[str]:
+    """Every problem of a workflow configuration, one line each, before any job runs: the JSON
+    schema on the file as written; unknown top-level keys and preset overrides naming unknown
+    scenes or keys; then, for *every* fidelity preset, the schema and the physical constraints
+    (pendulum and rod geometry, finite numbers, ordered ranges) on each scene's parameters as
+    that preset resolves them, so a misspelled or out-of-range override fails whichever preset
+    is active. An empty list means valid."""
+    with open(schema_path, encoding="utf-8") as fh:
+        schema = yaml.safe_load(fh)
+    problems = _schema_problems(config, schema, "config: ")
+    for path, value in _walk(config):
+        if isinstance(value, float) and not math.isfinite(value):
+            problems.append(f"config: {_where(path)}: must be a finite number, got {value}")
+    if problems:
+        return problems
+    try:
+        _check_preset_scenes(config)
+    except ParameterError as exc:
+        return [f"config: {exc}"]
+    for fidelity in sorted(config.get("fidelity_presets", {})):
+        resolved = copy.deepcopy(config)
+        resolved["fidelity"] = fidelity
+        resolved["scenes"] = {s: scene_params(resolved, s) for s in config["scenes"]}
+        prefix = f"config (fidelity {fidelity}): "
+        lines = _schema_problems(resolved, schema, prefix)
+        for scene, params in resolved["scenes"].items():
+            lines += _physical_problems(scene, params, prefix)
+        seen = {p.split(": ", 1)[1] for p in problems}
+        problems += [line for line in lines if line.split(": ", 1)[1] not in seen]
+    return problems

@@ -22,6 +22,7 @@ the printed form does not.
 from __future__ import annotations
 
 import json
+import math
 from collections.abc import Mapping
 from dataclasses import asdict, dataclass
 from pathlib import Path
@@ -29,6 +30,7 @@ from typing import Any
 
 import yaml
 
+from flutterfriction.errors import ParameterError
 from flutterfriction.io import write_json, write_text
 
 
@@ -65,20 +67,70 @@ def normalised_error(x: float, ref: float, tol: Mapping[str, float]) -> float:
     return abs(float(x) - float(ref)) / scale
 
 
+REFERENCE_SCHEMA = Path(__file__).resolve().parents[2] / "workflow" / "schemas" / \
+    "reference.schema.yaml"
+
+
+def reference_problems(ref: Any, schema_path: str | Path = REFERENCE_SCHEMA) -> list[str]:
+    """Every problem of a reference file, one line each naming the entry by its id: the schema
+    (required keys, no unknown or misspelled key, tolerances with atol, rtol, why), finite
+    non-negative tolerances that are not both zero, unique ids."""
+    import jsonschema
+
+    with open(schema_path, encoding="utf-8") as fh:
+        schema = yaml.safe_load(fh)
+    if not isinstance(ref, dict):
+        return ["the reference file must be a mapping with 'quantities' and 'errata'"]
+
+    def name(path) -> str:
+        path = list(path)
+        if len(path) >= 2 and path[0] in ("quantities", "errata") and isinstance(path[1], int):
+            entries = ref.get(path[0]) or []
+            entry = entries[path[1]] if path[1] < len(entries) else {}
+            ident = entry.get("id", "?") if isinstance(entry, dict) else "?"
+            rest = ".".join(map(str, path[2:]))
+            return f"{path[0]}[{path[1]}] (id {ident})" + (f": {rest}" if rest else "")
+        return ".".join(map(str, path)) or "(top level)"
+
+    problems = []
+    for err in jsonschema.Draft202012Validator(schema).iter_errors(ref):
+        if err.validator == "additionalProperties":
+            extra = sorted(set(err.instance) - set(err.schema.get("properties", {})))
+            message = f"unknown key(s) {extra}; allowed: {sorted(err.schema['properties'])}"
+        else:
+            message = err.message if len(err.message) < 200 else f"invalid ({err.validator})"
+        problems.append(f"{name(err.path)}: {message}")
+    seen: set[str] = set()
+    for section in ("quantities", "errata"):
+        for i, entry in enumerate(ref.get(section) or []):
+            if not isinstance(entry, dict):
+                continue
+            if entry.get("id") in seen:
+                problems.append(f"{name((section, i))}: duplicate id")
+            seen.add(entry.get("id"))
+            blocks = [("tolerance", entry.get("tolerance")), ("agreement", entry.get("agreement"))]
+            blocks += [(f"quick.{k}", v) for k, v in (entry.get("quick") or {}).items()]
+            for label, tol in blocks:
+                if not isinstance(tol, dict):
+                    continue
+                values = [tol.get("atol"), tol.get("rtol")]
+                if not all(isinstance(v, int | float) and math.isfinite(v) for v in values):
+                    problems.append(f"{name((section, i))}: {label}: atol and rtol must be "
+                                    f"finite numbers (an infinite tolerance passes anything), "
+                                    f"got {values}")
+                elif not (values[0] > 0 or values[1] > 0):
+                    problems.append(f"{name((section, i))}: {label}: needs atol > 0 or rtol > 0")
+    return problems
+
+
 def load_reference(path: str | Path) -> dict[str, Any]:
+    """Read and validate a reference file (see :func:`reference_problems`); raises
+    :class:`ParameterError` listing every problem, one line each."""
     with open(path, encoding="utf-8") as fh:
         ref = yaml.safe_load(fh)
-    for section in ("quantities", "errata"):
-        for entry in ref.get(section, []):
-            for key in ("id", "source", "scene", "key"):
-                if key not in entry:
-                    raise ValueError(f"reference entry {entry.get('id', '?')} lacks '{key}'")
-            quick = entry.get("quick")
-            if quick is not None and (not isinstance(quick, dict)
-                                      or set(quick) - {"tolerance", "agreement"}
-                                      or not all("why" in t for t in quick.values())):
-                raise ValueError(f"reference entry {entry['id']}: 'quick' may hold only "
-                                     "'tolerance' and 'agreement', each with its 'why'")
+    problems = reference_problems(ref)
+    if problems:
+        raise ParameterError(f"{path}: invalid reference file:\n  " + "\n  ".join(problems))
     return ref
 
 

@@ -115,10 +115,15 @@ class NonlinearRod:
                 full.sum(axis=0).reshape(f.shape[1:]))
 
     def kinematics(self, q: NDArray):
+        """``(theta, t, G, G_tip)`` at the quadrature points for nodal rotations ``q`` of shape
+        ``(n_dof,)`` or ``(n_dof, m)`` (``m`` states at once, e.g. the complex steps of a
+        Jacobian): shapes ``(n_q, *b)``, ``(n_q, *b, 2)``, ``(n_q, *b, 2, n_dof)``,
+        ``(*b, 2, n_dof)`` with ``b = q.shape[1:]``."""
         theta = self.phi @ q
         t = np.stack([np.cos(theta), np.sin(theta)], axis=-1)
         tp = np.stack([-np.sin(theta), np.cos(theta)], axis=-1)
-        G, G_tip = self._cumint(tp[:, :, None] * self.phi[:, None, :])
+        phi = self.phi.reshape(self.phi.shape[0], *([1] * (q.ndim - 1)), 1, self.n_dof)
+        G, G_tip = self._cumint(tp[..., None] * phi)
         return theta, t, G, G_tip
 
     def tip_position(self, q: NDArray) -> NDArray:
@@ -127,30 +132,58 @@ class NonlinearRod:
         return x_tip
 
     # ------------------------------------------------------------------ equations of motion
+    def _flat(self, G: NDArray, weights: NDArray) -> NDArray:
+        """``G`` (n_q, *b, 2, n) weighted by ``weights`` (n_q,) as ``(*b, 2 n_q, n)``."""
+        Gw = G * weights.reshape(-1, *([1] * (G.ndim - 1)))
+        if G.ndim > 3:  # moveaxis costs ~10 us of Python: only where there is a batch axis
+            Gw = np.moveaxis(Gw, 0, -3)
+        return Gw.reshape(*Gw.shape[:-3], -1, self.n_dof)
+
     def mass_matrix(self, G: NDArray, G_tip: NDArray) -> NDArray:
         r = self.rod
-        A = (G * self.sqrt_w[:, None, None]).reshape(-1, self.n_dof)
-        return r.rho * (A.T @ A) + r.tip_mass * (G_tip.T @ G_tip)
+        A = self._flat(G, self.sqrt_w)
+        return r.rho * (np.swapaxes(A, -1, -2) @ A) + r.tip_mass * (
+            np.swapaxes(G_tip, -1, -2) @ G_tip)
 
-    def dynamic_terms(self, q: NDArray, v: NDArray, P: float) -> tuple[NDArray, NDArray]:
-        """``(M(q), g(q, v))`` with ``M(q) q_ddot + g = 0``: ``g = h + K q + C v - F``."""
+    def dynamic_terms(self, q: NDArray, v: NDArray, P) -> tuple[NDArray, NDArray]:
+        """``(M(q), g(q, v))`` with ``M(q) q_ddot + g = 0``: ``g = h + K q + C v - F``.
+
+        ``q``, ``v`` of shape ``(n_dof,)`` or ``(n_dof, m)`` (``m`` states at once; ``P`` a
+        number or ``m`` loads); ``M`` has shape ``(*b, n, n)`` and ``g`` ``(*b, n)``."""
         r = self.rod
         theta, t, G, G_tip = self.kinematics(q)
         M = self.mass_matrix(G, G_tip)
         theta_dot = self.phi @ v
-        a_c, a_c_tip = self._cumint(-t * theta_dot[:, None] ** 2)
-        Gw = (G * self.w[:, None, None]).reshape(-1, self.n_dof)
-        h = r.rho * (Gw.T @ a_c.reshape(-1)) + r.tip_mass * (G_tip.T @ a_c_tip)
-        F = -P * (self.w * np.sin(q[-1] - theta)) @ self.phi
+        a_c, a_c_tip = self._cumint(-t * theta_dot[..., None] ** 2)
+        Gw = self._flat(G, self.w)
+        GwT = np.swapaxes(Gw, -1, -2)
+        batched = q.ndim > 1
+        a_flat = (np.moveaxis(a_c, 0, -2) if batched else a_c).reshape(*a_c.shape[1:-1], -1)
+        h = r.rho * (GwT @ a_flat[..., None])[..., 0]
+        if r.tip_mass > 0:
+            h = h + r.tip_mass * (np.swapaxes(G_tip, -1, -2) @ a_c_tip[..., None])[..., 0]
+        F = -P * (self.phi.T @ (self.w.reshape(-1, *([1] * (q.ndim - 1)))
+                                * np.sin(q[-1] - theta)))
+        Kq = self.K @ q + self.C @ v
+        if batched:
+            F, Kq = F.T, Kq.T
         if r.kappa > 0:
-            F = F - r.kappa * (Gw.T @ (G.reshape(-1, self.n_dof) @ v))
-        return M, h + self.K @ q + self.C @ v - F
+            xdot = (G * (v.T if batched else v)[..., None, :]).sum(axis=-1)  # (n_q, *b, 2)
+            x_flat = (np.moveaxis(xdot, 0, -2) if batched else xdot).reshape(
+                *xdot.shape[1:-1], -1)
+            F = F - r.kappa * (GwT @ x_flat[..., None])[..., 0]
+        return M, h + Kq - F
 
-    def accelerations(self, q: NDArray, v: NDArray, P: float) -> NDArray:
+    def accelerations(self, q: NDArray, v: NDArray, P) -> NDArray:
+        """``q_ddot`` of the equations of motion, same shape as ``q``."""
         M, g = self.dynamic_terms(q, v, P)
-        return np.linalg.solve(M, -g)
+        if q.ndim == 1:
+            return np.linalg.solve(M, -g)
+        return np.linalg.solve(M, -g[..., None])[..., 0].T
 
-    def rhs(self, t: float, y: NDArray, P: float) -> NDArray:
+    def rhs(self, t: float, y: NDArray, P) -> NDArray:
+        """First-order form ``y' = (v, q_ddot)``; ``y`` of shape ``(2 n_dof,)`` or
+        ``(2 n_dof, m)`` (then ``P`` a number or ``m`` loads)."""
         n = self.n_dof
         return np.concatenate([y[n:], self.accelerations(y[:n], y[n:], P)])
 

@@ -201,9 +201,9 @@ def plot_beck_hopf(data: dict[str, Any]) -> Figure:
     ax1.set_ylabel("tip amplitude A [m]")
     ax1.legend(fontsize=7)
     fl = sorted(data["floquet"].values(), key=lambda v: v["A"])
-    ax2.plot([v["A"] for v in fl], [1 - v["multiplier"] for v in fl], "o", ms=6,
-             label="1 - |Floquet multiplier| (monodromy)")
-    ax2.plot([v["A"] for v in fl], [1 - v["normal_form"] for v in fl], "x", ms=8,
+    ax2.plot([v["A"] for v in fl], [v["slow_decay"] for v in fl], "o", ms=6,
+             label=r"$1 - \mu$, slow Floquet multiplier (return map)")
+    ax2.plot([v["A"] for v in fl], [v["normal_form_decay"] for v in fl], "x", ms=8,
              label=r"normal form: $1 - e^{-2\sigma(P) T}$")
     ax2.set_yscale("log")
     ax2.set_xlabel("tip amplitude A [m]")

@@ -524,48 +524,56 @@ def beck_linearisation(params: dict[str, Any]) -> dict[str, Any]:
 def beck_hopf(params: dict[str, Any]) -> dict[str, Any]:
     """Beyond the chapter: the nature of the rod's Hopf bifurcation (list 119, Kelvin–Voigt).
     The branch of limit cycles born at the damped flutter load, by periodic-orbit continuation
-    in the tip amplitude A (no transient: near the onset the growth rate is tiny), and the
-    cycles' Floquet multipliers. Supercritical when the branch bends to higher loads
-    (P - P_flu ~ A^2) and its cycles are stable; checked against the normal form, whose
-    amplitude multiplier is exp(-2 sigma(P) T) with sigma the exact linear growth rate."""
-    from flutterfriction.analysis.rod_dynamics import cycle_branch
+    (Newton with the exact Jacobian of the variational equations; no transient: near the onset
+    the growth rate is tiny), and every cycle's Floquet multipliers from the same monodromy.
+    Supercritical when the branch bends to higher loads (P - P_flu ~ A^2) and its cycles are
+    stable; checked against the normal form, whose amplitude multiplier is exp(-2 sigma(P) T)
+    with sigma the exact linear growth rate."""
+    from flutterfriction.analysis.rod_cycles import cycle_branch
 
-    _take(params, {"rod", "n_elements", "A_max", "rtol", "floquet_every"})
+    _take(params, {"rod", "n_elements", "A_max", "rtol", "max_points"})
     rod = _rod(params)
     b = cycle_branch(rod, n_elements=int(params.get("n_elements", 4)),
                      A_max=check_positive("A_max", params.get("A_max", 0.09), "m"),
                      rtol=float(params.get("rtol", 1e-10)),
-                     floquet_every=int(params.get("floquet_every", 3)), time_budget_s=600.0)
+                     max_points=int(params.get("max_points", 60)))
+    if b.stopped_by != "A_max":
+        raise ConvergenceError(f"beck_hopf: the branch stopped at A = {b.A[-1]:.4f} m "
+                               f"({b.stopped_by}) before A_max; raise max_points or check the "
+                               "log: " + "; ".join(b.log[-3:]))
     A, P, T = np.array(b.A), np.array(b.P), np.array(b.T)
     u = rod.load_unit
     # The normal form at the same distance from the flutter load: sigma from the exact theory
     # at P_flu(exact) + (P - P_flu(model)), which removes the model's 1e-4 error in P_flu.
     P_exact = float(ar.critical_loads(rod.groups()).p_flu * u)
     normal_form = {}
-    for k_str, mu in b.floquet.items():
-        k = int(k_str)
+    for k in range(len(A)):
         P_eq = P_exact + (P[k] - b.P_flu)
         w = ar.eigenvalues(P_eq / u, rod.groups(), n_modes=3) / rod.time_scale
         sigma = float(w[np.argmax(w.real)].real)
-        normal_form[k_str] = {"A": float(A[k]), "P": float(P[k]), "multiplier": mu,
-                              "trivial_defect": b.trivial_defect[k_str],
-                              "sigma": sigma, "normal_form": float(np.exp(-2 * sigma * T[k]))}
+        normal_form[str(k)] = {"A": float(A[k]), "P": float(P[k]),
+                               "max_modulus": b.max_floquet_modulus[k],
+                               "slow_decay": b.slow_decay[k],
+                               "trivial_defect": b.trivial_defect[k], "sigma": sigma,
+                               "normal_form_decay": float(-np.expm1(-2 * sigma * T[k]))}
     dP = P - b.P_flu
     slope = float(np.polyfit(np.log(dP[:4]), np.log(A[:4]), 1)[0])
-    stable = all(v < 1.0 for v in b.floquet.values())
+    stable = all(v < 1.0 for v in b.max_floquet_modulus)
     first = normal_form["0"]
     return {
         "A": A.tolist(), "P": P.tolist(), "T": T.tolist(), "P_flu_model": b.P_flu,
-        "P_flu_exact": P_exact,
-        "omega_flu": b.omega_flu, "floquet": normal_form, "wall_s": b.wall_s,
+        "P_flu_exact": P_exact, "n_elements": b.n_elements,
+        "omega_flu": b.omega_flu, "floquet": normal_form,
+        "continuation": {"integrations": b.integrations, "rejected_steps": b.rejected_steps,
+                         "newton_iterations": b.newton_iterations, "log": b.log},
         "quantities": {
             "amplitude_exponent": _quantity(slope, 0.5, "log-log slope of A against P - P_flu "
                                             "(first four cycles)", "supercritical normal form",
                                             ""),
             "amplitude_decay": _quantity(
-                1 - first["multiplier"], 1 - first["normal_form"],
-                f"1 - Floquet multiplier of the cycle at A = {first['A']:.3f} m "
-                "(variational monodromy)",
+                first["slow_decay"], first["normal_form_decay"],
+                f"1 - slow Floquet multiplier of the cycle at A = {first['A']:.3f} m "
+                "(return map of the variational monodromy)",
                 "normal form 1 - exp(-2 sigma T), sigma from the exact eq. (118)", ""),
             "hopf_type": _quantity(
                 "supercritical" if stable and dP[-1] > dP[0] > 0 else "not supercritical",
