@@ -28,5 +28,6 @@ include: "workflow/rules/check.smk"
 
 rule all:
     input:
+        USER_OUTPUTS,
         rules.check.output,
     default_target: True

@@ -110,8 +110,9 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
                 errata: Mapping[str, Mapping[str, Any]],
                 figure_data: Mapping[str, str] | None = None,
                 extra_links: Iterable[tuple[str, str]] = (),
-                stress: list[Mapping[str, str]] | None = None) -> str:
-    """The report's HTML. Paths are relative to ``results/reports/``.
+                stress: list[Mapping[str, str]] | None = None,
+                problems: Iterable[str] = ()) -> str:
+    """The report's HTML (written even when the check fails: then it says so at the top). Paths are relative to ``results/reports/``.
 
     Parameters
     ----------
@@ -128,6 +129,9 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
         ``(href, text)`` pairs listed at the top (benchmarks, ...).
     stress
         The stress tests (:mod:`flutterfriction.stress`, as dicts): what was tried, outcome.
+    problems
+        What failed the workflow's check (failed entries, figures missing from the layout),
+        shown in a banner at the top.
     """
     figure_data = dict(figure_data or {})
     n_q = sum(r.kind == "quantity" for r in rows)
@@ -139,6 +143,9 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
     parts = [f"<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\"><title>{title}"
              f"</title><style>{STYLE}</style></head><body><h1>{title}</h1>",
              f"<p>{layout.get('intro', '')}</p>",
+             *([f'<div class="summary bad"><b>The check FAILED</b>: the workflow stopped; '
+                "what is wrong:<ul>" + "".join(f"<li>{html.escape(p)}</li>" for p in problems)
+                + "</ul></div>"] if problems else []),
              f'<p class="summary{"" if ok else " bad"}"><b>Check</b>: {n_pass} of {n_q} '
              f"quoted values reproduced within tolerance; {n_ver} of {n_err} errata verified by "
              'an independent computation. <a href="#check">Check table</a> · '

@@ -1,0 +1,44 @@
+"""Compare every scene with workflow/reference.yaml; write the summary and the report, both
+showing any failure (the `check` rule then fails the run: Snakemake would delete the outputs
+of a failing job, and a reader needs the report most when something failed)."""
+
+from pathlib import Path
+
+from flutterfriction.io import read_json, write_json, write_text
+from flutterfriction.reference import (
+    failed,
+    load_reference,
+    load_scene_data,
+    run_check,
+    write_summary,
+)
+from flutterfriction.report import broken_links, build_index, layout_figures, load_layout
+
+reference = load_reference(snakemake.input.reference)
+rows = run_check(reference, load_scene_data(snakemake.input.data), snakemake.params.fidelity)
+layout = load_layout(snakemake.input.layout)
+drawn = {Path(f).stem for f in snakemake.input.figures}
+shown = set(layout_figures(layout))
+problems = []
+if drawn != shown:
+    problems.append(f"workflow/report.yaml: figures not shown {sorted(drawn - shown)}, "
+                    f"unknown figures {sorted(shown - drawn)}")
+bad = failed(rows)
+if bad:
+    problems.append(f"reference check failed for: {', '.join(r.id for r in bad)}")
+errata = {e["id"]: e for e in reference.get("errata", [])}
+stress = read_json(snakemake.input.stress)
+
+
+def index(problems):
+    return build_index(layout, rows, errata, figure_data=snakemake.params.figure_data,
+                       stress=stress, problems=problems)
+
+
+write_text(snakemake.output.html, index(problems))
+bad_links = broken_links(snakemake.output.html)
+if bad_links:
+    problems.append(f"results/reports/index.html: links that do not resolve: {bad_links}")
+    write_text(snakemake.output.html, index(problems))
+write_summary(rows, snakemake.output.json, snakemake.output.md)
+write_json(snakemake.output.problems, {"problems": problems})
