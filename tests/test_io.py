@@ -54,3 +54,15 @@ def test_timings_are_taken_out_of_nested_runs():
     kept, timings = split_timings(data)
     assert kept == {"runs": [{"err": 1e-3}, {"err": 1e-6}], "n": 3}
     assert timings == {"runs": [{"wall_s": 0.5}, {"wall_s": 2.0}]}
+
+
+def test_markdown_table_keeps_every_row_to_its_columns():
+    """A '|' in a cell (|x - ref|, |mu|) must not add a column (the summary had rows of 14
+    cells in a 12-column table)."""
+    from flutterfriction.io import markdown_table
+
+    lines = markdown_table(["a", "b"], [["|x - ref| / tol", "2\nlines"], [1, 2]])
+    for line in lines:
+        cells = line.replace("\\|", "").strip("|").split("|")
+        assert len(cells) == 2, line
+    assert "\\|x - ref\\|" in lines[2] and "2 lines" in lines[2]

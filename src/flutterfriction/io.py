@@ -106,9 +106,10 @@ def merge_timings(data: Any, timings: Any) -> Any:
 
 
 def markdown_table(header: list[str], rows: list[list[Any]]) -> list[str]:
-    """Lines of a Markdown table; ``|`` inside a cell is written as ``/`` so it cannot split
-    the row."""
+    """Lines of a Markdown table; ``|`` inside a cell is escaped (``\\|``, shown as ``|``) so it
+    cannot split the row, and a line break becomes a space."""
     def row(cells):
-        return "| " + " | ".join(str(c).replace("|", "/") for c in cells) + " |"
+        return "| " + " | ".join(str(c).replace("|", "\\|").replace("\n", " ")
+                                 for c in cells) + " |"
 
     return [row(header), "|" + "---|" * len(header), *(row(r) for r in rows)]

@@ -31,7 +31,7 @@ from typing import Any
 import yaml
 
 from flutterfriction.errors import ParameterError
-from flutterfriction.io import write_json, write_text
+from flutterfriction.io import markdown_table, write_json, write_text
 
 
 @dataclass
@@ -213,16 +213,14 @@ def summary_markdown(rows: list[CheckRow]) -> str:
         "",
         *([f"{loose} entries were checked at the quick preset's looser tolerances (marked); "
            "run at paper fidelity for the stated digits.", ""] if loose else []),
-        "| id | source | quoted | unit | reproduced | independent | method / independent "
-        "method | error | agreement | status |",
-        "|---|---|---|---|---|---|---|---|---|---|",
     ]
-    for r in rows:
-        lines.append("| " + " | ".join([
-            r.id, r.source, _fmt(r.quoted), r.unit, _fmt(r.reproduced), _fmt(r.independent),
-            f"{r.method} / {r.independent_method}",
-            "" if r.error is None else f"{r.error:.2e}",
-            "" if r.agreement is None else f"{r.agreement:.2e}", r.shown_status]) + " |")
+    lines += markdown_table(
+        ["id", "source", "quoted", "unit", "reproduced", "independent",
+         "method / independent method", "error", "agreement", "status"],
+        [[r.id, r.source, _fmt(r.quoted), r.unit, _fmt(r.reproduced), _fmt(r.independent),
+          f"{r.method} / {r.independent_method}",
+          "" if r.error is None else f"{r.error:.2e}",
+          "" if r.agreement is None else f"{r.agreement:.2e}", r.shown_status] for r in rows])
     return "\n".join(lines) + "\n"
 
 
