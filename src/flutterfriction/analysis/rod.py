@@ -16,22 +16,16 @@ Derivatives of ``f`` (analytic in ``p`` and ``omega~``) use a four-point complex
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import asdict, dataclass
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.optimize import linear_sum_assignment
+from scipy.optimize import brentq, linear_sum_assignment, minimize_scalar
 
-from flutterfriction.analysis.damped import divergence_onset, flutter_onset
-from flutterfriction.analysis.stability import (
-    Regime,
-    _refine_roots,
-    classify,
-    discriminant,
-    pencil_eigenvalues,
-)
-from flutterfriction.errors import ConvergenceError
+from flutterfriction.analysis.stability import Regime
+from flutterfriction.errors import ConvergenceError, ParameterError, check_positive
 from flutterfriction.models.rod import RodGroups, characteristic_function
 from flutterfriction.models.rod_fe import assemble, fe_eigenvalues
 
@@ -39,12 +33,17 @@ from flutterfriction.models.rod_fe import assemble, fe_eigenvalues
 @dataclass(frozen=True)
 class RodCriticalLoads:
     """Dimensionless critical loads ``p = P l^2/B`` and pulsations ``omega~`` (eq. 106, 108);
-    ``None`` where the load does not exist in the searched range (Beck: no divergence)."""
+    ``None`` where the load does not exist in the searched range (Beck: no divergence).
+
+    ``p_flu``/``p_div`` are the starts of the first flutter/divergence intervals; ``intervals``
+    lists every regime interval on [0, p_max] as ``{"regime", "p_from", "p_to"}`` (``None``
+    from :func:`continue_critical_loads`, which follows two loads only)."""
 
     p_flu: float | None
     omega_flu: float | None  # Im omega~ at flutter (the oscillation's pulsation)
     p_div: float | None
     omega_div: float | None  # Re omega~ of the double real root at divergence
+    intervals: list[dict] | None = None
 
     def as_dict(self) -> dict:
         return asdict(self)
@@ -139,11 +138,17 @@ def _undamped_double_root(g: RodGroups, p0: float, mu0: float) -> tuple[float, f
 
 
 def _damped_flutter(g: RodGroups, p0: float, W0: float) -> tuple[float, float]:
+    """Root ``omega~ = i Omega`` of eq. (118): ``Re f = 0`` and ``Im f / delta = 0`` with
+    ``delta = max(eta, gamma)``. On the imaginary axis the imaginary parts of eq. (118)'s terms
+    all carry a factor ``eta`` or ``gamma`` and are computed to relative precision, so the
+    scaled equation keeps its digits as the damping vanishes (the chapter's paradox: the limit
+    is not the undamped load) instead of drowning in the ``Re f`` round-off."""
     sigma0 = _fixed_scale(p0, 1j * W0, g)
+    delta = max(g.eta, g.gamma)
 
     def residual(x):
         v = _f(x[0], 1j * x[1], g, sigma0)
-        return np.array([np.real(v), np.imag(v)])
+        return np.array([np.real(v), np.imag(v) / delta])
 
     p, W = _newton2(residual, np.array([p0, abs(W0)]))
     return float(p), float(abs(W))
@@ -163,76 +168,439 @@ def _damped_divergence(g: RodGroups, p0: float, w0: float) -> tuple[float, float
     return float(p), float(w)
 
 
-def _low_pencil(fe, p: NDArray, k: int = 6) -> NDArray:
-    mu = pencil_eigenvalues(fe.K_B, fe.load_matrix(), fe.M, p)
-    idx = np.argsort(np.abs(mu), axis=-1)[..., :k]
-    return np.take_along_axis(mu, idx, axis=-1)
+# ---------------------------------------------------------------------- regime scan along p
+#: Largest step of the regime scan along the load axis, independent of ``p_max``. Where the
+#: number comes from: a regime interval wider than the step contains a scan point, so its
+#: regime differs from a neighbour's and both its ends are bracketed and refined. 0.25 is
+#: 1/9 of the narrowest interval the chapter's rods show at list (119) (the 2.3-wide divergence
+#: window at tan(alpha) = 0.595) and keeps the scan at 1600 FE spectra for p_max = 400.
+SCAN_STEP = 0.25
+#: Largest load of the scan. Where it comes from: the FE mesh grows like sqrt(p_max)
+#: (:func:`_scan_elements`) and the scan like p_max; at 1000 the scan takes ~2 s (25 x 40
+#: elements) and the modes involved (k ~ sqrt(p) ~ 32) are still resolved to < 1e-3 by the
+#: FE twin that brackets the exact Newton solves. Above it the regime count grows without
+#: bound (every pair of modes flutters, then diverges) and we refuse.
+P_MAX_LIMIT = 1000.0
+#: Damping (max(eta, gamma)) below which the FE bracketing scan is run at this damping instead
+#: (same eta:gamma ratio; the exact Newton solves and the final regime checks use the true
+#: one). Where it comes from: the FE eigensolver resolves growth rates down to
+#: ~1e3 eps max|s| ~ 1e-9; at 1e-6 the growth rates of the low modes (~1e-6 |s1|, |s1| >= 1e-2)
+#: are >= 10x above that. Below it the loads are within O(1e-6) of their vanishing-damping
+#: limits, a start Newton converges from.
+DAMPING_FLOOR = 1e-6
+#: Relative imaginary part above which an FE eigenvalue counts as complex (and a pencil
+#: eigenvalue ``Omega^2`` as a flutter pair): near a coalescence the pair splits like
+#: ``sqrt(p - p_c)``, so this locates the FE coalescence to ~1e-12 relative, while round-off
+#: (~1e-16 ||A||, enlarged to ~1e-8 at a defective pair) stays far below.
+_COMPLEX_RTOL = 1e-6
+#: Bisection width of the FE brackets, relative to p (ample for the exact Newton's start).
+_BRACKET_RTOL = 1e-10
+
+
+@dataclass(frozen=True)
+class _Event:
+    """A change of the FE spectrum's signature between ``a`` and ``b`` (width <= tolerance)."""
+
+    a: float
+    b: float
+    before: tuple
+    after: tuple
+
+
+def _scan_elements(p_max: float) -> int:
+    """FE elements of the bracketing scan: 12 up to p = 92, then 1.25 sqrt(p_max) (the modes
+    involved at load p have wavenumber ~ sqrt(p), and cubic elements resolve them to
+    ~(k h)^4)."""
+    return max(12, int(math.ceil(1.25 * math.sqrt(p_max))))
+
+
+class _FEScan:
+    """Signature of the FE spectrum at a load and the indicators of hidden events.
+
+    Undamped: the pencil eigenvalues ``mu = Omega^2`` (``Omega^2 < 0``: divergence, complex:
+    flutter); signature ``(complex count, negative count)``. Damped: the first-order spectrum
+    ``s``; signature ``(unstable complex count, unstable real count)``.
+    """
+
+    def __init__(self, g: RodGroups, n_elements: int, n_modes: int | None = None) -> None:
+        self.damped = g.damped
+        fe = assemble(g, n_elements)
+        L = np.linalg.cholesky(fe.M)
+        Linv = np.linalg.solve(L, np.eye(L.shape[0]))
+        A0 = Linv @ fe.K_B @ Linv.T
+        A1 = Linv @ fe.load_matrix() @ Linv.T
+        C = Linv @ fe.C @ Linv.T
+        if n_modes is not None and n_modes < A0.shape[0]:
+            # Galerkin on the n_modes lowest unloaded modes (M-orthonormal): drops the stiff,
+            # strongly damped FE modes that make the first-order eigensolver slow (a 2n x 2n
+            # matrix spanning 1e8 in scale) and play no part in the low modes' regime.
+            _, V = np.linalg.eigh(0.5 * (A0 + A0.T))
+            V = V[:, :n_modes]
+            A0, A1, C = (V.T @ X @ V for X in (A0, A1, C))
+        if not self.damped:
+            self.A0, self.A1 = A0, A1
+        else:
+            n = A0.shape[0]
+            self.B0 = np.zeros((2 * n, 2 * n))
+            self.B0[:n, n:] = np.eye(n)
+            self.B0[n:, :n] = -A0
+            self.B0[n:, n:] = -C
+            self.B1 = np.zeros((2 * n, 2 * n))
+            self.B1[n:, :n] = -A1
+
+    def spectra(self, p: NDArray) -> NDArray:
+        p = np.atleast_1d(np.asarray(p, dtype=float))
+        if not self.damped:
+            return np.linalg.eigvals(self.A0[None] + p[:, None, None] * self.A1[None])
+        return np.linalg.eigvals(self.B0[None] + p[:, None, None] * self.B1[None])
+
+    def _flags(self, z: NDArray) -> tuple[NDArray, NDArray]:
+        """(complex, unstable) flags of the eigenvalues ``z`` (rows: loads)."""
+        scale = np.max(np.abs(z), axis=-1, keepdims=True)
+        cx = np.abs(z.imag) > _COMPLEX_RTOL * np.abs(z)
+        if not self.damped:
+            return cx, ~cx & (z.real < 0)
+        # The raw sign, as the pendulum's flutter_onset: a relative threshold would be biased
+        # by the stiff, strongly damped FE modes that set max|s| (1e7 at 48 elements).
+        del scale
+        return cx, z.real > 0
+
+    def signatures(self, z: NDArray) -> list[tuple[int, int]]:
+        cx, unstable = self._flags(z)
+        if not self.damped:
+            return list(zip(cx.sum(-1).tolist(), unstable.sum(-1).tolist(), strict=True))
+        return list(zip((cx & unstable).sum(-1).tolist(), (~cx & unstable).sum(-1).tolist(),
+                        strict=True))
+
+    def regime(self, sig: tuple[int, int]) -> Regime:
+        """Chapter §2.3/§2.7: flutter if an unstable root is complex, else divergence if an
+        unstable root is real, else stable."""
+        if sig[0]:
+            return Regime.FLUTTER
+        return Regime.DIVERGENCE if sig[1] else Regime.STABLE
+
+    def indicators(self, z: NDArray) -> NDArray:
+        """Functions whose sampled local minima flag a pair of events between two scan points
+        (shape (k, loads)): the smallest relative distance between two eigenvalues (a
+        coalescence makes it vanish; undamped: all of them, damped: those with an unstable
+        member) and, damped, minus the largest growth rate (a pair touching the imaginary
+        axis)."""
+        d = np.abs(z[..., :, None] - z[..., None, :])
+        d = d / (np.abs(z[..., :, None]) + np.abs(z[..., None, :]) + 1e-300)
+        n = z.shape[-1]
+        d[..., np.arange(n), np.arange(n)] = np.inf
+        if self.damped:
+            # A pair merging on the real axis in the right half-plane: both members unstable.
+            unstable = z.real > 0
+            d = np.where(unstable[..., :, None] | unstable[..., None, :], d, np.inf)
+            gap = np.minimum(d.min(axis=(-1, -2)), 1.0)
+            growth = z.real / np.max(np.abs(z), axis=-1, keepdims=True)
+            return np.stack([gap, -growth.max(axis=-1)])
+        return d.min(axis=(-1, -2))[None]
+
+
+def _events(scan: _FEScan, p_max: float, step: float) -> list[_Event]:
+    """Every change of the FE signature in [0, p_max]: bracketed on a uniform scan (step
+    <= ``step``), each bracket bisected to ``_BRACKET_RTOL``; between two scan points with the
+    same signature, every sampled local minimum of an indicator is minimised (bounded Brent)
+    and a signature change at the minimiser splits the interval (a window narrower than the
+    step)."""
+    n = max(2, int(math.ceil(p_max / step)))
+    grid = np.linspace(0.0, p_max, n + 1)
+    z = scan.spectra(grid)
+    sigs = scan.signatures(z)
+    ind = scan.indicators(z)
+
+    def sig_at(p: float) -> tuple:
+        return scan.signatures(scan.spectra(np.array([p])))[0]
+
+    def bisect(a: float, b: float, sa: tuple, sb: tuple, depth: int = 0) -> list[_Event]:
+        if b - a <= _BRACKET_RTOL * max(1.0, b) or depth > 80:
+            return [_Event(a, b, sa, sb)]
+        m = 0.5 * (a + b)
+        sm = sig_at(m)
+        out = []
+        if sm != sa:
+            out += bisect(a, m, sa, sm, depth + 1)
+        if sm != sb:
+            out += bisect(m, b, sm, sb, depth + 1)
+        return out
+
+    events: list[_Event] = []
+    for i in range(n):
+        if sigs[i] != sigs[i + 1]:
+            events += bisect(grid[i], grid[i + 1], sigs[i], sigs[i + 1])
+    for row in range(ind.shape[0]):
+        v = ind[row]
+        for i in range(n + 1):
+            lo, hi = max(i - 1, 0), min(i + 1, n)
+            if not (v[i] <= v[lo] and v[i] <= v[hi] and v[i] < max(v[lo], v[hi])) \
+                    or sigs[lo] != sigs[hi] or sigs[lo] != sigs[i]:
+                continue  # not a (strict) local minimum, or its events are bracketed already
+            if scan.damped and not (v[i] < 1.0 if row == 0 else v[i] > 0.0):
+                continue  # no unstable pair to merge / already unstable: no hidden event
+
+            def fun(p: float, row: int = row) -> float:
+                return float(scan.indicators(scan.spectra(np.array([p])))[row, 0])
+
+            a, b = float(grid[lo]), float(grid[hi])
+            res = minimize_scalar(fun, bounds=(a, b), method="bounded",
+                                  options={"xatol": _BRACKET_RTOL * max(1.0, b)})
+            s_min = sig_at(float(res.x))
+            if s_min != sigs[lo]:
+                events += bisect(a, float(res.x), sigs[lo], s_min)
+                events += bisect(float(res.x), b, s_min, sigs[lo])
+    events.sort(key=lambda e: e.a)
+    return events
+
+
+@dataclass(frozen=True)
+class _Boundary:
+    """A change of regime at load ``p``: ``kind`` "coalescence" (a double root, ``omega`` its
+    real or imaginary part) or "crossing" (a pair on the imaginary axis, ``omega = Im``)."""
+
+    p: float
+    omega: float
+    before: Regime
+    after: Regime
+    kind: str
+    guess: float  # Newton's start: omega~^2 (undamped), Im (crossing) or Re (damped double)
+
+
+def _dedupe(events: list[_Event]) -> list[_Event]:
+    out: list[_Event] = []
+    for e in events:
+        if out and e.a <= out[-1].b + 2 * _BRACKET_RTOL * max(1.0, e.b) \
+                and (e.before, e.after) == (out[-1].before, out[-1].after):
+            continue
+        out.append(e)
+    return out
+
+
+def _closest_pair(z: NDArray, mask: NDArray | None = None) -> tuple[complex, complex]:
+    zz = z if mask is None else z[mask]
+    if zz.size < 2:
+        raise ConvergenceError("no coalescing pair found at a change of regime")
+    d = np.abs(zz[:, None] - zz[None, :])
+    d[np.arange(zz.size), np.arange(zz.size)] = np.inf
+    i, j = np.unravel_index(int(np.argmin(d)), d.shape)
+    return complex(zz[i]), complex(zz[j])
+
+
+def _fe_boundary(scan: _FEScan, e: _Event, polish: _FEScan | None = None) -> _Boundary:
+    """The FE boundary of an event, polished with Brent's method on the smooth function that
+    changes sign there (a pair's squared difference, or a pair's growth rate). With
+    ``polish`` (the full FE model when ``scan`` is its modal reduction) the function is
+    evaluated on ``polish``, in a bracket grown around the event until it changes sign."""
+    before, after = scan.regime(e.before), scan.regime(e.after)
+    m = 0.5 * (e.a + e.b)
+    z = scan.spectra(np.array([m]))[0]
+    model = scan if polish is None else polish
+    d_uc, d_ur = e.after[0] - e.before[0], e.after[1] - e.before[1]
+    if scan.damped and d_ur == 0:  # a pair crossing the imaginary axis (Hopf)
+        cand = z[z.imag > 0]
+        z0 = complex(cand[np.argmin(np.abs(cand.real))])
+
+        def fun(p: float) -> float:
+            s = model.spectra(np.array([p]))[0]
+            return float(s[np.argmin(np.abs(s - z0))].real)
+
+        kind = "crossing"
+    elif not scan.damped or d_uc == -d_ur:  # two roots merging on the real axis
+        mask = None if not scan.damped else z.real > -1e-9 * np.max(np.abs(z))
+        z1, z2 = _closest_pair(z, mask)
+        z0 = 0.5 * (z1 + z2)
+
+        def fun(p: float) -> float:
+            s = model.spectra(np.array([p]))[0]
+            near = s[np.argsort(np.abs(s - z0))[:2]]
+            return float((((near[0] - near[1]) / abs(z0)) ** 2).real)
+
+        kind = "coalescence"
+    else:
+        raise ConvergenceError(f"unexpected change of the FE spectrum near p = {m:.6g} "
+                               f"({e.before} -> {e.after}): not a coalescence nor a crossing")
+    a, b = e.a, e.b
+    fa, fb = fun(a), fun(b)
+    if polish is not None:  # the reduced model's bracket, grown on the full model
+        w = 1e-3 * max(1.0, m)
+        for _ in range(12):
+            a, b = max(0.0, m - w), m + w
+            fa, fb = fun(a), fun(b)
+            if fa * fb < 0:
+                break
+            w *= 3
+        else:
+            raise ConvergenceError(f"the full FE model has no change of regime near p = {m:.6g}"
+                                   " where its modal reduction has one")
+    p = m
+    if fa * fb < 0:
+        p = float(brentq(fun, a, b, xtol=4 * np.finfo(float).eps * max(1.0, b)))
+    s = model.spectra(np.array([p]))[0]
+    if kind == "crossing":
+        near = s[np.argmin(np.abs(s - z0))]
+        omega = guess = abs(near.imag)
+    else:
+        near = s[np.argsort(np.abs(s - z0))[:2]]
+        # The double root as the pair's mean: well conditioned, unlike either root of a
+        # (nearly) defective pair. Pencil: Omega^2 = -omega~^2.
+        zm = complex(0.5 * (near[0] + near[1]))
+        omega = math.sqrt(abs(zm.real)) if not scan.damped else zm.real
+        guess = -zm.real if not scan.damped else zm.real
+    return _Boundary(p, float(omega), before, after, kind, float(guess))
+
+
+def _intervals(boundaries: list, first: Regime, p_max: float) -> list[dict]:
+    out, start, regime = [], 0.0, first
+    for b in boundaries:
+        out.append({"regime": str(regime), "p_from": start, "p_to": b.p})
+        start, regime = b.p, b.after
+    out.append({"regime": str(regime), "p_from": start, "p_to": float(p_max)})
+    return out
+
+
+def _modes_coupled(p_max: float) -> int:
+    """Modes the load couples up to ``p_max`` (wavenumber^2 <= 3 p_max + 40; a mode of
+    wavenumber k feels the load when k^2 <~ p), plus 4 for the Galerkin reduction's accuracy."""
+    return int(math.ceil(math.sqrt(3 * p_max + 40) / math.pi)) + 5
+
+
+def _fe_scan(g: RodGroups, n_elements: int, p_max: float, step: float,
+             n_modes: int | None = None, polish_full: bool = False
+             ) -> tuple[_FEScan, Regime, list[_Boundary]]:
+    scan = _FEScan(g, n_elements, n_modes)
+    full = _FEScan(g, n_elements) if polish_full and n_modes is not None else None
+    events = _dedupe(_events(scan, p_max, step))
+    first = scan.regime(scan.signatures(scan.spectra(np.array([0.0])))[0])
+    bounds = [_fe_boundary(scan, e, full) for e in events
+              if scan.regime(e.before) != scan.regime(e.after)]
+    return scan, first, bounds
+
+
+def _check_p_max(p_max: float) -> float:
+    p_max = check_positive("p_max", p_max)
+    if p_max > P_MAX_LIMIT:
+        raise ParameterError(f"p_max must be in (0, {P_MAX_LIMIT:g}] (the regime scan's range, "
+                             f"see analysis.rod.P_MAX_LIMIT), got {p_max!r}")
+    return p_max
+
+
+def _loads_from(intervals: list[dict], omegas: dict[float, float]) -> dict:
+    out: dict = {"p_flu": None, "omega_flu": None, "p_div": None, "omega_div": None}
+    for iv in intervals:
+        if iv["p_from"] == 0.0:
+            continue
+        if iv["regime"] == Regime.FLUTTER and out["p_flu"] is None:
+            out.update(p_flu=iv["p_from"], omega_flu=omegas[iv["p_from"]])
+        if iv["regime"] == Regime.DIVERGENCE and out["p_div"] is None:
+            out.update(p_div=iv["p_from"], omega_div=omegas[iv["p_from"]])
+    return out
 
 
 def fe_critical_loads(g: RodGroups, n_elements: int, p_max: float = 80.0,
-                      n_scan: int = 120) -> RodCriticalLoads:
-    """Critical loads of the FE model (the independent method): the pendulum's solvers applied
-    to the FE matrices. Undamped: coalescences of the lowest eigenvalues ``mu`` (Brent on their
-    discriminant); damped: Re s crossing zero and the unstable pair becoming real."""
-    fe = assemble(g, n_elements)
-    K1 = fe.load_matrix()
+                      step: float = SCAN_STEP) -> RodCriticalLoads:
+    """Critical loads and regime intervals of the FE model (the independent method).
+
+    The FE spectrum's signature (undamped: complex and negative ``Omega^2`` of the pencil,
+    eq. 14 form; damped: unstable complex and real roots ``s``) is scanned on [0, p_max] with a
+    step <= ``step``, every change is bisected and polished with Brent's method (coalescence:
+    a pair's squared difference; damped flutter: the pair's growth rate), and windows between
+    two scan points are caught by minimising the indicators of :class:`_FEScan`."""
+    p_max = _check_p_max(p_max)
+    # Damped: scanned on the modal reduction (fast), each boundary polished on the full model.
+    n_modes = _modes_coupled(p_max) if g.damped else None
+    _, first, bounds = _fe_scan(g, n_elements, p_max, step, n_modes, polish_full=True)
+    intervals = _intervals(bounds, first, p_max)
+    out = _loads_from(intervals, {b.p: b.omega for b in bounds})
+    return RodCriticalLoads(**out, intervals=intervals)
+
+
+def _damping(g: RodGroups) -> float:
+    return max(g.eta, g.gamma)
+
+
+def _exact_boundary(g: RodGroups, b: _Boundary) -> tuple[float, float]:
     if not g.damped:
-        def disc(p):
-            return float(discriminant(_low_pencil(fe, np.array([p])))[0])
-
-        grid = np.linspace(0.0, p_max, n_scan + 1)
-        roots = _refine_roots(disc, grid, discriminant(_low_pencil(fe, grid)))
-        out: dict = {"p_flu": None, "omega_flu": None, "p_div": None, "omega_div": None}
-        for r in roots:
-            after = classify(fe_eigenvalues(g, r * (1 + 1e-7), n_elements))
-            if after == Regime.FLUTTER and out["p_flu"] is None:
-                out["p_flu"] = r
-            elif after == Regime.DIVERGENCE and out["p_div"] is None and out["p_flu"] is not None:
-                out["p_div"] = r
-        for key, sign in (("flu", 1.0), ("div", -1.0)):  # the pencil gives Omega^2 = -omega~^2
-            if out[f"p_{key}"] is not None:
-                # The double eigenvalue as the mean of the coalescing pair: well conditioned,
-                # unlike either eigenvalue of a (nearly) defective pair.
-                mu = np.sort_complex(_low_pencil(fe, np.array([out[f"p_{key}"]]))[0])
-                i = int(np.argmin(np.abs(np.diff(mu))))
-                out[f"omega_{key}"] = float(np.sqrt(sign * 0.5 * (mu[i] + mu[i + 1]).real))
-        return RodCriticalLoads(**out)
-    p_flu = flutter_onset(fe.M, fe.C, fe.K_B, K1, method="eigenvalues", load_max=p_max,
-                          n_scan=64)
-    s = fe_eigenvalues(g, p_flu, n_elements)
-    omega_flu = float(np.abs(s[np.argmax(s.real)].imag))
-    try:
-        p_div = divergence_onset(fe.M, fe.C, fe.K_B, K1, method="eigenvalues", start=p_flu,
-                                 load_max=p_max, n_scan=64, max_doublings=1)
-        s = fe_eigenvalues(g, p_div, n_elements)
-        omega_div = float(s[np.argmax(s.real)].real)
-    except ConvergenceError:
-        p_div = omega_div = None
-    return RodCriticalLoads(p_flu=p_flu, omega_flu=omega_flu, p_div=p_div, omega_div=omega_div)
+        p, mu = _undamped_double_root(g, b.p, b.guess)
+        return p, float(np.sqrt(abs(mu)))
+    if b.kind == "crossing":
+        return _damped_flutter(g, b.p, b.guess)
+    return _damped_divergence(g, b.p, b.guess)
 
 
-def critical_loads(g: RodGroups, p_max: float = 80.0, n_elements: int = 12) -> RodCriticalLoads:
-    """Exact critical loads (eq. 118) to ~1e-13, Newton from FE guesses (``n_elements``)."""
-    guess = fe_critical_loads(g, n_elements, p_max)
-    if guess.p_flu is None:
-        raise ConvergenceError(f"no flutter found for p <= {p_max}")
+def _exact_regime(p: float, g: RodGroups) -> Regime | None:
+    """Regime from the exact roots of eq. (118) (FE guesses refined by Newton), ``None`` if a
+    growth rate is below what the roots resolve. Modes with wavenumber^2 up to 3p + 40 (the
+    load only couples modes with k^2 <~ p)."""
+    n_modes = int(math.ceil(math.sqrt(3 * p + 40) / math.pi)) + 1
+    w = eigenvalues(p, g, n_modes=n_modes, n_elements=max(16, 3 * n_modes))
     if not g.damped:
-        mu0 = -guess.omega_flu**2
-        p_flu, mu_f = _undamped_double_root(g, guess.p_flu, mu0)
-        out = {"p_flu": p_flu, "omega_flu": float(np.sqrt(-mu_f)), "p_div": None,
-               "omega_div": None}
-        if guess.p_div is not None:
-            s = fe_eigenvalues(g, guess.p_div * (1 + 1e-6), n_elements)
-            w0 = float(np.max(s.real))
-            p_div, mu_d = _undamped_double_root(g, guess.p_div, w0**2)
-            out.update(p_div=p_div, omega_div=float(np.sqrt(mu_d)))
-        return RodCriticalLoads(**out)
-    p_flu, W = _damped_flutter(g, guess.p_flu, guess.omega_flu)
-    out = {"p_flu": p_flu, "omega_flu": W, "p_div": None, "omega_div": None}
-    if guess.p_div is not None:
-        p_div, w = _damped_divergence(g, guess.p_div, guess.omega_div)
-        out.update(p_div=p_div, omega_div=w)
-    return RodCriticalLoads(**out)
+        mu = w**2
+        cx = np.abs(mu.imag) > 1e-8 * np.abs(mu)
+        if np.any(cx):
+            return Regime.FLUTTER
+        return Regime.DIVERGENCE if np.any(mu.real > 0) else Regime.STABLE
+    # With damping the growth rates are resolved relative to the damping (the imaginary parts
+    # of eq. 118's terms are O(damping) and carried with relative precision).
+    tol = 1e-10 * np.abs(w) * min(1.0, _damping(g))
+    unstable = w.real > tol
+    if np.any(np.abs(w.real) <= tol):
+        return None
+    if np.any(unstable & (np.abs(w.imag) > 1e-8 * np.abs(w))):
+        return Regime.FLUTTER
+    return Regime.DIVERGENCE if np.any(unstable) else Regime.STABLE
+
+
+def critical_loads(g: RodGroups, p_max: float = 80.0, n_elements: int | None = None,
+                   step: float = SCAN_STEP) -> RodCriticalLoads:
+    """Exact critical loads (eq. 118) to ~1e-13 and every regime interval on [0, p_max].
+
+    The regime changes are bracketed on the FE twin (:func:`fe_critical_loads`; scan step
+    <= ``step`` whatever ``p_max``, ``n_elements`` default :func:`_scan_elements`) and each is
+    solved exactly by Newton on eq. (118) (double root, eqs. 117-118 with df/domega~ = 0, or a
+    root on the imaginary axis). Below :data:`DAMPING_FLOOR` the FE scan runs at that damping
+    and Newton at the true one. Finally the regime of every interval is checked on the exact
+    roots at its midpoint; any disagreement raises :class:`ConvergenceError`.
+
+    Guarantee: every regime interval wider than ``step`` is found (it contains a scan point);
+    narrower ones are found when an indicator of :class:`_FEScan` has a sampled local minimum
+    at one of its two neighbouring scan points (always, if the coalescing pair's gap varies
+    on a scale longer than ``step``).
+    """
+    p_max = _check_p_max(p_max)
+    n_el = _scan_elements(p_max) if n_elements is None else n_elements
+    delta = _damping(g)
+    g_scan = g
+    if g.damped and delta < DAMPING_FLOOR:
+        k = DAMPING_FLOOR / delta
+        g_scan = RodGroups(tan_alpha=g.tan_alpha, eta=g.eta * k, gamma=g.gamma * k)
+    # Damped: the scan on the lowest modes only (see _FEScan), enough of them to hold every
+    # mode the load couples (wavenumber^2 <= 3 p_max + 40, as in _exact_regime) plus 4.
+    n_modes = None
+    if g.damped:
+        n_modes = _modes_coupled(p_max)
+        n_el = max(n_el, n_modes)
+    _, first, bounds = _fe_scan(g_scan, n_el, p_max, step, n_modes)
+    exact: list[_Boundary] = []
+    for b in bounds:
+        p, omega = _exact_boundary(g, b)
+        if p > p_max:  # the FE boundary fell just below p_max, the exact one beyond it
+            break
+        exact.append(_Boundary(p, omega, b.before, b.after, b.kind, b.guess))
+    ps = [0.0, *[b.p for b in exact], p_max]
+    if np.any(np.diff(ps) <= 0):
+        raise ConvergenceError(f"the exact regime boundaries are not ordered: {ps[1:-1]} "
+                               "(two changes of regime closer than the FE twin resolves)")
+    intervals = _intervals(exact, first, p_max)
+    for iv in intervals:
+        mid = 0.5 * (iv["p_from"] + iv["p_to"])
+        r = _exact_regime(mid, g)
+        if r is not None and r != iv["regime"]:
+            raise ConvergenceError(
+                f"regime check failed at p = {mid:.6g}: the exact roots of eq. (118) give "
+                f"{r}, the FE bracketing {iv['regime']} (a change of regime the scan missed)")
+    out = _loads_from(intervals, {b.p: b.omega for b in exact})
+    return RodCriticalLoads(**out, intervals=intervals)
 
 
 def continue_critical_loads(g: RodGroups, previous: RodCriticalLoads) -> RodCriticalLoads:
