@@ -111,8 +111,15 @@ def _scaled_even_functions(lam: NDArray, trig: bool) -> tuple[NDArray, NDArray, 
     em = np.exp(-z - s)
     c = 0.5 * (ep + em)
     small = np.abs(z) < 1e-3
+    # Where |Re z| < 1 nothing can overflow: cosh and sinh directly. This keeps the digits of a
+    # tiny Re z (a nearly real lambda2 at vanishing damping, Im ~ 1e-20), which the factors
+    # exp(-2|Re z|) of the scaled form round away: Im cos(x + iy) = -sin(x) sinh(y).
+    mild = s < 1.0
+    zm = np.where(mild, z, 0.0)
+    c = np.where(mild, np.cosh(zm) * np.exp(-s), c)
     with np.errstate(divide="ignore", invalid="ignore"):
-        sc = np.where(small, (1 + z**2 / 6 + z**4 / 120) * np.exp(-s), 0.5 * (ep - em) / z)
+        sc = np.where(small, (1 + z**2 / 6 + z**4 / 120) * np.exp(-s),
+                      np.where(mild, np.sinh(zm) / z * np.exp(-s), 0.5 * (ep - em) / z))
     return c, sc, s
 
 
