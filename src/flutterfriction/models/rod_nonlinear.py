@@ -49,6 +49,18 @@ def _integration_matrix(x: NDArray) -> NDArray:
     return S
 
 
+def _cos_sin(theta: NDArray) -> tuple[NDArray, NDArray]:
+    """``(cos theta, sin theta)``; for complex ``theta = a + i b`` (the complex steps of a
+    Jacobian) from real functions, ``cos = cos a cosh b - i sin a sinh b`` and
+    ``sin = sin a cosh b + i cos a sinh b`` (exact identities, ~4x cheaper than numpy's
+    complex trigonometry on these small arrays)."""
+    if not np.iscomplexobj(theta):
+        return np.cos(theta), np.sin(theta)
+    a, b = theta.real, theta.imag
+    ca, sa, chb, shb = np.cos(a), np.sin(a), np.cosh(b), np.sinh(b)
+    return ca * chb - 1j * (sa * shb), sa * chb + 1j * (ca * shb)
+
+
 @dataclass
 class NonlinearRod:
     """The discretised rod: ``rod`` (SI), ``n_elements`` P2 elements, ``n_gauss`` points each."""
@@ -120,8 +132,9 @@ class NonlinearRod:
         Jacobian): shapes ``(n_q, *b)``, ``(n_q, *b, 2)``, ``(n_q, *b, 2, n_dof)``,
         ``(*b, 2, n_dof)`` with ``b = q.shape[1:]``."""
         theta = self.phi @ q
-        t = np.stack([np.cos(theta), np.sin(theta)], axis=-1)
-        tp = np.stack([-np.sin(theta), np.cos(theta)], axis=-1)
+        c, s = _cos_sin(theta)
+        t = np.stack([c, s], axis=-1)
+        tp = np.stack([-s, c], axis=-1)
         phi = self.phi.reshape(self.phi.shape[0], *([1] * (q.ndim - 1)), 1, self.n_dof)
         G, G_tip = self._cumint(tp[..., None] * phi)
         return theta, t, G, G_tip
