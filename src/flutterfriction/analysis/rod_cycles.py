@@ -180,8 +180,12 @@ class PeriodicOrbitNewton:
             if not np.all(np.isfinite(dz)):
                 raise ConvergenceError("periodic-orbit Newton: singular Jacobian")
             n = model.n_dof
-            small = (np.abs(dz[:n]).max() <= self.tol * max(np.abs(y[:n]).max(), 1e-12)
-                     and np.abs(dz[n:N]).max() <= self.tol * max(np.abs(y[n:]).max(), 1e-12)
+            # Scales: the rotations' size, and for the velocities the same times 2 pi / T (on
+            # the section, at the tip's extreme, the velocities themselves are near zero).
+            q_scale = max(np.abs(y[:n]).max(), 1e-12)
+            v_scale = max(np.abs(y[n:]).max(), 2 * np.pi / T * q_scale)
+            small = (np.abs(dz[:n]).max() <= self.tol * q_scale
+                     and np.abs(dz[n:N]).max() <= self.tol * v_scale
                      and abs(dz[N]) <= self.tol * T and abs(dz[N + 1]) <= self.tol * P)
             if small:
                 # Accept this iterate: the monodromy was computed exactly here, and its
