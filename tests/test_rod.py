@@ -65,8 +65,9 @@ def test_characteristic_function_vs_mpmath_and_eq115(p, wr, wi, ta, gam, eta):
     with mp.workdps(40):
         wm = mp.mpc(wr, wi)
         a = 1 + eta * wm
-        disc = mp.sqrt(p**2 - 4 * a * (gam * wm + wm**2))
-        l1l2 = mp.sqrt((-p + disc) / (2 * a)) * mp.sqrt((p + disc) / (2 * a))
+        pm = mp.mpf(p)  # not the float p: p**2 rounded in double cancels in -p + disc
+        disc = mp.sqrt(pm**2 - 4 * a * (gam * wm + wm**2))
+        l1l2 = mp.sqrt((-pm + disc) / (2 * a)) * mp.sqrt((pm + disc) / (2 * a))
         ref = complex(f_mp(mp.mpf(p), wm, mp.mpf(ta), mp.mpf(gam), mp.mpf(eta)))
         if abs(l1l2) > 1e-6 and abs(w) > 1e-6:  # generic points: det(115) is regular there
             det = complex(det115_mp(mp.mpf(p), wm, mp.mpf(ta), mp.mpf(gam), mp.mpf(eta)) / l1l2)
