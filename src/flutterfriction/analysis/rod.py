@@ -477,6 +477,31 @@ def _fe_scan(g: RodGroups, n_elements: int, p_max: float, step: float,
     return scan, first, bounds
 
 
+#: The groups' numerical range (eq. 106): ``(smallest positive, largest)``, 0 always allowed.
+#: Where the numbers come from (measured with p_max up to 1000, see the stress report):
+#: tan(alpha) <= 1e4: beyond it the tip mode's Omega^2 ~ 1/tan(alpha) sinks to the pencil's
+#: round-off (eps ||A|| ~ 1e-12) and its flutter/divergence verdict is lost (1e5 fails at
+#: p ~ 119); eta <= 1: at eta = 2 the damped-flutter Newton leaves for p -> 0 at p_max = 1000
+#: (eta = 10 gives overdamped roots that the exact regime check cannot separate);
+#: gamma <= 1e4: checked alone and with eta = 1, tan(alpha) = 1e4; the smallest positive
+#: damping 1e-100 keeps every O(damping) imaginary part of eq. (118) (products with
+#: omega~^3 ~ 1e6 or its inverse) a normal float, far above 1e-300.
+GROUP_RANGES: dict[str, tuple[float, float]] = {
+    "tan_alpha": (0.0, 1e4), "eta": (1e-100, 1.0), "gamma": (1e-100, 1e4)}
+
+
+def check_groups(g: RodGroups) -> RodGroups:
+    """Refuse groups outside :data:`GROUP_RANGES` with a :class:`ParameterError` naming the
+    group and its allowed range."""
+    for name, (low, high) in GROUP_RANGES.items():
+        v = getattr(g, name)
+        if v > high or 0 < v < low:
+            allowed = f"[0, {high:g}]" if low == 0 else f"0 or [{low:g}, {high:g}]"
+            raise ParameterError(f"{name} must be {allowed} (the rod solver's numerical range,"
+                                 f" analysis.rod.GROUP_RANGES), got {v:g}")
+    return g
+
+
 def _check_p_max(p_max: float) -> float:
     p_max = check_positive("p_max", p_max)
     if p_max > P_MAX_LIMIT:
@@ -507,6 +532,7 @@ def fe_critical_loads(g: RodGroups, n_elements: int, p_max: float = 80.0,
     a pair's squared difference; damped flutter: the pair's growth rate), and windows between
     two scan points are caught by minimising the indicators of :class:`_FEScan`."""
     p_max = _check_p_max(p_max)
+    check_groups(g)
     # Damped: scanned on the modal reduction (fast), each boundary polished on the full model.
     n_modes = _modes_coupled(p_max) if g.damped else None
     _, first, bounds = _fe_scan(g, n_elements, p_max, step, n_modes, polish_full=True)
@@ -533,7 +559,13 @@ def _exact_regime(p: float, g: RodGroups) -> Regime | None:
     growth rate is below what the roots resolve. Modes with wavenumber^2 up to 3p + 40 (the
     load only couples modes with k^2 <~ p)."""
     n_modes = int(math.ceil(math.sqrt(3 * p + 40) / math.pi)) + 1
-    w = eigenvalues(p, g, n_modes=n_modes, n_elements=max(16, 3 * n_modes))
+    if not g.damped:
+        w = eigenvalues(p, g, n_modes=n_modes, n_elements=max(16, 3 * n_modes))
+    else:
+        # The rightmost FE roots (not those of smallest modulus: with strong Kelvin-Voigt
+        # damping many overdamped roots lie near the origin, left of an unstable pair).
+        fe = fe_eigenvalues(g, p, max(16, 3 * n_modes))
+        w = refine_eigenvalues(p, g, fe[np.argsort(-fe.real)][: 2 * n_modes])
     if not g.damped:
         mu = w**2
         cx = np.abs(mu.imag) > 1e-8 * np.abs(mu)
@@ -568,6 +600,7 @@ def critical_loads(g: RodGroups, p_max: float = 80.0, n_elements: int | None = N
     on a scale longer than ``step``).
     """
     p_max = _check_p_max(p_max)
+    check_groups(g)
     n_el = _scan_elements(p_max) if n_elements is None else n_elements
     delta = _damping(g)
     g_scan = g
