@@ -104,7 +104,9 @@ def build_parser() -> argparse.ArgumentParser:
     r.add_argument("--kappa", type=_number, default=None, help="external damping [N s/m^2]")
     r.add_argument("--tip-mass", type=_number, default=None, help="tip mass [kg], >= 0")
     r.add_argument("--p-max", type=_number, default=80.0,
-                   help="largest dimensionless load searched (default 80)")
+                   help="largest dimensionless load searched, in (0, 1000] (default 80); "
+                        "every stable/flutter/divergence interval up to it is reported "
+                        "(--json key 'intervals')")
     r.add_argument("--json", action="store_true", help="print one JSON object")
     a = sub.add_parser(
         "acoustic", help="acoustic tensor of nonassociative elastoplasticity (§3.5)",
@@ -430,7 +432,10 @@ def _acoustic(args: argparse.Namespace) -> dict:
 
 
 def _rod(args: argparse.Namespace) -> dict:
-    from flutterfriction.analysis.rod import critical_loads
+    """Critical loads and regime intervals of a Beck/Pflüger rod (eqs. 106-118), refusing
+    groups outside :data:`analysis.rod.GROUP_RANGES` and SI input whose groups or units leave
+    the floating-point range (computed in logarithms, so that nothing overflows first)."""
+    from flutterfriction.analysis.rod import GROUP_RANGES, P_MAX_LIMIT, check_groups, critical_loads
     from flutterfriction.models.rod import Rod, RodGroups
 
     si = {k: getattr(args, k) for k in ("length", "B", "rho", "D", "kappa", "tip_mass")}
@@ -440,19 +445,49 @@ def _rod(args: argparse.Namespace) -> dict:
     if given_si and given_dl:
         raise ParameterError("give either --mass-ratio/--eta/--gamma or SI parameters "
                              "(--length --B --rho ...), not both")
+    if not 0 < args.p_max <= P_MAX_LIMIT:
+        raise ParameterError(f"--p-max must be in (0, {P_MAX_LIMIT:g}], got {args.p_max}")
     rod = None
+    names = {"tan_alpha": "--mass-ratio", "eta": "--eta", "gamma": "--gamma"}
     if given_si:
         missing = [f"--{k}" for k in ("length", "B", "rho") if si[k] is None]
         if missing:
             raise ParameterError(f"SI mode needs {', '.join(missing)}")
-        rod = Rod(**{k: v for k, v in si.items() if v is not None})
-        groups = rod.groups()
+        rod = Rod(**{k: v for k, v in si.items() if v is not None})  # finite, signs
+        lg = {k: math.log10(getattr(rod, k)) if getattr(rod, k) > 0 else None
+              for k in ("length", "B", "rho", "D", "kappa", "tip_mass")}
+        ll, lB, lr = lg["length"], lg["B"], lg["rho"]
+        # Eq. (106) in decimal logarithms: (option, group, text, log10 of the value or None).
+        log_groups = (
+            ("--D", "eta", "D/(B l^2) sqrt(B/rho)",
+             None if lg["D"] is None else lg["D"] - 0.5 * lB - 2 * ll - 0.5 * lr),
+            ("--kappa", "gamma", "kappa l^2/sqrt(rho B)",
+             None if lg["kappa"] is None else lg["kappa"] + 2 * ll - 0.5 * lr - 0.5 * lB),
+            ("--tip-mass", "tan_alpha", "M/(rho l)",
+             None if lg["tip_mass"] is None else lg["tip_mass"] - lr - ll))
+        values = {}
+        for option, name, text, lv in log_groups:
+            low, high = GROUP_RANGES[name]
+            if lv is not None and (lv > math.log10(high) or (low > 0 and lv < math.log10(low))):
+                allowed = f"[0, {high:g}]" if low == 0 else f"0 or [{low:g}, {high:g}]"
+                raise ParameterError(f"{option} (with --length, --B, --rho): {name} = {text} = "
+                                     f"10^{lv:.4g} must be {allowed} (eq. 106)")
+            values[name] = 0.0 if lv is None else 10.0**lv
+        # The SI units of the answer must be normal floats too (P = p B/l^2, t = T tau).
+        for text, lv in (("the load unit B/l^2 [N]", lB - 2 * ll),
+                         ("the time scale l^2 sqrt(rho/B) [s]", 2 * ll + 0.5 * (lr - lB))):
+            if not -300 <= lv <= 300:
+                raise ParameterError(f"--length, --B, --rho: {text} = 10^{lv:.4g} must be in "
+                                     f"[1e-300, 1e300] (double precision)")
+        groups = RodGroups(**values)
     else:
-        names = {"tan_alpha": "--mass-ratio", "eta": "--eta", "gamma": "--gamma"}
         groups = RodGroups(**{k: (0.0 if v is None else check_nonnegative(names[k], v))
                               for k, v in dimless.items()})
-    if not args.p_max > 0:
-        raise ParameterError(f"--p-max must be > 0, got {args.p_max}")
+        try:
+            check_groups(groups)
+        except ParameterError as exc:
+            name = str(exc).split(" ", 1)[0]
+            raise ParameterError(f"{names.get(name, name)}: {exc}") from None
     loads = critical_loads(groups, p_max=args.p_max)
     out = {**loads.as_dict(), "groups": vars(groups)}
     if rod is not None:
