@@ -321,7 +321,8 @@ def isotropic_acoustic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike, n: Arr
         w = root_n + math.sqrt(D)
         g1 = (pq / w) ** 2 / (lr + 1)  # (sqrt N - sqrt(N - pq))^2 = (pq / (sqrt N + ...))^2
         g2 = w * w / (lr + 1)
-        interval = (physical(g1, "g1"), physical(g2, "g2"))
+        # g1 <= g2 exactly; rounding can swap them when N or N - p.q is tiny (width ~ eps)
+        interval = tuple(sorted((physical(g1, "g1"), physical(g2, "g2"))))
     if g is None:
         return IsotropicAcoustic(g_loc, interval, notes=tuple(notes))
 
