@@ -13,8 +13,15 @@ none, as for the Beck rod) and the pulsation ``omega_flu``; with SI parameters
 [--g G] [--json]`` analyses the acoustic tensor of nonassociative elastoplasticity (§3.5,
 isotropic elasticity, unit density): ``g_localization`` (eq. 185), ``flutter_interval``
 (eq. 188 corrected, or null) and, with ``--g``, the ``eigenvalues`` as ``[re, im]`` pairs.
+Vectors are numbers separated by spaces or commas, negative entries as typed
+(``--P -1 0.5 0.5 0 0 0.8``); any scale is handled, results beyond 1e+-300 are refused.
 
-Bad input: one line naming the parameter on stderr, exit code 2, no traceback.
+``flutterfriction limit-cycle beck [--P 5.5 ...] [--t-max T] [--quiet] [--json]`` integrates the
+nonlinear Beck rod to its limit cycle, after checking the load against the damped flutter load
+of the linearised rod; progress goes to stderr unless ``--quiet``.
+
+Bad input: one line naming the parameter on stderr, exit code 2, no traceback. ``--json``
+prints strict JSON (a NaN or infinity would be an internal error, exit 1, never printed).
 """
 
 from __future__ import annotations
@@ -264,11 +271,16 @@ def _limit_cycle_beck(args: argparse.Namespace) -> dict:
             hints.append(f"--P >= {P_ok:.4g} N")
         if t_need <= t_limit:
             hints.append(f"--t-max >= {t_need:.3g} s")
+        if not hints:
+            raise ParameterError(
+                f"--P: this rod grows too slowly up to {BECK_LOAD_MAX:g} P_flu = {P_top:.4g} N "
+                f"({growth(P_top):.3g} 1/s) for a cycle to converge within the largest "
+                f"--t-max, {t_limit:.4g} s")
         raise ParameterError(
             f"--P = {args.P:g} N is only {above:.3g}% above the damped flutter load "
             f"{P_flu:.6g} N: the motion grows at {sigma:.3g} 1/s there, so the cycle needs "
             f"roughly {t_need:.3g} s of simulated time, far beyond --t-max = {t_max:.4g} s; "
-            f"give {' or '.join(hints) if hints else 'a larger --P'}")
+            f"give {' or '.join(hints)}")
 
     say = _progress_printer(args.quiet)
     say(f"damped flutter load P_flu = {P_flu:.6g} N ({args.elements} P2 elements); "
