@@ -68,12 +68,14 @@ def check_direction(n: ArrayLike, normalise: bool = False) -> NDArray:
     n = np.asarray(n, dtype=float)
     if n.shape != (3,) or not np.all(np.isfinite(n)):
         raise ParameterError("n must be 3 finite numbers")
-    norm = np.linalg.norm(n)
-    if norm == 0:
+    n_max = float(np.abs(n).max())
+    if n_max == 0:
         raise ParameterError("n must be non-zero (a unit vector)")
-    if abs(norm - 1) > 1e-9 and not normalise:
-        raise ParameterError(f"n must be a unit vector, |n| = {norm:.6g}")
-    return n / norm
+    m = n / n_max  # scaled first: |n| of huge or tiny entries neither overflows nor underflows
+    norm_m = float(np.linalg.norm(m))
+    if not normalise and abs(n_max * norm_m - 1) > 1e-9:
+        raise ParameterError(f"n must be a unit vector, |n| = {n_max * norm_m:.6g}")
+    return m / norm_m
 
 
 def voigt_to_tensor(v: ArrayLike) -> NDArray:
@@ -161,13 +163,20 @@ def acoustic_tensor_isotropic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike,
 
 def acoustic_eigenvalues_isotropic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike,
                                    g: float, n: ArrayLike) -> NDArray:
-    """``mu`` and the two roots of eq. (184) (complex when flutter)."""
+    """``mu`` and the two roots of eq. (184) (complex when flutter), the real ones ascending;
+    the smaller real root from the product ``c`` (no cancellation when one root dominates, as
+    for small ``|g|``). For inputs at any scale see ``analysis.acoustic.isotropic_acoustic``."""
     p, q = isotropic_vectors(lam, mu, P, Q, n)
     n = np.asarray(n, dtype=float)
-    b = lam + 3 * mu - p @ q / g
-    c = (lam + 2 * mu) * (mu - p @ q / g) + (lam + mu) * (p @ n) * (q @ n) / g
-    root = np.sqrt(complex(b * b - 4 * c))
-    return np.array([mu, (b - root) / 2, (b + root) / 2])
+    b = float(lam + 3 * mu - p @ q / g)
+    c = float((lam + 2 * mu) * (mu - p @ q / g) + (lam + mu) * (p @ n) * (q @ n) / g)
+    disc = b * b - 4 * c
+    if disc < 0:
+        root = 1j * math.sqrt(-disc)
+        return np.array([mu, (b - root) / 2, (b + root) / 2])
+    big = (b + math.copysign(math.sqrt(disc), b)) / 2
+    small = c / big if big != 0 else 0.0
+    return np.array([mu, min(small, big), max(small, big)], dtype=complex)
 
 
 def localization_modulus_isotropic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike,
