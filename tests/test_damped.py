@@ -113,7 +113,11 @@ def test_viscosity_keeps_dead_load_buckling(p, eps):
     pd = _damped(p, eps, 1.0)
     H_cr = dead_critical_loads(p)[0]
     assert damped_dead_load_onset(pd, "routh") == pytest.approx(H_cr, rel=1e-10)
-    assert damped_dead_load_onset(pd, "eigenvalues") == pytest.approx(H_cr, rel=1e-9)
+    # The eigenvalue crossing (a real s through 0) is resolved to about eps max|s| / |ds/dH|:
+    # it loses digits to the fast modes of an ill-conditioned mass matrix. Measured against
+    # 40-digit H_cr over 151 pendulums of this strategy: worst 1.7e-8 (1.0e-8 with the former
+    # SI matrices, which only looked closer against an equally rounded eigh H_cr).
+    assert damped_dead_load_onset(pd, "eigenvalues") == pytest.approx(H_cr, rel=5e-8)
 
 
 @settings(max_examples=40)

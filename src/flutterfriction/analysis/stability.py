@@ -93,9 +93,18 @@ def pencil_eigenvalues(K0: ArrayLike, K1: ArrayLike, M: ArrayLike, loads: ArrayL
     ndarray, shape (len(loads), n), complex
         Sorted by real part, then imaginary part.
     """
+    return _reduced_eigenvalues(*_reduce(K0, K1, M), loads)
+
+
+def _reduce(K0: ArrayLike, K1: ArrayLike, M: ArrayLike) -> tuple[Matrix, Matrix, Matrix]:
+    """``(L^-1, L^-1 K0 L^-T, L^-1 K1 L^-T)`` with ``M = L L^T``."""
     Linv = _cholesky_reduction(np.asarray(M, dtype=float))
-    A0 = Linv @ np.asarray(K0, dtype=float) @ Linv.T
-    A1 = Linv @ np.asarray(K1, dtype=float) @ Linv.T
+    return (Linv, Linv @ np.asarray(K0, dtype=float) @ Linv.T,
+            Linv @ np.asarray(K1, dtype=float) @ Linv.T)
+
+
+def _reduced_eigenvalues(Linv: Matrix, A0: Matrix, A1: Matrix, loads: ArrayLike) -> NDArray:
+    """Eigenvalues of ``A0 + p A1`` for each load, sorted as :func:`pencil_eigenvalues`."""
     p = np.atleast_1d(np.asarray(loads, dtype=float))
     mu = np.linalg.eigvals(A0[None] + p[:, None, None] * A1[None])
     order = np.lexsort((mu.imag, mu.real), axis=-1)
@@ -141,6 +150,10 @@ def _brent(f: Callable[[float], float], a: float, b: float) -> float:
 #: 1000 leaves a margin of 26 (``tests/test_extremes_ziegler.py::test_noise_floor_covers_
 #: roundoff``).
 NOISE_FLOOR_FACTOR = 1000.0
+#: With a noise floor, at most this many sampled dips of the discriminant are minimised per
+#: scan (deepest first): the pendulum has one flutter interval, and 4 bounds the cost of a scan
+#: at ~4 bounded minimisations even on a plateau of round-off.
+MAX_MINIMISED_DIPS = 4
 
 
 def discriminant_noise_floor(Linv: ArrayLike, K0: ArrayLike, K1: ArrayLike, loads: ArrayLike,
@@ -164,7 +177,8 @@ def discriminant_noise_floor(Linv: ArrayLike, K0: ArrayLike, K1: ArrayLike, load
 
 
 def _refine_roots(f: Callable[[float], float], grid: NDArray, values: NDArray,
-                  floor: NDArray | None = None) -> list[float]:
+                  floor: NDArray | None = None,
+                  floor_at: Callable[[float], float] | None = None) -> list[float]:
     """Roots of ``f`` from samples: every sign change is refined with Brent's method, and every
     sampled local minimum that stays positive is minimised on its bracket, so that a pair of
     roots closer than the sampling step (a narrow flutter interval) is found too.
@@ -173,7 +187,9 @@ def _refine_roots(f: Callable[[float], float], grid: NDArray, values: NDArray,
     samples are judged against it: a sign change or a local minimum with every sample at or
     below the floor is round-off, not a root, and is refused (:class:`ConvergenceError`)
     instead of being minimised (minimising noise finds noise, and costs a minimisation per
-    local minimum); only minima clearly above the floor are minimised. Without ``floor`` the
+    local minimum); of the minima above the floor only the :data:`MAX_MINIMISED_DIPS` deepest
+    are minimised, and a negative minimum within the floor there (``floor_at``, the floor at
+    any load) is refused too: at a double root the normalised discriminant is pure noise. Without ``floor`` the
     behaviour is the historical one (used by the rod code)."""
     fl = np.zeros_like(values) if floor is None else np.asarray(floor, dtype=float)
 
@@ -185,27 +201,42 @@ def _refine_roots(f: Callable[[float], float], grid: NDArray, values: NDArray,
 
     roots = []
     for i, (x, v) in enumerate(zip(grid, values, strict=True)):
-        if v == 0.0:
-            noise(i, i)
+        if v == 0.0:  # an exact zero is a root unless its neighbours are round-off too
+            noise(max(i - 1, 0), min(i + 1, len(grid) - 1))
             roots.append(float(x))
     for i in range(len(grid) - 1):
         if values[i] * values[i + 1] < 0.0:
             noise(i, i + 1)
             roots.append(_brent(f, grid[i], grid[i + 1]))
+    candidates = []
     for i in range(1, len(grid) - 1):
         v = values[i - 1:i + 2]
         if v.min() > 0.0 and v[1] <= v[0] and v[1] <= v[2]:
-            if floor is not None:
-                if v[1] <= fl[i]:
-                    noise(i - 1, i + 1)
-                    continue  # a neighbour is above the floor: a touch at round-off level
-                if min(v[0], v[2]) - v[1] <= fl[i]:
-                    continue  # a wiggle of round-off on a plateau, not a dip
-            lo, hi = grid[i - 1], grid[i + 1]
-            res = minimize_scalar(f, bounds=(lo, hi), method="bounded",
-                                  options={"xatol": 4 * np.finfo(float).eps * abs(hi)})
-            if res.fun < 0.0:
-                roots += [_brent(f, lo, res.x), _brent(f, res.x, hi)]
+            if floor is not None and v[1] <= fl[i]:
+                noise(i - 1, i + 1)
+                continue  # a neighbour is above the floor: a touch at round-off level
+            candidates.append((min(v[0], v[2]) - v[1], i))
+    if floor is not None:
+        # A round-off plateau has a local minimum at almost every sample (the historical hang:
+        # hundreds of minimisations per scan). Only the deepest few dips are minimised; a
+        # narrow flutter interval shows as the deepest dip of its scan.
+        candidates = sorted(candidates, reverse=True)[:MAX_MINIMISED_DIPS]
+    # A smooth dip is located in a few dozen bounded-Brent steps; 100 bounds the cost of a
+    # noisy one (scipy's default allows 500). Only the sign of the minimum found is used.
+    options = {"xatol": 4 * np.finfo(float).eps, "maxiter": 100 if floor is not None else 500}
+    for _, i in candidates:
+        lo, hi = grid[i - 1], grid[i + 1]
+        res = minimize_scalar(f, bounds=(lo, hi), method="bounded",
+                              options={**options, "xatol": options["xatol"] * abs(hi)})
+        if res.fun < 0.0:
+            level = max(np.max(fl[i - 1:i + 2]),
+                        0.0 if floor_at is None else floor_at(float(res.x)))
+            if floor is not None and -res.fun <= level:
+                raise ConvergenceError(
+                    f"the discriminant dips to its round-off floor near load {res.x:.10g} "
+                    f"(minimum {res.fun:.3g}, floor {level:.3g}): a flutter interval that "
+                    f"narrow is not resolved in double precision")
+            roots += [_brent(f, lo, res.x), _brent(f, res.x, hi)]
     return sorted(roots)
 
 
@@ -222,17 +253,21 @@ def coalescence_loads(K0: ArrayLike, K1: ArrayLike, M: ArrayLike, load_max: floa
     round-off level (:func:`discriminant_noise_floor`): round-off is refused, not minimised.
     """
     grid = np.linspace(0.0, float(load_max), int(n_scan) + 1)
-    mu = pencil_eigenvalues(K0, K1, M, grid)
+    reduced = _reduce(K0, K1, M)  # once: the same numbers pencil_eigenvalues would form
+    mu = _reduced_eigenvalues(*reduced, grid)
     values = discriminant(mu)
     floor = None
     if noise_floor:
-        floor = discriminant_noise_floor(_cholesky_reduction(np.asarray(M, dtype=float)),
-                                         K0, K1, grid, mu)
+        floor = discriminant_noise_floor(reduced[0], K0, K1, grid, mu)
 
     def f(p: float) -> float:
-        return float(discriminant(pencil_eigenvalues(K0, K1, M, [p]))[0])
+        return float(discriminant(_reduced_eigenvalues(*reduced, [p]))[0])
 
-    return _refine_roots(f, grid, values, floor)
+    def floor_at(p: float) -> float:
+        mu_p = _reduced_eigenvalues(*reduced, [p])
+        return float(discriminant_noise_floor(reduced[0], K0, K1, [p], mu_p)[0])
+
+    return _refine_roots(f, grid, values, floor, floor_at if noise_floor else None)
 
 
 def static_bifurcation_loads(K0: ArrayLike, K1: ArrayLike) -> NDArray:

@@ -76,7 +76,9 @@ def follower_critical_gammas(pendulum: ZieglerPendulum, n_scan: int = 512,
             return roots[0], roots[1]
         load_max *= 2.0
     raise ConvergenceError(
-        f"no flutter/divergence coalescence bracketed up to P = {load_max:g} k2/l1")
+        f"no flutter/divergence coalescence bracketed up to P = {load_max:g} k2/l1 (a flutter "
+        f"interval narrower than the scan resolves: this combination of ratios is beyond what "
+        f"double precision separates)")
 
 
 def follower_critical_loads(pendulum: ZieglerPendulum, n_scan: int = 512,
