@@ -54,7 +54,7 @@ BECK_ELEMENTS = (1, 16)  # the chapter's meshes go to 16 (beck_limit_cycle scene
 BECK_LOAD_MAX = 3.0  # P / P_flu; at 3 P_flu (8.9 N, list 119) the cycle takes ~14 s simulated
 BECK_T_MAX_SCALES = 2000.0  # t_max / (l^2 sqrt(rho/B))
 BECK_T_MAX_DEFAULT_SCALES = 200.0
-BECK_ETA_MAX, BECK_GAMMA_MAX, BECK_TIP_MASS_RATIO_MAX = 10.0, 100.0, 100.0
+BECK_ETA_MAX, BECK_GAMMA_MAX, BECK_TIP_MASS_RATIO_MAX = 1.0, 100.0, 100.0  # eta: as `rod`
 BECK_RANGES = {"length": (1e-6, 1e6, "m"), "B": (1e-12, 1e12, "N m^2"),
                "rho": (1e-12, 1e12, "kg/m")}
 BECK_TOL = 1e-5  # the cycle's convergence tolerance (relative)
