@@ -218,6 +218,146 @@ def rod_cases() -> list[StressResult]:
     return out
 
 
+def _fe_regimes_dense(tan_alpha: float, p: np.ndarray, n_elements: int) -> list[str]:
+    """Regime of the undamped FE twin at every load of ``p`` (no adaptivity, no exact solve):
+    flutter where a pencil eigenvalue Omega^2 is complex, divergence where one is negative."""
+    from flutterfriction.models.rod import RodGroups
+    from flutterfriction.models.rod_fe import assemble
+
+    fe = assemble(RodGroups(tan_alpha=tan_alpha), n_elements)
+    L = np.linalg.cholesky(fe.M)
+    Linv = np.linalg.solve(L, np.eye(L.shape[0]))
+    A0, A1 = Linv @ fe.K_B @ Linv.T, Linv @ fe.load_matrix() @ Linv.T
+    out = []
+    for chunk in np.array_split(p, max(1, p.size // 500)):
+        mu = np.linalg.eigvals(A0[None] + chunk[:, None, None] * A1[None])
+        cx = np.abs(mu.imag) > 1e-6 * np.abs(mu)
+        neg = ~cx & (mu.real < 0)
+        out += ["flutter" if c else "divergence" if n else "stable"
+                for c, n in zip(cx.any(-1), neg.any(-1), strict=True)]
+    return out
+
+
+def rod_regime_cases(p_max: float = 400.0, n_alpha: int = 24) -> list[StressResult]:
+    """The Pflüger column's regime along the load axis, tan(alpha) in [0, 10] (a log-spaced
+    set plus 0.59, 0.595, 0.6, where a 2.3-wide divergence window opens near p = 48), p up to
+    400: every interval of :func:`critical_loads` against a dense, non-adaptive scan of the
+    FE twin on another mesh (20 elements, step 0.1 = the scan step / 2.5). Loads within 0.5 %
+    + 0.02 of a reported boundary are not compared (where the digits come from: the 20-element
+    mesh's boundaries differ from eq. 118's by <= 0.12 % up to p = 400, measured; x4 margin).
+    The worst case is reported; also the first divergence load at tan(alpha) = 0.595 for
+    p_max 50 ... 400 (47.7155, whatever p_max)."""
+    from flutterfriction.analysis import rod as ar
+    from flutterfriction.models.rod import RodGroups
+
+    alphas = sorted({0.0, 0.59, 0.595, 0.6, *np.geomspace(0.01, 10.0, n_alpha - 4).tolist()})
+    dense = np.arange(0.0, p_max, 0.1)[1:]
+    bad: list[str] = []
+    n_intervals = 0
+    n_refused = 0
+    for ta in alphas:
+        try:
+            c = ar.critical_loads(RodGroups(tan_alpha=ta), p_max=p_max)
+        except (ParameterError, ConvergenceError) as exc:
+            n_refused += 1
+            bad.append(f"tan a = {ta:.4g}: refused ({exc})")
+            continue
+        n_intervals += len(c.intervals)
+        edges = np.array([iv["p_from"] for iv in c.intervals[1:]])
+        claimed = np.empty(dense.size, dtype=object)
+        for iv in c.intervals:
+            claimed[(dense >= iv["p_from"]) & (dense <= iv["p_to"])] = iv["regime"]
+        fe = np.array(_fe_regimes_dense(ta, dense, 20), dtype=object)
+        near = np.zeros(dense.size, dtype=bool)
+        for e in edges:
+            near |= np.abs(dense - e) <= 0.005 * e + 0.02
+        wrong = (claimed != fe) & ~near
+        if np.any(wrong):
+            i = int(np.argmax(wrong))
+            bad.append(f"tan a = {ta:.4g}: p = {dense[i]:.2f} is {claimed[i]}, the dense "
+                       f"scan says {fe[i]}")
+    firsts = {pm: ar.critical_loads(RodGroups(tan_alpha=0.595), p_max=pm).p_div
+              for pm in (50.0, 80.0, 200.0, 400.0)}
+    out = [StressResult(
+        "rod: regimes along p", f"{len(alphas)} tip masses tan a in [0, 10], p <= {p_max:g}",
+        "every stable/flutter/divergence interval (FE-bracketed, eq. 118 Newton) vs a dense "
+        "non-adaptive FE scan (20 elements, dp = 0.1)",
+        "the same regime at every load outside the boundaries' 0.5 % bands",
+        f"{n_intervals} intervals; " + ("all agree" if not bad else "; ".join(bad[:3])),
+        CORRECT if not bad else (REFUSED if len(bad) == n_refused else WRONG))]
+    out.append(_judge(
+        "rod: regimes along p", "tan a = 0.595, first divergence load for p_max 50/80/200/400",
+        "critical_loads(p_max).p_div (the 2.3-wide window at 47.7-50.0 must not be skipped)",
+        lambda: firsts, lambda: 47.71549336756,
+        lambda g, r: all(v is not None and abs(v - r) < 1e-9 * r for v in g.values()),
+        lambda x: x if isinstance(x, str | float) else ", ".join(
+            f"{k:g}: {v:.10g}" for k, v in x.items()) if isinstance(x, dict) else f"{x:.10g}",
+        note="reference: the undamped double root of eq. (118) (Newton, 1e-13), "
+             "tests/test_rod.py checks it against 30-digit mpmath"))
+    return out
+
+
+def _fe_vanishing_damping_limit(tan_alpha: float, n_elements: int = 48) -> float:
+    """The damped flutter load's eta -> 0 limit on the FE twin, by first-order perturbation of
+    the undamped modes: with left/right eigenvectors u, z of the reduced pencil, a real mode's
+    growth rate is ``-eta (u^T C1 z)/(2 u^T z)`` (C1 = the Kelvin-Voigt matrix per unit eta);
+    the limit is the first load where one becomes positive (Brent on the largest)."""
+    import scipy.linalg as sla
+    from scipy.optimize import brentq
+
+    from flutterfriction.models.rod import RodGroups
+    from flutterfriction.models.rod_fe import assemble
+
+    fe = assemble(RodGroups(tan_alpha=tan_alpha, eta=1.0), n_elements)
+    L = np.linalg.cholesky(fe.M)
+    Linv = np.linalg.solve(L, np.eye(L.shape[0]))
+    A0, A1, C1 = (Linv @ X @ Linv.T for X in (fe.K_B, fe.load_matrix(), fe.C))
+
+    def growth(p: float) -> float:
+        mu, U, Z = sla.eig(A0 + p * A1, left=True, right=True)
+        low = np.argsort(np.abs(mu))[:6]
+        rates = [-(U[:, k].conj() @ C1 @ Z[:, k]).real / (2 * (U[:, k].conj() @ Z[:, k]).real)
+                 for k in low if abs(mu[k].imag) <= 1e-9 * abs(mu[k])]
+        return float(max(rates))
+
+    grid = np.arange(0.1, 40.0, 0.1)
+    vals = [growth(p) for p in grid]
+    i = next(k for k, v in enumerate(vals) if v > 0)
+    return float(brentq(growth, grid[i - 1], grid[i], xtol=1e-14))
+
+
+def _vanishing_damping_limit(tan_alpha: float) -> float:
+    """:func:`_fe_vanishing_damping_limit` on 32 and 48 elements, Richardson-extrapolated with
+    the cubic elements' h^4 rate (tests/test_rod.py::test_fe_converges_at_fourth_order)."""
+    p32, p48 = (_fe_vanishing_damping_limit(tan_alpha, n) for n in (32, 48))
+    return p48 + (p48 - p32) / ((48 / 32) ** 4 - 1)
+
+
+def rod_vanishing_viscosity_cases() -> list[StressResult]:
+    """Kelvin-Voigt viscosity eta from 1e-6 down to 1e-30 (the chapter's paradox, §2.7: the
+    damped flutter load tends to a limit below the undamped one, 10.94 for Beck instead of
+    20.05): the exact flutter load against the limit on the FE twin from first-order
+    perturbation theory (32 and 48 elements, Richardson-extrapolated). Tolerance 1e-8
+    relative: the unextrapolated 48-element limit is within 1.4e-8 (tan a = 1, 100) and 2e-9
+    (Beck) of the exact one and the h^4 extrapolation gains >= 10x; the distance of the
+    eta = 1e-6 load to the limit is O(eta) (< 2e-10 relative, measured)."""
+    from flutterfriction.analysis import rod as ar
+    from flutterfriction.models.rod import RodGroups
+
+    out = []
+    for ta in (0.0, 1.0, 100.0):
+        limit = _vanishing_damping_limit(ta)
+        for eta in (1e-6, 1e-10, 1e-14, 1e-20, 1e-30):
+            out.append(_judge(
+                "rod: vanishing viscosity", f"tan a = {ta:g}, eta = {eta:g}",
+                "exact damped flutter load (eq. 118, Newton on Re f and Im f / eta)",
+                lambda ta=ta, eta=eta: ar.critical_loads(RodGroups(tan_alpha=ta, eta=eta)).p_flu,
+                lambda limit=limit: limit, lambda g, r: g is not None and _rel(g, r) < 1e-8,
+                lambda x: "none" if x is None else f"{x:.12g}",
+                note="eta -> 0 limit from FE perturbation theory"))
+    return out
+
+
 def acoustic_cases() -> list[StressResult]:
     """Flutter of the acoustic tensor far below the elastic scale: with P, Q scaled by s the
     flutter interval of g scales by s^2. The discriminant route (a quartic in 1/g) against the
@@ -429,6 +569,8 @@ ALL_CASES: dict[str, Callable[[], list[StressResult]]] = {
     "vanishing viscosity": vanishing_viscosity_cases,
     "extreme scales": scale_cases,
     "rod": rod_cases,
+    "rod: regimes along p": rod_regime_cases,
+    "rod: vanishing viscosity": rod_vanishing_viscosity_cases,
     "acoustic tensor": acoustic_cases,
     "long integration": long_integration_cases,
     "random parameters": random_pendulum_cases,

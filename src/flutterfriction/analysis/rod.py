@@ -193,8 +193,9 @@ DAMPING_FLOOR = 1e-6
 #: ``sqrt(p - p_c)``, so this locates the FE coalescence to ~1e-12 relative, while round-off
 #: (~1e-16 ||A||, enlarged to ~1e-8 at a defective pair) stays far below.
 _COMPLEX_RTOL = 1e-6
-#: Bisection width of the FE brackets, relative to p (ample for the exact Newton's start).
-_BRACKET_RTOL = 1e-10
+#: Bisection width of the FE brackets, relative to p: Brent then polishes the boundary to
+#: machine precision in a few steps (a smooth function with one simple zero in the bracket).
+_BRACKET_RTOL = 1e-7
 
 
 @dataclass(frozen=True)
@@ -562,10 +563,17 @@ def _exact_regime(p: float, g: RodGroups) -> Regime | None:
     if not g.damped:
         w = eigenvalues(p, g, n_modes=n_modes, n_elements=max(16, 3 * n_modes))
     else:
-        # The rightmost FE roots (not those of smallest modulus: with strong Kelvin-Voigt
-        # damping many overdamped roots lie near the origin, left of an unstable pair).
+        # The rightmost FE roots (with strong Kelvin-Voigt damping many overdamped roots lie
+        # nearer the origin than an unstable pair) and those of smallest modulus (with tiny
+        # damping the FE growth rates are round-off, ~1e-12, and "rightmost" is random).
         fe = fe_eigenvalues(g, p, max(16, 3 * n_modes))
-        w = refine_eigenvalues(p, g, fe[np.argsort(-fe.real)][: 2 * n_modes])
+        w = refine_eigenvalues(p, g, np.concatenate([fe[np.argsort(-fe.real)][: 2 * n_modes],
+                                                     fe[np.argsort(np.abs(fe))][: 2 * n_modes]]))
+        # Two more Newton steps: the stopping test (step <= 1e-13 |w|) leaves an error up to
+        # ~1e-16 |w|, above a growth rate O(damping) when the damping is tiny; each step
+        # squares it, down to the relative precision Re omega~ is computed with (see
+        # _damped_flutter).
+        w = refine_eigenvalues(p, g, refine_eigenvalues(p, g, w))
     if not g.damped:
         mu = w**2
         cx = np.abs(mu.imag) > 1e-8 * np.abs(mu)
