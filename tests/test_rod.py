@@ -182,3 +182,88 @@ def test_rod_validation(field, bad):
         Rod(**{**params, field: bad})
     with pytest.raises(ParameterError, match="tip_mass"):
         Rod(**params, tip_mass=-1.0)
+
+
+# ---------------------------------------------------------------------- issue 12: regimes along p
+P_DIV_0595 = 47.71549336756  # first divergence at tan a = 0.595 (double root of eq. 118)
+
+
+@pytest.mark.parametrize("p_max", [50.0, 80.0, 200.0, 400.0])
+def test_narrow_divergence_window_whatever_p_max(p_max):
+    """tan a = 0.595: stable, flutter from 16.05, divergence 47.72-49.99 (2.3 wide), flutter,
+    divergence from 85.2 ...: the first divergence load must not depend on p_max (it was 85.23
+    at p_max = 400, where a fixed 120-point scan stepped over the window)."""
+    c = ar.critical_loads(RodGroups(tan_alpha=0.595), p_max=p_max)
+    assert c.p_div == pytest.approx(P_DIV_0595, rel=1e-10)
+    regimes = [iv["regime"] for iv in c.intervals]
+    assert regimes[:4] == ["stable", "flutter", "divergence", "flutter"][:len(regimes)]
+    assert c.intervals[2]["p_to"] == pytest.approx(49.9915560466, rel=1e-9)
+    assert c.intervals[-1]["p_to"] == p_max
+    for a, b in zip(c.intervals, c.intervals[1:], strict=False):  # contiguous, alternating
+        assert a["p_to"] == b["p_from"] and a["regime"] != b["regime"]
+    if p_max >= 200:
+        assert regimes[4] == "divergence"
+        assert c.intervals[4]["p_from"] == pytest.approx(85.2266, abs=1e-4)
+
+
+def test_window_opens_between_059_and_0595():
+    """At tan a = 0.59 the window is closed (first divergence 85.42); at 0.595 open."""
+    assert ar.critical_loads(RodGroups(tan_alpha=0.59), p_max=100).p_div == pytest.approx(
+        85.4179611134, rel=1e-9)
+
+
+def test_p_max_and_groups_out_of_range_are_refused():
+    with pytest.raises(ParameterError, match="p_max"):
+        ar.critical_loads(RodGroups(), p_max=2000.0)
+    for kw, name in ((dict(eta=1e300), "eta"), (dict(gamma=1e5), "gamma"),
+                     (dict(tan_alpha=1e6), "tan_alpha"), (dict(eta=1e-200), "eta")):
+        with pytest.raises(ParameterError, match=name):
+            ar.critical_loads(RodGroups(**kw))
+
+
+@pytest.mark.parametrize(("ta", "limit"), [(0.0, 10.9388493456), (1.0, 7.9050716792)])
+def test_vanishing_viscosity_tends_to_its_limit(ta, limit):
+    """The chapter's paradox (§2.7): as eta -> 0 the damped flutter load tends smoothly to a
+    limit (Beck: 10.94, not the undamped 20.05); down to eta = 1e-30 (refused as 'already
+    unstable' at 1e-14 and Newton failures from 1e-12 before). The limits are the stress
+    report's FE perturbation values (agreement 1e-9)."""
+    loads = [ar.critical_loads(RodGroups(tan_alpha=ta, eta=eta)).p_flu
+             for eta in (1e-6, 1e-10, 1e-14, 1e-20, 1e-30, 1e-100)]
+    assert loads == pytest.approx([limit] * len(loads), rel=1e-9)
+    assert abs(loads[0] - loads[-1]) < 1e-9 * limit  # O(eta) from the limit
+    undamped = ar.critical_loads(RodGroups(tan_alpha=ta)).p_flu
+    assert undamped > 1.5 * limit
+
+
+def test_damped_rod_intervals():
+    """Damped (eta of list 119): flutter = a pair crossing the imaginary axis, divergence = the
+    unstable pair merging on the real axis; the Fig. 12 loads are the first two boundaries."""
+    c = ar.critical_loads(RodGroups(tan_alpha=1.5608, eta=ETA_119))
+    assert [iv["regime"] for iv in c.intervals] == ["stable", "flutter", "divergence"]
+    assert c.intervals[1]["p_from"] == c.p_flu and c.intervals[2]["p_from"] == c.p_div
+    assert round(c.p_flu, 2) == 7.78 and round(c.p_div, 2) == 30.52
+
+
+@pytest.mark.parametrize(("args", "option"), [
+    (["--mass-ratio", "0", "--eta", "1e300"], "--eta"),
+    (["--length", "1e300", "--B", "1", "--rho", "1"], "--length"),
+    (["--length", "1", "--B", "1", "--rho", "1", "--D", "1e300"], "--D"),
+    (["--mass-ratio", "1", "--p-max", "1e6"], "--p-max")])
+def test_cli_rod_extreme_input_is_refused(capsys, args, option):
+    from flutterfriction.cli import main
+
+    assert main(["rod", *args]) == 2
+    err = capsys.readouterr().err.strip()
+    assert option in err and "\n" not in err
+
+
+def test_cli_rod_json_intervals(capsys):
+    import json
+
+    from flutterfriction.cli import main
+
+    assert main(["rod", "--mass-ratio", "0.595", "--p-max", "400", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["p_div"] == pytest.approx(P_DIV_0595, rel=1e-10)
+    assert [iv["regime"] for iv in out["intervals"][:5]] == [
+        "stable", "flutter", "divergence", "flutter", "divergence"]

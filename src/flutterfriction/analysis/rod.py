@@ -567,8 +567,14 @@ def _exact_regime(p: float, g: RodGroups) -> Regime | None:
         # nearer the origin than an unstable pair) and those of smallest modulus (with tiny
         # damping the FE growth rates are round-off, ~1e-12, and "rightmost" is random).
         fe = fe_eigenvalues(g, p, max(16, 3 * n_modes))
-        w = refine_eigenvalues(p, g, np.concatenate([fe[np.argsort(-fe.real)][: 2 * n_modes],
-                                                     fe[np.argsort(np.abs(fe))][: 2 * n_modes]]))
+        guesses = np.concatenate([fe[np.argsort(-fe.real)][: 2 * n_modes],
+                                  fe[np.argsort(np.abs(fe))][: 2 * n_modes]])
+        # Growth rates at round-off level start on the imaginary axis: Newton's first step
+        # then gives Re omega~ = O(damping) to relative precision (from 1e-12 it would take
+        # log2(log(1e-100)/log(1e-12)) ~ 3 steps more to fall to a damping of 1e-100).
+        flat = np.abs(guesses.real) < 1e-8 * np.abs(guesses)
+        guesses = np.where(flat, 1j * guesses.imag, guesses)
+        w = refine_eigenvalues(p, g, guesses)
         # Two more Newton steps: the stopping test (step <= 1e-13 |w|) leaves an error up to
         # ~1e-16 |w|, above a growth rate O(damping) when the damping is tiny; each step
         # squares it, down to the relative precision Re omega~ is computed with (see
