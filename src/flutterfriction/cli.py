@@ -221,12 +221,15 @@ def _limit_cycle_beck(args: argparse.Namespace) -> dict:
         raise ParameterError(f"--length, --B, --rho: the time scale l^2 sqrt(rho/B) must be in "
                              f"[1e-4, 1e4] s (the integrator's absolute tolerances are in SI "
                              f"units), got {T:.3g} s")
-    groups = rod.groups()
+    L, B, rho = rod.length, rod.B, rod.rho  # eq. (106)'s groups, each an overflow-free product
     for option, value, limit, text in (
-            ("--D", groups.eta, BECK_ETA_MAX, "eta = D/(B l^2) sqrt(B/rho)"),
-            ("--kappa", groups.gamma, BECK_GAMMA_MAX, "gamma = kappa l^2/sqrt(rho B)"),
-            ("--tip-mass", groups.tan_alpha, BECK_TIP_MASS_RATIO_MAX, "M/(rho l)")):
-        if value > limit:
+            ("--D", rod.D * (math.sqrt(B / rho) / (B * L * L)), BECK_ETA_MAX,
+             "eta = D/(B l^2) sqrt(B/rho)"),
+            ("--kappa", rod.kappa * (L * L / math.sqrt(rho * B)), BECK_GAMMA_MAX,
+             "gamma = kappa l^2/sqrt(rho B)"),
+            ("--tip-mass", rod.tip_mass * (1 / (rho * L)), BECK_TIP_MASS_RATIO_MAX,
+             "M/(rho l)")):
+        if not value <= limit:
             raise ParameterError(f"{option}: {text} must be <= {limit:g}, got {value:.4g}")
     t_limit = BECK_T_MAX_SCALES * T
     t_max = BECK_T_MAX_DEFAULT_SCALES * T if args.t_max is None else args.t_max
