@@ -267,3 +267,13 @@ def test_cli_rod_json_intervals(capsys):
     assert out["p_div"] == pytest.approx(P_DIV_0595, rel=1e-10)
     assert [iv["regime"] for iv in out["intervals"][:5]] == [
         "stable", "flutter", "divergence", "flutter", "divergence"]
+
+
+def test_cli_rod_text_lists_intervals(capsys):
+    from flutterfriction.cli import main
+
+    assert main(["rod", "--mass-ratio", "0.595", "--p-max", "60"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert [ln.split()[0] for ln in lines[:4]] == ["stable", "flutter", "divergence", "flutter"]
+    assert lines[2].startswith("divergence p in [47.71549337, 49.99155605]")
+    assert any(ln.startswith("p_div     = 47.71549337") for ln in lines)

@@ -510,6 +510,13 @@ def _rod(args: argparse.Namespace) -> dict:
         out["P_flu_N"] = None if loads.p_flu is None else loads.p_flu * u
         out["P_div_N"] = None if loads.p_div is None else loads.p_div * u
         out["time_scale_s"] = rod.time_scale
+    if not args.json:  # text mode: the intervals first, one a line (the loads follow)
+        lines = [f"{iv['regime']:10s} p in [{iv['p_from']:.10g}, {iv['p_to']:.10g}]"
+                 for iv in loads.intervals]
+        try:
+            print("\n".join(lines))
+        except BrokenPipeError:  # piped into `head`: not an error of ours
+            pass
     return out
 
 
