@@ -511,6 +511,15 @@ def _check_p_max(p_max: float) -> float:
     return p_max
 
 
+def _check_step(step: float, p_max: float) -> float:
+    step = check_positive("step", step)
+    if step > SCAN_STEP or p_max / step > 1e6:
+        raise ParameterError(f"step must be in [p_max/1e6, {SCAN_STEP:g}] = "
+                             f"[{p_max / 1e6:g}, {SCAN_STEP:g}] (the scan's guarantee and "
+                             f"size), got {step!r}")
+    return step
+
+
 def _loads_from(intervals: list[dict], omegas: dict[float, float]) -> dict:
     out: dict = {"p_flu": None, "omega_flu": None, "p_div": None, "omega_div": None}
     for iv in intervals:
@@ -531,8 +540,12 @@ def fe_critical_loads(g: RodGroups, n_elements: int, p_max: float = 80.0,
     eq. 14 form; damped: unstable complex and real roots ``s``) is scanned on [0, p_max] with a
     step <= ``step``, every change is bisected and polished with Brent's method (coalescence:
     a pair's squared difference; damped flutter: the pair's growth rate), and windows between
-    two scan points are caught by minimising the indicators of :class:`_FEScan`."""
+    two scan points are caught by minimising the indicators of :class:`_FEScan`. Damped: the
+    scan runs on the modal reduction to the modes the load couples and each boundary is
+    polished on the full model. Parameters as :func:`critical_loads` (``n_elements``
+    required); the loads are the FE model's, not eq. (118)'s."""
     p_max = _check_p_max(p_max)
+    step = _check_step(step, p_max)
     check_groups(g)
     # Damped: scanned on the modal reduction (fast), each boundary polished on the full model.
     n_modes = _modes_coupled(p_max) if g.damped else None
@@ -608,12 +621,39 @@ def critical_loads(g: RodGroups, p_max: float = 80.0, n_elements: int | None = N
     and Newton at the true one. Finally the regime of every interval is checked on the exact
     roots at its midpoint; any disagreement raises :class:`ConvergenceError`.
 
-    Guarantee: every regime interval wider than ``step`` is found (it contains a scan point);
-    narrower ones are found when an indicator of :class:`_FEScan` has a sampled local minimum
-    at one of its two neighbouring scan points (always, if the coalescing pair's gap varies
-    on a scale longer than ``step``).
+    Guarantee: every regime interval wider than ``step`` (0.25 by default, whatever
+    ``p_max``) is found with both its ends (it contains a scan point). Narrower ones are found
+    when an indicator of :class:`_FEScan` has a sampled local minimum at a neighbouring scan
+    point (always, if the coalescing pair's gap varies on a scale longer than ``step``;
+    measured: the divergence window opening near tan(alpha) = 0.59325 is found from 0.17
+    wide); at a nearly tangent coalescence Newton may fail and the call is refused.
+
+    Parameters
+    ----------
+    g : RodGroups
+        ``tan(alpha)``, ``eta``, ``gamma`` of eq. (106), within :data:`GROUP_RANGES`.
+    p_max : float
+        Largest load ``p = P l^2/B`` searched, in (0, :data:`P_MAX_LIMIT`].
+    n_elements : int, optional
+        FE elements of the bracketing scan (default :func:`_scan_elements`).
+    step : float
+        Largest step of the scan, in (0, :data:`SCAN_STEP`] and >= p_max/1e6.
+
+    Returns
+    -------
+    RodCriticalLoads
+        First flutter and divergence loads (``None`` if absent up to ``p_max``), their
+        pulsations, and ``intervals``: every ``{"regime", "p_from", "p_to"}`` on [0, p_max].
+
+    Raises
+    ------
+    ParameterError
+        A parameter outside its range (the message names it and the range).
+    ConvergenceError
+        A Newton solve failed or the exact regime check contradicts the FE bracketing.
     """
     p_max = _check_p_max(p_max)
+    step = _check_step(step, p_max)
     check_groups(g)
     n_el = _scan_elements(p_max) if n_elements is None else n_elements
     delta = _damping(g)
