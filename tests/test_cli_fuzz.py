@@ -246,17 +246,28 @@ def test_ziegler_decades(over):
             assert result[key] is None or result[key] > 0
 
 
-ROD_DIMLESS = ["mass-ratio", "eta", "gamma", "p-max"]
 ROD_SI = {"length": "0.35", "B": "0.0332", "rho": "0.0546", "D": "7.078e-6", "kappa": "0",
           "tip-mass": "0"}
 
 
-@FUZZ
-@given(st.dictionaries(st.sampled_from(ROD_DIMLESS), decade(), min_size=1, max_size=2))
-def test_rod_dimensionless_decades(over):
+def _rod_dimensionless(over):
     result = _check(_argv(["rod"], over))
     if result is not None:
         assert result["p_flu"] is None or result["p_flu"] > 0
+
+
+@FUZZ
+@given(st.dictionaries(st.sampled_from(["mass-ratio", "p-max"]), decade(), min_size=1,
+                       max_size=2))
+def test_rod_undamped_decades(over):
+    _rod_dimensionless(over)
+
+
+@FUZZ
+@given(st.dictionaries(st.sampled_from(["mass-ratio", "eta", "gamma", "p-max"]), decade(),
+                       min_size=1, max_size=3).filter(lambda d: "eta" in d or "gamma" in d))
+def test_rod_damped_decades(over):
+    _rod_dimensionless(over)
 
 
 @FUZZ
