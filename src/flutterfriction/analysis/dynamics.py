@@ -135,9 +135,11 @@ def limit_cycle(pendulum: ZieglerPendulum, P: float, state0: ArrayLike, H: float
                 a1, a2 = _amplitudes(pendulum, P, H, yc, T2, method, rtol, atol)
                 return LimitCycle(a1, a2, T2, tuple(float(v) for v in yc), tc, len(crossings))
         x, t0 = sol.y[:, -1], sol.t[-1]
-    last = "" if len(crossings) < 2 else (
-        f"; last two section crossings differ by {np.max(np.abs(crossings[-1][1] - crossings[-2][1])):.2g}"
-        f" (alpha1 = {crossings[-1][1][0]:.4g} rad)")
+    last = ""
+    if len(crossings) >= 2:
+        gap = float(np.max(np.abs(crossings[-1][1] - crossings[-2][1])))
+        last = (f"; last two section crossings differ by {gap:.2g} "
+                f"(alpha1 = {crossings[-1][1][0]:.4g} rad)")
     raise ConvergenceError(f"no limit cycle converged to {tol:g} within t = {t_max:g} s "
                            f"simulated{last}")
 
@@ -149,6 +151,10 @@ def shoot_periodic_orbit(pendulum: ZieglerPendulum, P: float, guess: LimitCycle,
     x_guess = np.asarray(guess.section_state, dtype=float)
 
     def residual(z):
+        # Newton may try any period: only (T/2, 2T) of the guess is integrated, so a wild step
+        # costs one rejected evaluation, never an unbounded integration.
+        if not (0.5 * guess.period_s < z[3] < 2.0 * guess.period_s and np.isfinite(z).all()):
+            return np.full(4, 1e3)
         x0 = np.array([z[0], z[1], 0.0, z[2]])
         sol = simulate(pendulum, P, x0, z[3], H=H, rtol=rtol, atol=atol)
         return sol.y[:, -1] - x0
@@ -195,13 +201,15 @@ def linear_flutter_mode(pendulum: ZieglerPendulum, P_flu: float) -> tuple[float,
 
 
 def _amplitude_orbit(pendulum: ZieglerPendulum, A: float, z0: NDArray, rtol: float,
-                     atol: float) -> NDArray:
+                     atol: float, T_max: float, P_max: float) -> NDArray:
     """Periodic orbit through the section point ``alpha1 = A``, ``alpha1_dot = 0``: solves for
     ``z = (alpha2, alpha2_dot, T, P)`` with ``phi_T(x0; P) = x0`` (Newton, ``hybr``). Fixing the
     amplitude instead of the load keeps Newton away from the trivial orbit x = 0 (a solution
     for every T and P) that a load-parametrised shooting meets near the Hopf point."""
     def residual(z: NDArray) -> NDArray:
-        if not (z[2] > 0 and np.isfinite(z).all()):
+        # Only periods in (0, T_max) and loads in (0, P_max) are integrated: each evaluation
+        # is bounded (a huge trial load would make one period arbitrarily stiff).
+        if not (0 < z[2] < T_max and 0 < z[3] < P_max and np.isfinite(z).all()):
             return np.full(4, 1e3)
         x0 = np.array([A, z[0], 0.0, z[1]])
         sol = simulate(pendulum, float(z[3]), x0, float(z[2]), rtol=rtol, atol=atol)
@@ -229,11 +237,15 @@ def limit_cycle_by_continuation(pendulum: ZieglerPendulum, P: float, P_flu: floa
     amplitude at most doubled per step, until the orbit's load matches ``P`` to ``tol``
     (relative). At most ``max_steps`` shooting solves: otherwise :class:`ConvergenceError`.
     Works arbitrarily close above ``P_flu``, where the transient of :func:`limit_cycle` decays
-    like ``exp(-Re s t)`` with ``Re s ~ P - P_flu``."""
+    like ``exp(-Re s t)`` with ``Re s ~ P - P_flu``. Shooting integrates periods below
+    ``4 (2 pi / Omega)`` and trial loads below ``4 max(P, P_flu)`` only (the cycles of the
+    §2.9 pendulum shorten with amplitude)."""
     omega, mode = linear_flutter_mode(pendulum, P_flu)
+    T_max = 4 * 2 * np.pi / omega
+    P_max = 4 * max(P, P_flu)
     A = A_start
     z = _amplitude_orbit(pendulum, A, np.array([A * mode[1], A * mode[3], 2 * np.pi / omega,
-                                                P_flu]), rtol, atol)
+                                                P_flu]), rtol, atol, T_max, P_max)
     history = [(A, z)]
     for _ in range(max_steps):
         A_cur, z_cur = history[-1]
@@ -252,7 +264,8 @@ def limit_cycle_by_continuation(pendulum: ZieglerPendulum, P: float, P_flu: floa
         A_new = min(max(A_new, 0.5 * A_cur), 2.0 * A_cur)
         guess = np.array([z_cur[0] * A_new / A_cur, z_cur[1] * A_new / A_cur, z_cur[2],
                           z_cur[3]])
-        history.append((A_new, _amplitude_orbit(pendulum, A_new, guess, rtol, atol)))
+        history.append((A_new, _amplitude_orbit(pendulum, A_new, guess, rtol, atol, T_max,
+                                                        P_max)))
     raise ConvergenceError(f"continuation from the flutter mode did not reach P = {P:g} N "
                            f"in {max_steps} steps (last orbit at P = {history[-1][1][3]:g} N)")
 

@@ -189,8 +189,8 @@ def _refine_roots(f: Callable[[float], float], grid: NDArray, values: NDArray,
     instead of being minimised (minimising noise finds noise, and costs a minimisation per
     local minimum); of the minima above the floor only the :data:`MAX_MINIMISED_DIPS` deepest
     are minimised, and a negative minimum within the floor there (``floor_at``, the floor at
-    any load) is refused too: at a double root the normalised discriminant is pure noise. Without ``floor`` the
-    behaviour is the historical one (used by the rod code)."""
+    any load) is refused too: at a double root the normalised discriminant is pure noise.
+    Without ``floor`` the behaviour is the historical one (used by the rod code)."""
     fl = np.zeros_like(values) if floor is None else np.asarray(floor, dtype=float)
 
     def noise(lo: int, hi: int) -> None:
