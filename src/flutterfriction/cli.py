@@ -538,11 +538,12 @@ def main(argv: Sequence[str] | None = None) -> int:
         else:
             result = {"ziegler": _ziegler, "rod": _rod, "acoustic": _acoustic,
                       "limit-cycle": _limit_cycle}[args.command](args)
-    except ParameterError as exc:
-        print(f"flutterfriction: error: {exc}", file=sys.stderr)
+    except ParameterError as exc:  # one line, whatever the message holds (e.g. an array)
+        print(f"flutterfriction: error: {' '.join(str(exc).split())}", file=sys.stderr)
         return 2
     except ConvergenceError as exc:
-        print(f"flutterfriction: solver did not converge: {exc}", file=sys.stderr)
+        print(f"flutterfriction: solver did not converge: {' '.join(str(exc).split())}",
+              file=sys.stderr)
         return 1
     where = _non_finite(result)
     if where is not None:  # a bug at the source: say so rather than print NaN or inf
