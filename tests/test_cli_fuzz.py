@@ -270,6 +270,17 @@ def test_rod_damped_decades(over):
     _rod_dimensionless(over)
 
 
+#: Found by long randomised runs of test_rod_damped_decades (exit 1: eq. (118)'s Newton or the
+#: exact regime check failing at small damping).
+ROD_DAMPED_FOUND = [["--eta", "1e-2"], ["--gamma", "1e-5"], ["--eta", "1e-2", "--gamma", "1e-2"],
+                    ["--gamma", "1e-30"], ["--mass-ratio", "0", "--gamma", "1e-5"]]
+
+
+@pytest.mark.parametrize("args", ROD_DAMPED_FOUND, ids=" ".join)
+def test_rod_damped_found_cases(args):
+    _check(["rod", *args, "--json"])
+
+
 @FUZZ
 @given(st.dictionaries(st.sampled_from(sorted(ROD_SI)), decade(), min_size=1, max_size=2))
 def test_rod_si_decades(over):
