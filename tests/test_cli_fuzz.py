@@ -137,6 +137,24 @@ def test_acoustic_vectors_as_separate_words(params, name):
     assert _run(spaced)[:2] == _run(argv)[:2]
 
 
+WORDS = ["--lam", "--mu", "--P", "--Q", "--n", "--g", "--json", "--l", "--P=", "-1", "1", "0",
+         "0.5", "-1e-3", "1e-300", "-1,0.5", "1,0,0", "-1,0.5,0.5,0,0,0.8", "nan", "-inf", "x",
+         "--", "-", ",", "1,,2", "--g=-0.5"]
+
+
+@FUZZ
+@given(st.lists(st.sampled_from(WORDS), max_size=24))
+def test_acoustic_any_words(words):
+    """Whatever words follow `acoustic`: exit 0 or 2, never a traceback; JSON when asked."""
+    argv = ["acoustic", "--lam", "1", "--mu", "1", *words]
+    code, out, err = _run(argv)
+    assert "Traceback" not in err and code in (0, 2), (argv, code, err)
+    if code == 2:
+        assert out == "" and len(err.strip().splitlines()) == 1, (argv, err)
+    elif "--json" in words:
+        _strict_json(out)
+
+
 finite = st.floats(-2.0, 2.0, allow_nan=False)
 
 

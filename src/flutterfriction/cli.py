@@ -419,8 +419,8 @@ def _numeric_argv(parser: argparse.ArgumentParser, argv: Sequence[str]) -> list[
         if not size:
             out.append(word)
             continue
-        words = [value] if eq else []
-        count = _words_of_numbers(value) if eq else 0
+        words = [value] if value else []  # "--P=" alone: the numbers follow
+        count = _words_of_numbers(value) if value else 0
         while count < size and i < len(argv):
             k = _words_of_numbers(argv[i])
             if not k or (size == 1 and k > 1):
