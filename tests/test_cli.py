@@ -332,7 +332,7 @@ def test_non_finite_result_is_an_error_not_printed(capsys, monkeypatch):
 
 @pytest.mark.parametrize(("args", "name", "text"), [
     (["--D", "0"], "--D", "> 0"), (["--P", "1e6"], "--P", "flutter load"),
-    (["--elements", "200"], "--elements", "1..16"), (["--P", "2"], "--P", "decays"),
+    (["--elements", "200"], "--elements", "1..16"), (["--P", "2"], "--P", "stable"),
     (["--t-max", "1e9"], "--t-max", "time scales"), (["--length", "1e300"], "--length", "1e+06"),
     (["--D", "1e3"], "--D", "eta"), (["--tip-mass", "1e300"], "--tip-mass", "100"),
     (["--kappa", "-1e-3"], "--kappa", ">= 0"), (["--B", "1e-300"], "--B", "1e-12"),

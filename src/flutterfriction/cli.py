@@ -251,7 +251,8 @@ def _limit_cycle_beck(args: argparse.Namespace) -> dict:
         raise ParameterError(
             f"--P must be in ({P_flu:.6g}, {P_top:.6g}] N: above the damped flutter load "
             f"P_flu = {P_flu:.6g} N of the linearised rod ({args.elements} elements; below it "
-            f"the motion decays to rest) and at most {BECK_LOAD_MAX:g} P_flu, got {args.P!r}")
+            f"the straight rod is stable and small motions decay) and at most "
+            f"{BECK_LOAD_MAX:g} P_flu, got {args.P!r}")
     Minv = np.linalg.inv(M)
     n = M.shape[0]
 
