@@ -277,3 +277,12 @@ def test_cli_rod_text_lists_intervals(capsys):
     assert [ln.split()[0] for ln in lines[:4]] == ["stable", "flutter", "divergence", "flutter"]
     assert lines[2].startswith("divergence p in [47.71549337, 49.99155605]")
     assert any(ln.startswith("p_div     = 47.71549337") for ln in lines)
+
+
+def test_window_narrower_than_the_scan_step():
+    """At tan a = 0.593252 the divergence window is 0.073 wide (< the 0.25 scan step): found
+    from the pair discriminant's sampled extremum, its ends solved on eq. (118)."""
+    c = ar.critical_loads(RodGroups(tan_alpha=0.593252))
+    div = [iv for iv in c.intervals if iv["regime"] == "divergence"]
+    assert len(div) == 1 and 0.06 < div[0]["p_to"] - div[0]["p_from"] < 0.09
+    assert c.p_div == pytest.approx(48.8154, abs=1e-3) and c.p_div == div[0]["p_from"]
