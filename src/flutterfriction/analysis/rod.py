@@ -249,6 +249,9 @@ class _FEScan:
             self.B1 = np.zeros((2 * n, 2 * n))
             self.B1[n:, :n] = -A1
 
+    #: Neighbouring pairs searched for hidden windows (undamped), see :func:`_modes_coupled`.
+    coupled: int = 10**6
+
     def spectra(self, p: NDArray) -> NDArray:
         p = np.atleast_1d(np.asarray(p, dtype=float))
         if not self.damped:
@@ -297,7 +300,9 @@ class _FEScan:
         a, b = zs[:, :-1], zs[:, 1:]
         q = ((b - a) ** 2).real / (np.abs(a) + np.abs(b) + 1e-300) ** 2
         if not self.damped:
-            return q.T
+            # Only pairs among the modes the load couples (the lowest Omega^2 first): higher
+            # ones never meet below P_MAX_LIMIT, and their gaps' extrema cost Brent solves.
+            return q[:, : self.coupled].T
         q = np.where((a.real > 0) | (b.real > 0), q, np.nan)
         growth = z.real.max(axis=-1) / np.max(np.abs(z), axis=-1)
         return np.vstack([q.T, growth[None]])
@@ -310,6 +315,7 @@ def _events(scan: _FEScan, p_max: float, step: float) -> list[_Event]:
     indicator (:meth:`_FEScan.indicators`) is optimised (bounded Brent) and a signature change
     at the optimum splits the interval (a window narrower than the step)."""
     n = max(2, int(math.ceil(p_max / step)))
+    scan.coupled = _modes_coupled(p_max)
     grid = np.linspace(0.0, p_max, n + 1)
     z = scan.spectra(grid)
     sigs = scan.signatures(z)
