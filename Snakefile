@@ -26,6 +26,13 @@ include: "workflow/rules/benchmarks.smk"
 include: "workflow/rules/check.smk"
 
 
+# Cheap bookkeeping jobs run on the submitting node, not as cluster jobs.
+localrules:
+    all,
+    report,
+    check,
+
+
 rule all:
     input:
         USER_OUTPUTS,

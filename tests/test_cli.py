@@ -391,3 +391,12 @@ def test_limit_cycle_beck_timeout_message_is_true(capsys, monkeypatch):
     code, out, err = _run(capsys, ["limit-cycle", "beck", "--quiet", "--P", "4.5", "--json"])
     assert code == 1 and out == ""
     assert "decays" not in err and "--t-max" in err and "above the damped flutter load" in err
+
+
+def test_version(capsys):
+    from flutterfriction import __version__
+    from flutterfriction.cli import main
+
+    with pytest.raises(SystemExit) as exc:
+        main(["--version"])
+    assert exc.value.code == 0 and capsys.readouterr().out.strip() == f"flutterfriction {__version__}"

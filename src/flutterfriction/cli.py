@@ -84,6 +84,9 @@ def _add_pendulum_arguments(parser: argparse.ArgumentParser) -> None:
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="flutterfriction",
                      description="Flutter from friction: reproducible stability analyses.")
+    from flutterfriction import __version__
+
+    parser.add_argument("--version", action="version", version=f"flutterfriction {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     z = sub.add_parser(
         "ziegler", help="critical loads of a Ziegler double pendulum (SI units)",

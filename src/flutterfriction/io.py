@@ -113,3 +113,14 @@ def markdown_table(header: list[str], rows: list[list[Any]]) -> list[str]:
                                  for c in cells) + " |"
 
     return [row(header), "|" + "---|" * len(header), *(row(r) for r in rows)]
+
+
+def log_job_output(path: str | Path) -> None:
+    """Send this process's stdout and stderr (prints, warnings, a traceback) to the job's log
+    file ``path`` (Snakemake's ``log:``), line-buffered, so concurrent jobs do not interleave on
+    the terminal and a failed job's output is kept next to its results."""
+    import sys
+
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    stream = open(path, "w", encoding="utf-8", buffering=1)  # noqa: SIM115 (lives with the job)
+    sys.stdout = sys.stderr = stream

@@ -4,15 +4,6 @@
 NOTEBOOK_REPORTS = ["ziegler", "ziegler_paradox", "rods", "solids", "limit_cycles"]
 
 
-def benchmark_files(wildcards=None):
-    n = config.get("sweep_parts", 2)
-    return (expand("results/benchmarks/{scene}.solve.tsv", scene=ALL_SCENES)
-            + [f"results/benchmarks/{s}.part{k}-of-{n}.tsv" for s in SWEEP_SCENES
-               for k in range(n)]
-            + expand("results/benchmarks/report_{nb}.tsv", nb=NOTEBOOK_REPORTS)
-            + ["results/benchmarks/stress.tsv"])
-
-
 rule work_precision:
     input:
         PLOT_SOURCES,
@@ -31,5 +22,12 @@ rule work_precision:
         md="results/benchmarks/work_precision.md",
         pdf="results/benchmarks/work_precision.pdf",
         png="results/benchmarks/work_precision.png",
+    resources:
+        runtime=10,
+        mem_mb=1000,
+    conda:
+        "../envs/flutterfriction.yaml"
+    log:
+        "results/logs/work_precision.log",
     script:
         "../scripts/work_precision.py"

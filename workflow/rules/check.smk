@@ -11,6 +11,13 @@ rule stress:
         md="results/reports/stress.md",
     benchmark:
         "results/benchmarks/stress.tsv"
+    resources:
+        runtime=20,
+        mem_mb=1000,
+    conda:
+        "../envs/flutterfriction.yaml"
+    log:
+        "results/logs/stress.log",
     script:
         "../scripts/stress.py"
 
@@ -47,6 +54,13 @@ rule report:
     params:
         figure_data=FIGURE_DATA,
         fidelity=config.get("fidelity", "paper"),
+    resources:
+        runtime=10,
+        mem_mb=1000,
+    conda:
+        "../envs/flutterfriction.yaml"
+    log:
+        "results/logs/report.log",
     script:
         "../scripts/build_report.py"
 
@@ -58,5 +72,12 @@ rule check:
         summary_md=rules.report.output.md,
     output:
         "results/checks/passed.txt",
+    resources:
+        runtime=10,
+        mem_mb=1000,
+    conda:
+        "../envs/flutterfriction.yaml"
+    log:
+        "results/logs/check.log",
     script:
         "../scripts/check.py"

@@ -8,7 +8,7 @@ PKG = Path(workflow.basedir) / "src" / "flutterfriction"
 
 
 def package_sources(*subpackages):
-    """Source files a rule depends on: editing the science reruns exactly the rules using it."""
+    """Source files a job depends on: editing the science reruns exactly the jobs using it."""
     files = []
     for sub in subpackages:
         path = PKG / sub
@@ -47,3 +47,26 @@ def clear_interrupted_outputs(metadata=Path(".snakemake") / "incomplete"):
 
 
 clear_interrupted_outputs()
+
+
+# Functions of the rule files (Snakemake's lint wants functions and rules apart).
+def sweep_parts(wildcards):
+    if wildcards.scene not in SWEEP_SCENES:
+        return []
+    n = config.get("sweep_parts", 2)
+    return [f"results/data/parts/{wildcards.scene}/{k}-of-{n}.json" for k in range(n)]
+
+
+def benchmark_files(wildcards=None):
+    n = config.get("sweep_parts", 2)
+    return (expand("results/benchmarks/{scene}.solve.tsv", scene=ALL_SCENES)
+            + [f"results/benchmarks/{s}.part{k}-of-{n}.tsv" for s in SWEEP_SCENES
+               for k in range(n)]
+            + expand("results/benchmarks/report_{nb}.tsv", nb=NOTEBOOK_REPORTS)
+            + ["results/benchmarks/stress.tsv"])
+
+
+def solve_runtime(wildcards):
+    """SLURM runtime [min] of a solve job: the slow scenes take 1-3 min here, the rest seconds
+    (results/benchmarks/*.solve.tsv); a margin of 10x covers slower cluster nodes."""
+    return 30 if wildcards.scene in SLOW_SCENES else 10

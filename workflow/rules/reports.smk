@@ -10,6 +10,13 @@ rule report_ziegler:
         "results/reports/ziegler.html",
     benchmark:
         "results/benchmarks/report_ziegler.tsv"
+    resources:
+        runtime=20,
+        mem_mb=2000,
+    conda:
+        "../envs/flutterfriction.yaml"
+    log:
+        "results/logs/report_ziegler.log",
     script:
         "../scripts/execute_notebook.py"
 
@@ -23,6 +30,13 @@ rule report_ziegler_paradox:
         "results/reports/ziegler_paradox.html",
     benchmark:
         "results/benchmarks/report_ziegler_paradox.tsv"
+    resources:
+        runtime=20,
+        mem_mb=2000,
+    conda:
+        "../envs/flutterfriction.yaml"
+    log:
+        "results/logs/report_ziegler_paradox.log",
     script:
         "../scripts/execute_notebook.py"
 
@@ -36,6 +50,13 @@ rule report_rods:
         "results/reports/rods.html",
     benchmark:
         "results/benchmarks/report_rods.tsv"
+    resources:
+        runtime=20,
+        mem_mb=2000,
+    conda:
+        "../envs/flutterfriction.yaml"
+    log:
+        "results/logs/report_rods.log",
     script:
         "../scripts/execute_notebook.py"
 
@@ -49,6 +70,13 @@ rule report_solids:
         "results/reports/solids.html",
     benchmark:
         "results/benchmarks/report_solids.tsv"
+    resources:
+        runtime=20,
+        mem_mb=2000,
+    conda:
+        "../envs/flutterfriction.yaml"
+    log:
+        "results/logs/report_solids.log",
     script:
         "../scripts/execute_notebook.py"
 
@@ -63,5 +91,12 @@ rule report_limit_cycles:
         "results/reports/limit_cycles.html",
     benchmark:
         "results/benchmarks/report_limit_cycles.tsv"
+    resources:
+        runtime=20,
+        mem_mb=2000,
+    conda:
+        "../envs/flutterfriction.yaml"
+    log:
+        "results/logs/report_limit_cycles.log",
     script:
         "../scripts/execute_notebook.py"

@@ -33,13 +33,6 @@ ALL_FIGURES = ZIEGLER_FIGURES + PARADOX_FIGURES + ROD_FIGURES + SOLID_FIGURES + 
 ALL_SCENES = ZIEGLER_SCENES + PARADOX_SCENES + ROD_SCENES + SOLID_SCENES + CYCLE_SCENES
 
 
-def sweep_parts(wildcards):
-    if wildcards.scene not in SWEEP_SCENES:
-        return []
-    n = config.get("sweep_parts", 2)
-    return [f"results/data/parts/{wildcards.scene}/{k}-of-{n}.json" for k in range(n)]
-
-
 rule solve_part:
     input:
         SOLVER_SOURCES,
@@ -54,6 +47,13 @@ rule solve_part:
         n=r"\d+",
     benchmark:
         "results/benchmarks/{scene}.part{part}-of-{n}.tsv"
+    resources:
+        runtime=20,
+        mem_mb=1000,
+    conda:
+        "../envs/flutterfriction.yaml"
+    log:
+        "results/logs/solve_part/{scene}/{part}-of-{n}.log",
     script:
         "../scripts/solve_part.py"
 
@@ -74,6 +74,13 @@ rule solve:
         scene="|".join(ALL_SCENES),
     benchmark:
         "results/benchmarks/{scene}.solve.tsv"
+    resources:
+        runtime=solve_runtime,
+        mem_mb=1000,
+    conda:
+        "../envs/flutterfriction.yaml"
+    log:
+        "results/logs/solve/{scene}.log",
     script:
         "../scripts/solve_scene.py"
 
@@ -91,6 +98,13 @@ rule plot:
         draft=config.get("fidelity", "paper") == "quick",
     wildcard_constraints:
         scene="|".join(ALL_FIGURES),
+    resources:
+        runtime=10,
+        mem_mb=1000,
+    conda:
+        "../envs/flutterfriction.yaml"
+    log:
+        "results/logs/plot/{scene}.log",
     script:
         "../scripts/plot_scene.py"
 
@@ -101,6 +115,13 @@ rule animate_pendulum_cycle:
         data="results/data/fig14.json",
     output:
         "results/figures/pendulum_cycle.gif",
+    resources:
+        runtime=10,
+        mem_mb=1000,
+    conda:
+        "../envs/flutterfriction.yaml"
+    log:
+        "results/logs/animate_pendulum_cycle.log",
     script:
         "../scripts/animate_pendulum.py"
 
@@ -111,5 +132,12 @@ rule animate_rod_cycle:
         data="results/data/beck_limit_cycle.json",
     output:
         "results/figures/beck_cycle.gif",
+    resources:
+        runtime=10,
+        mem_mb=1000,
+    conda:
+        "../envs/flutterfriction.yaml"
+    log:
+        "results/logs/animate_rod_cycle.log",
     script:
         "../scripts/animate_rod.py"

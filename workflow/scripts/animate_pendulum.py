@@ -1,6 +1,8 @@
 """The pendulum's limit cycle as a GIF (thin: JSON in, GIF out)."""
 
-from flutterfriction.io import read_json
+from flutterfriction.io import log_job_output, read_json
 from flutterfriction.plotting.animation import pendulum_cycle_gif
+
+log_job_output(snakemake.log[0])  # this job's output goes to its log file
 
 pendulum_cycle_gif(read_json(snakemake.input.data), snakemake.output[0])

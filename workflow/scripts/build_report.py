@@ -4,7 +4,7 @@ of a failing job, and a reader needs the report most when something failed)."""
 
 from pathlib import Path
 
-from flutterfriction.io import read_json, write_json, write_text
+from flutterfriction.io import log_job_output, read_json, write_json, write_text
 from flutterfriction.reference import (
     failed,
     load_reference,
@@ -13,6 +13,8 @@ from flutterfriction.reference import (
     write_summary,
 )
 from flutterfriction.report import broken_links, build_index, layout_figures, load_layout
+
+log_job_output(snakemake.log[0])  # this job's output goes to its log file
 
 reference = load_reference(snakemake.input.reference)
 rows = run_check(reference, load_scene_data(snakemake.input.data), snakemake.params.fidelity)

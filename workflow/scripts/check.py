@@ -7,7 +7,9 @@ from flutterfriction.io import read_json, write_text
 
 problems = read_json(snakemake.input.problems)["problems"]
 summary = read_json(snakemake.input.summary)
-print(open(snakemake.input.summary_md, encoding="utf-8").read())
+# The summary goes to this job's log; the verdict to the terminal too (it is the run's last word).
+write_text(snakemake.log[0], open(snakemake.input.summary_md, encoding="utf-8").read()
+           + ("\n".join(["", "FAILED:", *problems]) if problems else ""))
 if problems:
     sys.exit("the check failed (see results/reports/index.html and results/checks/summary.md):"
              "\n  " + "\n  ".join(problems))

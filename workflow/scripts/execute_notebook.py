@@ -7,7 +7,9 @@ import nbformat
 from nbclient import NotebookClient
 from nbconvert import HTMLExporter
 
-from flutterfriction.io import write_text
+from flutterfriction.io import log_job_output, write_text
+
+log_job_output(snakemake.log[0])  # this job's output goes to its log file
 
 nb = jupytext.read(snakemake.input.notebook)
 NotebookClient(nb, timeout=600, kernel_name="python3",

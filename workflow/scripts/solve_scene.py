@@ -2,8 +2,10 @@
 gathered from its parts. Wall-clock timings go to their own file, so the data file is the same
 byte for byte on every rerun."""
 
-from flutterfriction.io import read_json, split_timings, write_json
+from flutterfriction.io import log_job_output, read_json, split_timings, write_json
 from flutterfriction.scenes import build_scene, combine_scene_parts
+
+log_job_output(snakemake.log[0])  # this job's output goes to its log file
 
 scene, params = snakemake.wildcards.scene, snakemake.params.cfg
 if snakemake.input.parts:

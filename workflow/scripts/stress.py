@@ -2,8 +2,10 @@
 
 import sys
 
-from flutterfriction.io import write_json, write_text
+from flutterfriction.io import log_job_output, write_json, write_text
 from flutterfriction.stress import WRONG, run_all, stress_markdown
+
+log_job_output(snakemake.log[0])  # this job's output goes to its log file
 
 results = run_all()
 write_json(snakemake.output.json, [r.as_dict() for r in results])

@@ -1,9 +1,11 @@
 """Gather the work-precision studies and the jobs' benchmarks into one figure and one table."""
 
 from flutterfriction.benchmarks import gather_runs, read_benchmarks, work_precision_markdown
-from flutterfriction.io import merge_timings, read_json, write_json, write_text
+from flutterfriction.io import log_job_output, merge_timings, read_json, write_json, write_text
 from flutterfriction.plotting import save_figure
 from flutterfriction.plotting.benchmarks import plot_work_precision
+
+log_job_output(snakemake.log[0])  # this job's output goes to its log file
 
 
 def scene(name):
