@@ -18,7 +18,7 @@ out = subprocess.run([sys.executable, "-m", "snakemake", "-n", "-j2", "--configf
 scenes = sorted(set(re.findall(r"wildcards: scene=(\w+)", out)))
 jobs = dict(re.findall(r"^(\w+)\s+(\d+)$", out, flags=re.M))
 # work_precision reruns too: its job-timing table reads every job's benchmark file.
-expected = {"solve": "1", "plot": "1", "report_ziegler": "1", "work_precision": "1",
+expected = {"solve": "1", "plot": "1", "notebook": "1", "work_precision": "1",
             "report": "1", "check": "1", "all": "1"}
 if scenes != ["eq48"] or {k: v for k, v in jobs.items() if k != "total"} != expected:
     sys.exit(f"expected only eq48 to rerun, got scenes {scenes} and jobs {jobs}")

@@ -238,7 +238,7 @@ def _fe_regimes_dense(tan_alpha: float, p: np.ndarray, n_elements: int) -> list[
     return out
 
 
-def rod_regime_cases(p_max: float = 400.0, n_alpha: int = 24) -> list[StressResult]:
+def rod_regime_cases(p_max: float = 400.0, n_alpha: int = 12) -> list[StressResult]:
     """The Pflüger column's regime along the load axis, tan(alpha) in [0, 10] (a log-spaced
     set plus 0.59, 0.595, 0.6, where a 2.3-wide divergence window opens near p = 48), p up to
     400: every interval of :func:`critical_loads` against a dense, non-adaptive scan of the

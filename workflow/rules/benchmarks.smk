@@ -1,7 +1,7 @@
 # The work-precision scene: every solver family's accuracy against cost, and the wall time and
 # peak memory of every job (from the `benchmark:` files), in one figure and one table.
 
-NOTEBOOK_REPORTS = ["ziegler", "ziegler_paradox", "rods", "solids", "limit_cycles"]
+
 
 
 rule work_precision:

@@ -9,6 +9,7 @@ rule stress:
     output:
         json="results/checks/stress.json",
         md="results/reports/stress.md",
+    priority: 10  # ~40 s of CPU (the rod's regime scan): start it with the slow solvers
     benchmark:
         "results/benchmarks/stress.tsv"
     resources:

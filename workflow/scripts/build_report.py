@@ -18,6 +18,7 @@ log_job_output(snakemake.log[0])  # this job's output goes to its log file
 
 reference = load_reference(snakemake.input.reference)
 rows = run_check(reference, load_scene_data(snakemake.input.data), snakemake.params.fidelity)
+write_summary(rows, snakemake.output.json, snakemake.output.md)  # first: the report links it
 layout = load_layout(snakemake.input.layout)
 drawn = {Path(f).stem for f in snakemake.input.figures}
 shown = set(layout_figures(layout))
@@ -42,5 +43,4 @@ bad_links = broken_links(snakemake.output.html)
 if bad_links:
     problems.append(f"results/reports/index.html: links that do not resolve: {bad_links}")
     write_text(snakemake.output.html, index(problems))
-write_summary(rows, snakemake.output.json, snakemake.output.md)
 write_json(snakemake.output.problems, {"problems": problems})
