@@ -42,7 +42,7 @@ localrules:
 
 
 rule all:
+    default_target: True
     input:
         USER_OUTPUTS,
         rules.check.output,
-    default_target: True

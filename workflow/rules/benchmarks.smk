@@ -2,8 +2,6 @@
 # peak memory of every job (from the `benchmark:` files), in one figure and one table.
 
 
-
-
 rule work_precision:
     input:
         PLOT_SOURCES,
@@ -22,12 +20,12 @@ rule work_precision:
         md="results/benchmarks/work_precision.md",
         pdf="results/benchmarks/work_precision.pdf",
         png="results/benchmarks/work_precision.png",
+    log:
+        "results/logs/work_precision.log",
+    conda:
+        "../envs/flutterfriction.yaml"
     resources:
         runtime=10,
         mem_mb=1000,
-    conda:
-        "../envs/flutterfriction.yaml"
-    log:
-        "results/logs/work_precision.log",
     script:
         "../scripts/work_precision.py"

@@ -9,16 +9,16 @@ rule stress:
     output:
         json="results/checks/stress.json",
         md="results/reports/stress.md",
-    priority: 10  # ~40 s of CPU (the rod's regime scan): start it with the slow solvers
+    log:
+        "results/logs/stress.log",
     benchmark:
         "results/benchmarks/stress.tsv"
+    priority: 10  # ~40 s of CPU (the rod's regime scan): start it with the slow solvers
+    conda:
+        "../envs/flutterfriction.yaml"
     resources:
         runtime=20,
         mem_mb=1000,
-    conda:
-        "../envs/flutterfriction.yaml"
-    log:
-        "results/logs/stress.log",
     script:
         "../scripts/stress.py"
 
@@ -52,16 +52,16 @@ rule report:
         md="results/checks/summary.md",
         html="results/reports/index.html",
         problems="results/checks/problems.json",
-    params:
-        figure_data=FIGURE_DATA,
-        fidelity=config.get("fidelity", "paper"),
+    log:
+        "results/logs/report.log",
+    conda:
+        "../envs/flutterfriction.yaml"
     resources:
         runtime=10,
         mem_mb=1000,
-    conda:
-        "../envs/flutterfriction.yaml"
-    log:
-        "results/logs/report.log",
+    params:
+        figure_data=FIGURE_DATA,
+        fidelity=config.get("fidelity", "paper"),
     script:
         "../scripts/build_report.py"
 
@@ -73,12 +73,12 @@ rule check:
         summary_md=rules.report.output.md,
     output:
         "results/checks/passed.txt",
+    log:
+        "results/logs/check.log",
+    conda:
+        "../envs/flutterfriction.yaml"
     resources:
         runtime=10,
         mem_mb=1000,
-    conda:
-        "../envs/flutterfriction.yaml"
-    log:
-        "results/logs/check.log",
     script:
         "../scripts/check.py"

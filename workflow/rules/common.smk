@@ -17,7 +17,8 @@ def package_sources(*subpackages):
 
 
 SOLVER_SOURCES = package_sources(
-    "models", "analysis", "closed_forms", "scenes", "errors.py", "io.py", "config.py")
+    "models", "analysis", "closed_forms", "scenes", "errors.py", "io.py", "config.py"
+)
 PLOT_SOURCES = package_sources("plotting")
 
 
@@ -42,8 +43,7 @@ def clear_interrupted_outputs(metadata=Path(".snakemake") / "incomplete"):
         if output.parts and output.parts[0] == "results":
             output.unlink(missing_ok=True)
             marker.unlink()
-            print(f"removed {output}: its job was interrupted; it will be rebuilt",
-                  file=sys.stderr)
+            print(f"removed {output}: its job was interrupted; it will be rebuilt", file=sys.stderr)
 
 
 clear_interrupted_outputs()
@@ -59,11 +59,12 @@ def sweep_parts(wildcards):
 
 def benchmark_files(wildcards=None):
     n = config.get("sweep_parts", 2)
-    return (expand("results/benchmarks/{scene}.solve.tsv", scene=ALL_SCENES)
-            + [f"results/benchmarks/{s}.part{k}-of-{n}.tsv" for s in SWEEP_SCENES
-               for k in range(n)]
-            + expand("results/benchmarks/report_{nb}.tsv", nb=NOTEBOOK_REPORTS)
-            + ["results/benchmarks/stress.tsv"])
+    return (
+        expand("results/benchmarks/{scene}.solve.tsv", scene=ALL_SCENES)
+        + [f"results/benchmarks/{s}.part{k}-of-{n}.tsv" for s in SWEEP_SCENES for k in range(n)]
+        + expand("results/benchmarks/report_{nb}.tsv", nb=NOTEBOOK_REPORTS)
+        + ["results/benchmarks/stress.tsv"]
+    )
 
 
 def solve_runtime(wildcards):

@@ -20,16 +20,16 @@ rule notebook:
         figures=lambda w: expand("results/figures/{scene}.png", scene=NOTEBOOK_INPUTS[w.nb][1]),
     output:
         "results/reports/{nb}.html",
-    wildcard_constraints:
-        nb="|".join(NOTEBOOK_INPUTS),
+    log:
+        "results/logs/notebook/{nb}.log",
     benchmark:
         "results/benchmarks/report_{nb}.tsv"
+    wildcard_constraints:
+        nb="|".join(NOTEBOOK_INPUTS),
+    conda:
+        "../envs/flutterfriction.yaml"
     resources:
         runtime=20,
         mem_mb=2000,
-    conda:
-        "../envs/flutterfriction.yaml"
-    log:
-        "results/logs/notebook/{nb}.log",
     script:
         "../scripts/execute_notebook.py"

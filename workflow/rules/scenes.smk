@@ -13,22 +13,49 @@ ROD_SCENES = ROD_FIGURES + ["errata_rods", "self_adjoint"]
 SOLID_FIGURES = ["fig22", "acoustic_eigenvalues", "localization_directions", "flutter_map"]
 SOLID_SCENES = SOLID_FIGURES + ["solids_statements", "errata_solids"]
 # §2.9–2.11: nonlinear dynamics and limit cycles (the Ziegler pendulum so far).
-CYCLE_FIGURES = ["fig13", "fig14", "fig20", "fig21", "fig15", "fig16", "fig17",
-                 "limit_cycle_amplitude", "beck_work_precision", "beck_linearisation",
-                 "beck_hopf"]
-CYCLE_SCENES = ["fig13", "fig14", "fig20", "fig21", "beck_limit_cycle",
-                "limit_cycle_amplitude", "beck_work_precision", "beck_linearisation",
-                "pendulum_work_precision", "beck_hopf"]
+CYCLE_FIGURES = [
+    "fig13",
+    "fig14",
+    "fig20",
+    "fig21",
+    "fig15",
+    "fig16",
+    "fig17",
+    "limit_cycle_amplitude",
+    "beck_work_precision",
+    "beck_linearisation",
+    "beck_hopf",
+]
+CYCLE_SCENES = [
+    "fig13",
+    "fig14",
+    "fig20",
+    "fig21",
+    "beck_limit_cycle",
+    "limit_cycle_amplitude",
+    "beck_work_precision",
+    "beck_linearisation",
+    "pendulum_work_precision",
+    "beck_hopf",
+]
 # Figures drawn from another scene's data (one computation, several views).
-FIGURE_DATA = {"fig15": "beck_limit_cycle", "fig16": "beck_limit_cycle",
-               "fig17": "beck_limit_cycle"}
+FIGURE_DATA = {
+    "fig15": "beck_limit_cycle",
+    "fig16": "beck_limit_cycle",
+    "fig17": "beck_limit_cycle",
+}
 # Sweeps (bifurcation diagrams, stability maps): their points scatter over `sweep_parts` jobs
 # (one SLURM job each on a cluster), gathered by the scene's solve job.
 SWEEP_SCENES = ["limit_cycle_amplitude", "rod_stability_map"]
 # The slow solvers (~10-45 s each, the rest ~1 s) start first, so that the many short jobs
 # fill the other core around them instead of leaving a long tail.
-SLOW_SCENES = ["beck_hopf", "beck_limit_cycle", "beck_work_precision", "rod_fe_convergence",
-               "pendulum_work_precision"]
+SLOW_SCENES = [
+    "beck_hopf",
+    "beck_limit_cycle",
+    "beck_work_precision",
+    "rod_fe_convergence",
+    "pendulum_work_precision",
+]
 ALL_FIGURES = ZIEGLER_FIGURES + PARADOX_FIGURES + ROD_FIGURES + SOLID_FIGURES + CYCLE_FIGURES
 ALL_SCENES = ZIEGLER_SCENES + PARADOX_SCENES + ROD_SCENES + SOLID_SCENES + CYCLE_SCENES
 
@@ -38,22 +65,22 @@ rule solve_part:
         SOLVER_SOURCES,
     output:
         "results/data/parts/{scene}/{part}-of-{n}.json",
-    params:
-        cfg=lambda w: scene_params(config, w.scene),
-    priority: 5
+    log:
+        "results/logs/solve_part/{scene}/{part}-of-{n}.log",
+    benchmark:
+        "results/benchmarks/{scene}.part{part}-of-{n}.tsv"
     wildcard_constraints:
         scene="|".join(SWEEP_SCENES),
         part=r"\d+",
         n=r"\d+",
-    benchmark:
-        "results/benchmarks/{scene}.part{part}-of-{n}.tsv"
+    priority: 5
+    conda:
+        "../envs/flutterfriction.yaml"
     resources:
         runtime=20,
         mem_mb=1000,
-    conda:
-        "../envs/flutterfriction.yaml"
-    log:
-        "results/logs/solve_part/{scene}/{part}-of-{n}.log",
+    params:
+        cfg=lambda w: scene_params(config, w.scene),
     script:
         "../scripts/solve_part.py"
 
@@ -66,21 +93,21 @@ rule solve:
         data="results/data/{scene}.json",
         # wall-clock measurements, kept out of the data so that reruns are byte-identical
         timings="results/benchmarks/{scene}.timings.json",
-    params:
-        # The resolved parameters: editing one scene's config reruns that scene only.
-        cfg=lambda w: scene_params(config, w.scene),
-    priority: lambda w: 10 if w.scene in SLOW_SCENES else 0
-    wildcard_constraints:
-        scene="|".join(ALL_SCENES),
+    log:
+        "results/logs/solve/{scene}.log",
     benchmark:
         "results/benchmarks/{scene}.solve.tsv"
+    wildcard_constraints:
+        scene="|".join(ALL_SCENES),
+    priority: lambda w: 10 if w.scene in SLOW_SCENES else 0
+    conda:
+        "../envs/flutterfriction.yaml"
     resources:
         runtime=solve_runtime,
         mem_mb=1000,
-    conda:
-        "../envs/flutterfriction.yaml"
-    log:
-        "results/logs/solve/{scene}.log",
+    params:
+        # The resolved parameters: editing one scene's config reruns that scene only.
+        cfg=lambda w: scene_params(config, w.scene),
     script:
         "../scripts/solve_scene.py"
 
@@ -93,18 +120,18 @@ rule plot:
     output:
         pdf="results/figures/{scene}.pdf",
         png="results/figures/{scene}.png",
-    params:
-        # quick preset: cheaper PNG/PDF rendering (see plotting.save_figure)
-        draft=config.get("fidelity", "paper") == "quick",
+    log:
+        "results/logs/plot/{scene}.log",
     wildcard_constraints:
         scene="|".join(ALL_FIGURES),
+    conda:
+        "../envs/flutterfriction.yaml"
     resources:
         runtime=10,
         mem_mb=1000,
-    conda:
-        "../envs/flutterfriction.yaml"
-    log:
-        "results/logs/plot/{scene}.log",
+    params:
+        # quick preset: cheaper PNG/PDF rendering (see plotting.save_figure)
+        draft=config.get("fidelity", "paper") == "quick",
     script:
         "../scripts/plot_scene.py"
 
@@ -115,13 +142,13 @@ rule animate_pendulum_cycle:
         data="results/data/fig14.json",
     output:
         "results/figures/pendulum_cycle.gif",
+    log:
+        "results/logs/animate_pendulum_cycle.log",
+    conda:
+        "../envs/flutterfriction.yaml"
     resources:
         runtime=10,
         mem_mb=1000,
-    conda:
-        "../envs/flutterfriction.yaml"
-    log:
-        "results/logs/animate_pendulum_cycle.log",
     script:
         "../scripts/animate_pendulum.py"
 
@@ -132,12 +159,12 @@ rule animate_rod_cycle:
         data="results/data/beck_limit_cycle.json",
     output:
         "results/figures/beck_cycle.gif",
+    log:
+        "results/logs/animate_rod_cycle.log",
+    conda:
+        "../envs/flutterfriction.yaml"
     resources:
         runtime=10,
         mem_mb=1000,
-    conda:
-        "../envs/flutterfriction.yaml"
-    log:
-        "results/logs/animate_rod_cycle.log",
     script:
         "../scripts/animate_rod.py"
