@@ -13,8 +13,9 @@
 # %% [markdown]
 # # Beyond linearisation: limit cycles (chapter §2.9–2.11)
 #
-# Executed by the workflow into `results/reports/limit_cycles.html`. This part covers the
-# Ziegler pendulum; the nonlinear Beck rod (Figs. 15–17) is the next step of this issue.
+# Executed by the workflow into `results/reports/limit_cycles.html`: the viscous Ziegler
+# pendulum (Figs. 13, 14, 20, 21) and the nonlinear Beck rod (Figs. 15–17, its Hopf bifurcation
+# and its integrators).
 
 # %%
 import json
@@ -172,14 +173,18 @@ display(Markdown("| P [N] | P / P_flu | growth rate [1/s] | frequency [rad/s] |\
 # So the cycles are found without any transient, by periodic-orbit continuation: unknowns are
 # the state on the Poincaré section, the period and the load; equations are periodicity, the
 # section and a pseudo-arclength condition; the start is the linear flutter mode scaled to a tip
-# amplitude of 1 cm. The branch bends to higher loads with A ∝ √(P − P_flu), and every cycle's
-# Floquet multipliers lie inside the unit circle, the slow one as the normal form predicts,
-# 1 − exp(−2σ(P)T) (0.1% apart at A = 1 cm): the Hopf bifurcation is supercritical. The
-# monodromy comes from the variational equations Φ' = J(y(t)) Φ integrated with the orbit (J by
-# the complex step); differencing the flow instead divides the integrator's error by the
-# perturbation and scattered 1 − μ over 0.8–1.6e-5 for this 1.7e-5 quantity. The trivial
-# multiplier's distance from 1 (printed in the data as `trivial_defect`) is the accuracy check.
-# Beyond A ≈ 0.1 m the branch steepens and the continuation is stopped (see the issue notes).
+# amplitude of 1 cm. Newton's method uses the exact Jacobian: the flow's derivatives with
+# respect to the state (the monodromy Φ) and to the load come from the variational equations
+# Φ' = J(y(t)) Φ integrated with the orbit (J by complex steps), so it converges quadratically,
+# and the converged cycle's Φ gives its Floquet multipliers with no further integration.
+# The branch bends to higher loads with A ∝ √(P − P_flu), and every cycle's non-trivial
+# multipliers lie inside the unit circle, the slow one as the normal form predicts,
+# 1 − exp(−2σ(P)T) (0.2% apart at A = 1 cm): the Hopf bifurcation is supercritical.
+# 1 − μ ≈ 1.7e-5 is ill-conditioned as an eigenvalue of Φ (it sits next to the trivial
+# multiplier 1); it is computed as an eigenvalue of the return map on the section minus the
+# identity, which has no trivial multiplier, and is then the same to 1e-8 at integrator
+# tolerances 1e-8 to 1e-11. How far Φ maps the flow direction onto itself (`trivial_defect`
+# in the data) is the accuracy check.
 
 # %%
 show("beck_hopf", width=860)
