@@ -264,6 +264,15 @@ def test_ziegler_decades(over):
             assert result[key] is None or result[key] > 0
 
 
+#: Found by long randomised runs of test_ziegler_decades.
+ZIEGLER_FOUND = [{"k2": "1e3", "l1": "1e3"}]
+
+
+@pytest.mark.parametrize("over", ZIEGLER_FOUND, ids=str)
+def test_ziegler_found_cases(over):
+    _check(_argv(["ziegler"], ZIEGLER | over))
+
+
 ROD_SI = {"length": "0.35", "B": "0.0332", "rho": "0.0546", "D": "7.078e-6", "kappa": "0",
           "tip-mass": "0"}
 
