@@ -207,7 +207,7 @@ def plot_beck_hopf(data: dict[str, Any]) -> Figure:
              label=r"normal form: $1 - e^{-2\sigma(P) T}$")
     ax2.set_yscale("log")
     ax2.set_xlabel("tip amplitude A [m]")
-    ax2.set_ylabel("distance of the multiplier inside the unit circle")
+    ax2.set_ylabel(r"$1 - \mu$: distance inside the unit circle [-]")
     ax2.legend(fontsize=7)
     fig.suptitle("Beck rod, list (119): the Hopf bifurcation at the damped flutter load is "
                  "supercritical (stable cycles, branch towards higher loads)", fontsize=9)
