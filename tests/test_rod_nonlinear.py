@@ -132,7 +132,9 @@ def test_cycle_branch_leaves_the_hopf_point_towards_higher_loads():
     n = m.n_dof
     for P, T, decay, defect, mu_max in zip(b.P, b.T, b.slow_decay, b.trivial_defect,
                                            b.max_floquet_modulus, strict=True):
-        assert defect < 1e-8  # measured 3e-11 at rtol 1e-8
+        # |Phi f - f| / |f| is of the order of the accepted Newton correction, at most
+        # 30 rtol = 3e-7 here (measured 3e-11 to 3.7e-8 depending on where Newton stopped)
+        assert defect < 1e-6
         lin = np.block([[np.zeros((n, n)), np.eye(n)],
                         [-np.linalg.solve(M0, K + P * K1), -np.linalg.solve(M0, C)]])
         sigma = np.linalg.eigvals(lin).real.max()
