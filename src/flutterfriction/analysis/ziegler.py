@@ -68,7 +68,13 @@ def follower_critical_gammas(pendulum: ZieglerPendulum, n_scan: int = 512,
     m = _dimensionless(pendulum)
     load_max = 4.0 * max(1.0, pendulum.k1 / pendulum.k2)
     for _ in range(max_doublings):
-        roots = coalescence_loads(m.K, m.G_follower, m.M, load_max, n_scan, noise_floor=True)
+        try:
+            roots = coalescence_loads(m.K, m.G_follower, m.M, load_max, n_scan,
+                                      noise_floor=True)
+        except ConvergenceError as exc:
+            # The eigenvalues' discriminant is at its round-off floor (a flutter interval
+            # ~1e-6 wide): the same coalescences as roots of a quadratic, which resolves them.
+            return _coalescence_quadratic(m.K, m.G_follower, m.M, str(exc))
         if len(roots) >= 2:
             if len(roots) > 2:
                 raise ConvergenceError(f"expected two coalescence loads, found {roots} "
@@ -79,6 +85,39 @@ def follower_critical_gammas(pendulum: ZieglerPendulum, n_scan: int = 512,
         f"no flutter/divergence coalescence bracketed up to P = {load_max:g} k2/l1 (a flutter "
         f"interval narrower than the scan resolves: this combination of ratios is beyond what "
         f"double precision separates)")
+
+
+def _coalescence_quadratic(K: NDArray, G: NDArray, M: NDArray, why: str = ""
+                           ) -> tuple[float, float]:
+    """The two coalescence loads of a two-degree-of-freedom pencil as roots of a quadratic.
+
+    ``det(K + g G - mu M) = det(M) mu^2 - b(g) mu + c(g)`` with ``b = b0 + g b1`` (the
+    cofactor-weighted trace) and ``c = det(K + g G) = c0 + g c1 + g^2 c2``; ``mu`` is double
+    where ``D(g) = b^2 - 4 det(M) c = A2 g^2 + A1 g + A0`` vanishes. Generic 2x2 algebra on the
+    matrices (no formula of the chapter), used where the eigenvalues' discriminant is at its
+    round-off floor: the coefficients carry the rounding of a few products, so the roots are
+    resolved while ``A1^2 - 4 A2 A0`` stays above ``1e3 eps`` of its terms (measured: loads
+    1.6e-6 apart at l1/l2 = 1e4 agree with 50-digit arithmetic to 1e-9). Refused below that."""
+    dM = float(np.linalg.det(M))
+
+    def cofactor_trace(A: NDArray, B: NDArray) -> float:
+        return float(A[0, 0] * B[1, 1] + A[1, 1] * B[0, 0] - A[0, 1] * B[1, 0]
+                     - A[1, 0] * B[0, 1])
+
+    b0, b1 = cofactor_trace(K, M), cofactor_trace(G, M)
+    c0, c1, c2 = float(np.linalg.det(K)), cofactor_trace(K, G), float(np.linalg.det(G))
+    A2, A1, A0 = b1**2 - 4 * dM * c2, 2 * b0 * b1 - 4 * dM * c1, b0**2 - 4 * dM * c0
+    disc = A1**2 - 4 * A2 * A0
+    scale = A1**2 + abs(4 * A2 * A0)
+    if not (A2 != 0 and disc > 1e3 * np.finfo(float).eps * scale):
+        raise ConvergenceError(f"{why}; as roots of the discriminant's quadratic too: the two "
+                               "coalescence loads are not separated in double precision")
+    q = -0.5 * (A1 + math.copysign(math.sqrt(disc), A1))
+    roots = sorted((q / A2, A0 / q))
+    if not roots[0] > 0:
+        raise ConvergenceError(f"{why}; the quadratic's coalescence loads {roots} are not both "
+                               "positive")
+    return float(roots[0]), float(roots[1])
 
 
 def follower_critical_loads(pendulum: ZieglerPendulum, n_scan: int = 512,
