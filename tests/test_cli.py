@@ -399,4 +399,5 @@ def test_version(capsys):
 
     with pytest.raises(SystemExit) as exc:
         main(["--version"])
-    assert exc.value.code == 0 and capsys.readouterr().out.strip() == f"flutterfriction {__version__}"
+    assert exc.value.code == 0
+    assert capsys.readouterr().out.strip() == f"flutterfriction {__version__}"

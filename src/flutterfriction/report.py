@@ -112,7 +112,8 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
                 extra_links: Iterable[tuple[str, str]] = (),
                 stress: list[Mapping[str, str]] | None = None,
                 problems: Iterable[str] = ()) -> str:
-    """The report's HTML (written even when the check fails: then it says so at the top). Paths are relative to ``results/reports/``.
+    """The report's HTML (written even when the check fails: then it says so at the top).
+    Paths are relative to ``results/reports/``.
 
     Parameters
     ----------
@@ -143,7 +144,7 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
     parts = [f"<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\"><title>{title}"
              f"</title><style>{STYLE}</style></head><body><h1>{title}</h1>",
              f"<p>{layout.get('intro', '')}</p>",
-             *([f'<div class="summary bad"><b>The check FAILED</b>: the workflow stopped; '
+             *(['<div class="summary bad"><b>The check FAILED</b>: the workflow stopped; '
                 "what is wrong:<ul>" + "".join(f"<li>{html.escape(p)}</li>" for p in problems)
                 + "</ul></div>"] if problems else []),
              f'<p class="summary{"" if ok else " bad"}"><b>Check</b>: {n_pass} of {n_q} '
