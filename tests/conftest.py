@@ -13,11 +13,17 @@ from flutterfriction import ZieglerPendulum
 
 ROOT = Path(__file__).resolve().parents[1]
 
-settings.register_profile("default", max_examples=200, deadline=None,
+# The README's test command is deterministic: hypothesis draws the same examples on every
+# machine and run (derandomize), so a pass here is a pass on a fresh clone. Exploration with new
+# random examples is a separate, explicit step: HYPOTHESIS_PROFILE=explore python -m pytest.
+settings.register_profile("default", max_examples=200, deadline=None, derandomize=True,
                           suppress_health_check=[HealthCheck.too_slow])
 settings.register_profile("ci", max_examples=300, deadline=None, derandomize=True,
                           suppress_health_check=[HealthCheck.too_slow])
-settings.load_profile("ci" if os.environ.get("CI") else "default")
+settings.register_profile("explore", max_examples=2000, deadline=None,
+                          suppress_health_check=[HealthCheck.too_slow])
+settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci" if os.environ.get("CI")
+                                     else "default"))
 
 LIST47 = dict(l1=0.1, l2=0.1, d=0.1 / 3, h=0.1 / 3, m1=0.552, m2=0.046, m3=0.138, k1=0.189,
               k2=0.189)
