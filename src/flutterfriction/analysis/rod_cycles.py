@@ -243,19 +243,18 @@ class CycleContinuation:
                  rtol: float = 1e-10, newton_tol: float = 1e-8, ds_first: float = 0.02,
                  ds_max: float = 0.08, ds_min: float = 1e-4) -> None:
         from flutterfriction.analysis.damped import flutter_onset
+        from flutterfriction.analysis.stability import first_order_matrix
 
         if not A_max > 0:
             raise ParameterError(f"A_max must be > 0 m, got {A_max}")
         self.model = NonlinearRod(rod, n_elements)
         self.rod, self.A_max = rod, A_max
         self.ds, self.ds_max, self.ds_min = ds_first, ds_max, ds_min
-        model, n = self.model, self.model.n_dof
+        model = self.model
         M0, C, K, K1 = model.linear_matrices()
         self.P_flu = float(flutter_onset(M0, C, K, K1, load_max=40 * rod.load_unit,
                                          n_scan=64))
-        lin = np.block([[np.zeros((n, n)), np.eye(n)],
-                        [-np.linalg.solve(M0, K + self.P_flu * K1), -np.linalg.solve(M0, C)]])
-        ev, V = np.linalg.eig(lin)
+        ev, V = np.linalg.eig(first_order_matrix(M0, K + self.P_flu * K1, C))
         k = int(np.argmax(ev.real))
         self.omega_flu = float(abs(ev[k].imag))
         self.mode = V[:, k]
