@@ -285,7 +285,7 @@ class CycleContinuation:
 
     def step(self, log: Callable[[str], None] | None = None) -> CyclePoint | None:
         """One pseudo-arclength step of length ``ds``; ``None`` (and ``ds`` halved) on failure."""
-        pts, N = self.points, self.points[-1].y.size
+        pts = self.points
         a, b = pts[-1], pts[-2] if len(pts) > 1 else None
         if b is None:  # second point: step in amplitude at the first one's load
             tangent = (1.0, 0.0)
@@ -307,7 +307,6 @@ class CycleContinuation:
                       "halved", log)
             self.ds /= 2
             return None
-        del N
         pts.append(point)
         self._say(f"cycle {len(pts) - 1}: A = {point.A:.5f} m, P = {point.P:.5f} N, "
                   f"T = {point.T:.6f} s, max |mu| = {point.floquet.max_modulus:.6f}, "

@@ -18,6 +18,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.integrate import solve_ivp
 
+from flutterfriction.analysis.rod_cycles import section_value
 from flutterfriction.errors import ConvergenceError, ParameterError
 from flutterfriction.models.rod import Rod
 from flutterfriction.models.rod_nonlinear import NonlinearRod
@@ -94,8 +95,7 @@ def beck_limit_cycle(rod: Rod, P: float, n_elements: int = 8, method: str = "BDF
         return model.rhs(t, z, P)
 
     def section(t, z):  # lateral tip velocity; -1: at the maximum of the lateral displacement
-        _, _, _, G_tip = model.kinematics(z[:n])
-        return (G_tip @ z[n:])[1]
+        return section_value(model, z)
 
     section.direction = -1.0
     t_begin = time.perf_counter()
