@@ -13,6 +13,7 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 from snakemake.utils import min_version
 
 from flutterfriction.config import validate_config
+from flutterfriction.registry import SCENES, check_registry
 
 min_version("8.0")
 
@@ -22,7 +23,9 @@ configfile: "workflow/config.yaml"
 
 # The whole configuration, every preset as it resolves, before the first job: one line per
 # problem naming the key (the schema, the pendulum and rod geometry, finite numbers, ranges).
-_problems = validate_config(config, "workflow/schemas/config.schema.yaml")
+_problems = check_registry() + validate_config(
+    config, "workflow/schemas/config.schema.yaml", scenes=SCENES
+)
 if _problems:
     sys.exit("invalid configuration:\n  " + "\n  ".join(_problems))
 

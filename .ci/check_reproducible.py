@@ -15,8 +15,10 @@ def digests() -> dict[str, str]:
     return {str(f): hashlib.sha256(f.read_bytes()).hexdigest() for f in files}
 
 
+from flutterfriction.registry import SCENES
+
 # The figures that draw wall-clock times (work-precision): the only ones allowed to differ.
-DRAWS_TIMES = {"rod_fe_convergence", "beck_work_precision"}
+DRAWS_TIMES = {f for s in SCENES.values() if s.draws_wall_times for f in s.figures}
 
 
 def timed_figures() -> set[str]:

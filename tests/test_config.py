@@ -9,9 +9,9 @@ import pytest
 import yaml
 from conftest import ROOT
 
-from flutterfriction.config import load_config, scene_params
+from flutterfriction.config import load_config, scene_params, validate_config
 from flutterfriction.errors import ParameterError
-from flutterfriction.scenes import SCENES, build_scene
+from flutterfriction.registry import SCENES, build_scene
 
 
 @pytest.fixture(scope="module")
@@ -53,6 +53,21 @@ def test_fidelity_preset_overrides_only_existing_keys(config):
     n_quick = config["fidelity_presets"]["quick"]["n_points"]
     assert scene_params(quick, "eq47")["n_points"] == n_quick
     assert "n_points" not in scene_params(quick, "fig04")
+
+
+def test_a_scenes_own_value_is_what_the_paper_run_uses(config):
+    """The paper preset overrides nothing: a scene's section means what it says."""
+    edited = copy.deepcopy(config)
+    edited["scenes"]["eq25"]["n_points"] = 101
+    assert scene_params(edited, "eq25")["n_points"] == 101
+    assert scene_params(edited, "eq46")["n_points"] == config["scenes"]["eq46"]["n_points"]
+
+
+def test_a_section_naming_no_registered_scene_is_refused(config):
+    bad = copy.deepcopy(config)
+    bad["scenes"]["eq99"] = {}
+    problems = validate_config(bad, SCHEMA_PATH, scenes=SCENES)
+    assert any("scenes.eq99: no such scene" in p for p in problems)
 
 
 def test_scene_builders_reject_unknown_parameters(config):
@@ -109,7 +124,7 @@ def _with(config, path, value):
 def test_validate_config_accepts_the_shipped_config(config):
     from flutterfriction.config import validate_config
 
-    assert validate_config(config, SCHEMA_PATH) == []
+    assert validate_config(config, SCHEMA_PATH, scenes=SCENES) == []
 
 
 @pytest.mark.parametrize(("path", "value", "match"), [

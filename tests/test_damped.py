@@ -96,7 +96,7 @@ def test_eq54_follows_symbolically_from_eq52():
 
 def test_general_flutter_closed_form_is_the_hurwitz_root():
     coeffs = cfd.symbolic_coefficients()
-    r1, r2, y1, y2, lam, k, c, eps, gam, eta = cfd._SYMBOLS
+    r1, r2, y1, y2, lam, k, c, eps, gam, eta = sp.symbols(cfd._SYMBOL_NAMES)
     p0, p1, p2, p3, p4 = (x.subs(eta, 0) for x in coeffs)
     delta3 = sp.expand(p3 * (p1 * p2 - p0 * p3) - p1**2 * p4)
     g = {"rho1": 2.0, "rho2": 0.7, "y1": 0.6, "y2": 0.3, "lam": 1.3, "k": 0.8}

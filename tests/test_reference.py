@@ -10,7 +10,7 @@ from conftest import ROOT
 
 from flutterfriction.config import load_config, scene_params
 from flutterfriction.reference import failed, load_reference, run_check, summary_markdown
-from flutterfriction.scenes import build_scene
+from flutterfriction.registry import build_scene
 
 
 @pytest.fixture(scope="module")

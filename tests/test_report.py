@@ -5,8 +5,8 @@ from pathlib import Path
 import pytest
 
 from flutterfriction.errors import ParameterError
-from flutterfriction.plotting.registry import PLOTS
 from flutterfriction.reference import CheckRow
+from flutterfriction.registry import PARTS, figures
 from flutterfriction.report import broken_links, build_index, layout_figures, load_layout
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -65,7 +65,8 @@ def test_the_layout_shows_every_figure_the_workflow_draws():
     layout = load_layout(ROOT / "workflow" / "report.yaml")
     shown = layout_figures(layout)
     assert len(shown) == len(set(shown))
-    assert set(shown) == set(PLOTS)
+    assert shown == list(figures())  # every registered figure, in the registry's order
+    assert {s["notebook"] for s in layout["sections"] if "notebook" in s} == set(PARTS)
 
 
 def test_an_unknown_layout_key_is_refused(tmp_path):

@@ -9,7 +9,7 @@ from hypothesis import strategies as st
 
 from flutterfriction.config import load_config, scene_params
 from flutterfriction.errors import ParameterError
-from flutterfriction.scenes import SWEEPS, build_scene, build_scene_part, combine_scene_parts
+from flutterfriction.registry import SCENES, build_scene, build_scene_part, combine_scene_parts
 from flutterfriction.scenes.sweep import Sweep, combine_parts, compute_part
 
 # A toy sweep whose result depends on the order of the points within a block (as continuation
@@ -59,6 +59,7 @@ def test_rod_stability_map_in_parts_matches_one_process():
 
 
 def test_only_sweeps_can_be_split():
-    assert set(SWEEPS) == {"limit_cycle_amplitude", "rod_stability_map"}
+    assert {k for k, s in SCENES.items() if s.sweep} == {"limit_cycle_amplitude",
+                                                          "rod_stability_map"}
     with pytest.raises(ParameterError, match="not a sweep"):
         build_scene_part("eq46", {}, 0, 1)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import copy
 import math
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 from pathlib import Path
 from typing import Any
 
@@ -48,14 +48,12 @@ def scene_params(config: dict[str, Any], scene: str) -> dict[str, Any]:
     only what it shows and presets never add parameters a scene does not accept. A preset's
     ``scenes`` section overrides keys of one scene only (e.g. the meshes of the rod's cycle).
     """
-    scenes = config.get("scenes", {})
-    if scene not in scenes:
-        raise ParameterError(f"no scene {scene!r} in the configuration; known: {sorted(scenes)}")
+    scenes = config.get("scenes") or {}
     fidelity = config.get("fidelity", "paper")
     presets = config.get("fidelity_presets", {})
     if fidelity not in presets:
         raise ParameterError(f"fidelity must be one of {sorted(presets)}, got {fidelity!r}")
-    params = dict(scenes[scene])
+    params = dict(scenes.get(scene) or {})  # a scene without a section: its own defaults
     preset = dict(presets[fidelity])
     per_scene = preset.pop("scenes", {}) or {}
     params.update({k: v for k, v in preset.items() if k in params})
@@ -150,16 +148,22 @@ def _lookup(tree: Any, path: tuple) -> Any:
     return tree
 
 
-def validate_config(config: dict[str, Any], schema_path: str | Path) -> list[str]:
+def validate_config(config: dict[str, Any], schema_path: str | Path,
+                    scenes: Iterable[str] | None = None) -> list[str]:
     """Every problem of a workflow configuration, one line each, before any job runs: the JSON
     schema on the file as written; unknown top-level keys and preset overrides naming unknown
     scenes or keys; then, for *every* fidelity preset, the schema and the physical constraints
     (pendulum and rod geometry, finite numbers, ordered ranges) on each scene's parameters as
     that preset resolves them, so a misspelled or out-of-range override fails whichever preset
-    is active. An empty list means valid."""
+    is active. With ``scenes`` (the registered scene names), a section naming no registered
+    scene is refused too. An empty list means valid."""
     with open(schema_path, encoding="utf-8") as fh:
         schema = yaml.safe_load(fh)
     problems = _schema_problems(config, schema, "config: ")
+    if scenes is not None:
+        known = set(scenes)
+        problems += [f"config: scenes.{name}: no such scene; registered scenes: {sorted(known)}"
+                     for name in sorted(set(config.get("scenes") or {}) - known)]
     for path, value in _walk(config):
         if isinstance(value, float) and not math.isfinite(value):
             problems.append(f"config: {_where(path)}: must be a finite number, got {value}")

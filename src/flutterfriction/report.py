@@ -50,17 +50,30 @@ class FigureEntry:
     data_scene: str  # the scene whose data the figure draws
 
 
-def load_layout(path: str | Path) -> dict[str, Any]:
-    """Read ``workflow/report.yaml``: the sections of the report, their figures and captions,
-    and the notebooks."""
+def load_layout(path: str | Path,
+                figures: Mapping[str, Mapping[str, str]] | None = None) -> dict[str, Any]:
+    """Read ``workflow/report.yaml``: the sections of the report and their notebooks; each
+    section's figures (name -> caption) are those of its notebook's chapter part.
+
+    Parameters
+    ----------
+    figures
+        Part -> {figure: caption}; by default from :mod:`flutterfriction.registry`.
+    """
     with open(path, encoding="utf-8") as fh:
         layout = yaml.safe_load(fh)
+    if figures is None:
+        from flutterfriction.registry import PARTS, scenes_of
+
+        figures = {part: {f: spec.caption for s in scenes_of(part)
+                          for f, spec in s.figures.items()} for part in PARTS}
     for section in layout.get("sections", []):
-        unknown = set(section) - {"title", "intro", "figures", "notebook", "animations",
-                                  "images"}
+        unknown = set(section) - {"title", "intro", "notebook", "animations", "images"}
         if unknown:
             raise ParameterError(f"report layout: unknown keys {sorted(unknown)} in section "
                                  f"{section.get('title')!r}")
+        if "notebook" in section:
+            section["figures"] = dict(figures.get(section["notebook"], {}))
     return layout
 
 

@@ -4,8 +4,7 @@
 
 rule work_precision:
     input:
-        PLOT_SOURCES,
-        str(PKG / "benchmarks.py"),
+        job_sources("flutterfriction.benchmarks", "flutterfriction.plotting.benchmarks"),
         pendulum="results/data/pendulum_work_precision.json",
         pendulum_timings="results/benchmarks/pendulum_work_precision.timings.json",
         rod_fe="results/data/rod_fe_convergence.json",

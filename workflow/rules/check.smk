@@ -4,8 +4,7 @@
 
 rule stress:
     input:
-        SOLVER_SOURCES,
-        "src/flutterfriction/stress.py",
+        job_sources("flutterfriction.stress"),
     output:
         json="results/checks/stress.json",
         md="results/reports/stress.md",
@@ -38,7 +37,7 @@ USER_OUTPUTS = (
 
 rule report:
     input:
-        code=[str(PKG / "reference.py"), str(PKG / "report.py")],
+        code=job_sources("flutterfriction.reference", "flutterfriction.report"),
         reference="workflow/reference.yaml",
         layout="workflow/report.yaml",
         stress="results/checks/stress.json",

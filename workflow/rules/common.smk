@@ -3,23 +3,37 @@ import sys
 from pathlib import Path
 
 from flutterfriction.config import scene_params
+from flutterfriction.registry import PARTS, SCENES, figures, import_path, scenes_of
+from flutterfriction.sources import module_sources
 
 PKG = Path(workflow.basedir) / "src" / "flutterfriction"
 
+# Every list of scenes and figures comes from the registry (src/flutterfriction/registry.py).
+FIGURES = figures()  # figure -> (its scene, its plot function and caption)
+ALL_SCENES = list(SCENES)
+ALL_FIGURES = list(FIGURES)
+FIGURE_DATA = {f: scene.name for f, (scene, _) in FIGURES.items()}  # figure -> data it draws
+SWEEP_SCENES = [n for n, s in SCENES.items() if s.sweep is not None]
+# The slow solvers (~10-45 s each, the rest ~1 s) start first, so that the many short jobs
+# fill the other core around them instead of leaving a long tail.
+SLOW_SCENES = [n for n, s in SCENES.items() if s.slow]
 
-def package_sources(*subpackages):
-    """Source files a job depends on: editing the science reruns exactly the jobs using it."""
-    files = []
-    for sub in subpackages:
-        path = PKG / sub
-        files += sorted(str(p) for p in path.rglob("*.py")) if path.is_dir() else [str(path)]
-    return files
+
+def job_sources(*modules):
+    """Source files of the package modules a job runs, with everything they import."""
+    return module_sources([*modules, "flutterfriction.io"], root=PKG)
 
 
-SOLVER_SOURCES = package_sources(
-    "models", "analysis", "closed_forms", "scenes", "errors.py", "io.py", "config.py"
-)
-PLOT_SOURCES = package_sources("plotting")
+# A job depends on exactly the package modules it runs (its function's module and everything
+# that imports, transitively): editing one science module reruns only the scenes using it.
+SCENE_SOURCES = {
+    n: job_sources(s.compute.__module__, "flutterfriction.scenes", "flutterfriction.sources")
+    for n, s in SCENES.items()
+}
+FIGURE_SOURCES = {
+    f: job_sources(spec.plot.__module__, "flutterfriction.plotting", "flutterfriction.sources")
+    for f, (_, spec) in FIGURES.items()
+}
 
 
 def clear_interrupted_outputs(metadata=Path(".snakemake") / "incomplete"):
@@ -71,3 +85,37 @@ def solve_runtime(wildcards):
     """SLURM runtime [min] of a solve job: the slow scenes take 1-3 min here, the rest seconds
     (results/benchmarks/*.solve.tsv); a margin of 10x covers slower cluster nodes."""
     return 30 if wildcards.scene in SLOW_SCENES else 10
+
+
+def scene_sources(wildcards):
+    return SCENE_SOURCES[wildcards.scene]
+
+
+def figure_sources(wildcards):
+    return FIGURE_SOURCES[wildcards.scene]
+
+
+def figure_data(wildcards):
+    return f"results/data/{FIGURE_DATA[wildcards.scene]}.json"
+
+
+def figure_timings(wildcards):
+    return f"results/benchmarks/{FIGURE_DATA[wildcards.scene]}.timings.json"
+
+
+def scene_compute(wildcards):
+    """Import path of the scene's function: the job imports that module only."""
+    return import_path(SCENES[wildcards.scene].compute)
+
+
+def scene_sweep(wildcards):
+    scene = SCENES[wildcards.scene]
+    return import_path(scene.sweep, scene.compute.__module__) if scene.sweep else ""
+
+
+def figure_plot(wildcards):
+    return import_path(FIGURES[wildcards.scene][1].plot)
+
+
+def scene_priority(wildcards):
+    return 10 if wildcards.scene in SLOW_SCENES else 0

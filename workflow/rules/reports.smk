@@ -1,11 +1,8 @@
 # Notebooks (jupytext percent format) executed into HTML reports: one rule over the notebook's
 # name; each reads the data and figures of its part of the chapter.
 NOTEBOOK_INPUTS = {
-    "ziegler": (ZIEGLER_SCENES, ZIEGLER_FIGURES),
-    "ziegler_paradox": (PARADOX_SCENES, PARADOX_FIGURES),
-    "rods": (ROD_SCENES, ROD_FIGURES),
-    "solids": (SOLID_SCENES, SOLID_FIGURES),
-    "limit_cycles": (CYCLE_SCENES, CYCLE_FIGURES),  # incl. the rod cycle and its timings
+    part: ([s.name for s in scenes_of(part)], [f for s in scenes_of(part) for f in s.figures])
+    for part in PARTS
 }
 NOTEBOOK_REPORTS = list(NOTEBOOK_INPUTS)
 

@@ -1,68 +1,12 @@
-# Every scene: a solver rule writing results/data/<scene>.json, then (for figures) a plot rule
-# writing results/figures/<scene>.{pdf,png}. The scene lists say which chapter part is which.
-
-# §2.1–2.3 (undamped) and §2.2/2.4/2.10 (viscous hinges, the Ziegler paradox).
-ZIEGLER_FIGURES = ["eq25", "eq46", "eq47", "eq48", "fig02", "fig03", "fig04"]
-ZIEGLER_SCENES = ZIEGLER_FIGURES + ["errata_ziegler"]
-PARADOX_FIGURES = ["fig05", "paradox_limit", "fig19_theory", "paradox_map"]
-PARADOX_SCENES = PARADOX_FIGURES + ["damped_dead_load", "errata_damped"]
-# §2.5–2.8: the Beck and Pflüger rods.
-ROD_FIGURES = ["fig11", "fig12", "rod_fe_convergence", "rod_stability_map"]
-ROD_SCENES = ROD_FIGURES + ["errata_rods", "self_adjoint"]
-# §3: frictional solids.
-SOLID_FIGURES = ["fig22", "acoustic_eigenvalues", "localization_directions", "flutter_map"]
-SOLID_SCENES = SOLID_FIGURES + ["solids_statements", "errata_solids"]
-# §2.9–2.11: nonlinear dynamics and limit cycles (the Ziegler pendulum so far).
-CYCLE_FIGURES = [
-    "fig13",
-    "fig14",
-    "fig20",
-    "fig21",
-    "fig15",
-    "fig16",
-    "fig17",
-    "limit_cycle_amplitude",
-    "beck_work_precision",
-    "beck_linearisation",
-    "beck_hopf",
-]
-CYCLE_SCENES = [
-    "fig13",
-    "fig14",
-    "fig20",
-    "fig21",
-    "beck_limit_cycle",
-    "limit_cycle_amplitude",
-    "beck_work_precision",
-    "beck_linearisation",
-    "pendulum_work_precision",
-    "beck_hopf",
-]
-# Figures drawn from another scene's data (one computation, several views).
-FIGURE_DATA = {
-    "fig15": "beck_limit_cycle",
-    "fig16": "beck_limit_cycle",
-    "fig17": "beck_limit_cycle",
-}
-# Sweeps (bifurcation diagrams, stability maps): their points scatter over `sweep_parts` jobs
+# Every scene of src/flutterfriction/registry.py: a solver rule writing results/data/<scene>.json,
+# then one plot rule per figure drawn from it, writing results/figures/<figure>.{pdf,png}.
+# Sweeps (bifurcation diagrams, stability maps) scatter their points over `sweep_parts` jobs
 # (one SLURM job each on a cluster), gathered by the scene's solve job.
-SWEEP_SCENES = ["limit_cycle_amplitude", "rod_stability_map"]
-# The slow solvers (~10-45 s each, the rest ~1 s) start first, so that the many short jobs
-# fill the other core around them instead of leaving a long tail.
-SLOW_SCENES = [
-    "beck_hopf",
-    "beck_limit_cycle",
-    "beck_work_precision",
-    "rod_fe_convergence",
-    "pendulum_work_precision",
-]
-ALL_FIGURES = ZIEGLER_FIGURES + PARADOX_FIGURES + ROD_FIGURES + SOLID_FIGURES + CYCLE_FIGURES
-ALL_SCENES = ZIEGLER_SCENES + PARADOX_SCENES + ROD_SCENES + SOLID_SCENES + CYCLE_SCENES
 
 
 rule solve_part:
     input:
-        SOLVER_SOURCES,
+        scene_sources,
     output:
         "results/data/parts/{scene}/{part}-of-{n}.json",
     log:
@@ -81,13 +25,14 @@ rule solve_part:
         mem_mb=1000,
     params:
         cfg=lambda w: scene_params(config, w.scene),
+        sweep=scene_sweep,
     script:
         "../scripts/solve_part.py"
 
 
 rule solve:
     input:
-        SOLVER_SOURCES,
+        scene_sources,
         parts=sweep_parts,
     output:
         data="results/data/{scene}.json",
@@ -99,7 +44,7 @@ rule solve:
         "results/benchmarks/{scene}.solve.tsv"
     wildcard_constraints:
         scene="|".join(ALL_SCENES),
-    priority: lambda w: 10 if w.scene in SLOW_SCENES else 0
+    priority: scene_priority
     conda:
         "../envs/flutterfriction.yaml"
     resources:
@@ -108,15 +53,17 @@ rule solve:
     params:
         # The resolved parameters: editing one scene's config reruns that scene only.
         cfg=lambda w: scene_params(config, w.scene),
+        compute=scene_compute,
+        sweep=scene_sweep,
     script:
         "../scripts/solve_scene.py"
 
 
 rule plot:
     input:
-        PLOT_SOURCES,
-        data=lambda w: f"results/data/{FIGURE_DATA.get(w.scene, w.scene)}.json",
-        timings=lambda w: f"results/benchmarks/{FIGURE_DATA.get(w.scene, w.scene)}.timings.json",
+        figure_sources,
+        data=figure_data,
+        timings=figure_timings,
     output:
         pdf="results/figures/{scene}.pdf",
         png="results/figures/{scene}.png",
@@ -132,13 +79,14 @@ rule plot:
     params:
         # quick preset: cheaper PNG/PDF rendering (see plotting.save_figure)
         draft=config.get("fidelity", "paper") == "quick",
+        plot=figure_plot,
     script:
         "../scripts/plot_scene.py"
 
 
 rule animate_pendulum_cycle:
     input:
-        PLOT_SOURCES,
+        job_sources("flutterfriction.plotting.animation"),
         data="results/data/fig14.json",
     output:
         "results/figures/pendulum_cycle.gif",
@@ -155,7 +103,7 @@ rule animate_pendulum_cycle:
 
 rule animate_rod_cycle:
     input:
-        PLOT_SOURCES,
+        job_sources("flutterfriction.plotting.animation"),
         data="results/data/beck_limit_cycle.json",
     output:
         "results/figures/beck_cycle.gif",

@@ -12,7 +12,6 @@ import functools
 from dataclasses import asdict, dataclass
 
 import numpy as np
-import sympy as sp
 from numpy.typing import ArrayLike, NDArray
 from scipy.integrate import solve_ivp
 from scipy.optimize import root
@@ -20,13 +19,17 @@ from scipy.optimize import root
 from flutterfriction.errors import ConvergenceError, ParameterError, check_real
 from flutterfriction.models.ziegler import ZieglerPendulum
 
-_PARAMS = sp.symbols("l1 l2 d h m1 m2 m3 k1 k2 c1 c2 P H")
+_PARAM_NAMES = "l1 l2 d h m1 m2 m3 k1 k2 c1 c2 P H"
 
 
 @functools.cache
 def _jacobian_function():
-    """Compiled d(state')/d(state) of eq. (10) with viscosity, as a function of (state, params)."""
-    l1, l2, d, h, m1, m2, m3, k1, k2, c1, c2, P, H = _PARAMS
+    """Compiled d(state')/d(state) of eq. (10) with viscosity, as a function of (state, params).
+    (sympy, ~0.3 s to import, is imported only here.)"""
+    import sympy as sp
+
+    params = sp.symbols(_PARAM_NAMES)
+    l1, l2, d, h, m1, m2, m3, k1, k2, c1, c2, P, H = params
     a1, a2, w1, w2 = sp.symbols("a1 a2 w1 w2")
     s, c = sp.sin(a1 - a2), sp.cos(a1 - a2)
     w = (m2 * l2 + m3 * h) * l1
@@ -38,7 +41,7 @@ def _jacobian_function():
     det = I1 * I2 - (w * c) ** 2
     rhs = sp.Matrix([w1, w2, (I2 * f1 - w * c * f2) / det, (I1 * f2 - w * c * f1) / det])
     J = rhs.jacobian([a1, a2, w1, w2])
-    return sp.lambdify(((a1, a2, w1, w2), _PARAMS), J, "numpy")
+    return sp.lambdify(((a1, a2, w1, w2), params), J, "numpy")
 
 
 def jacobian(pendulum: ZieglerPendulum, state: ArrayLike, P: float, H: float = 0.0) -> NDArray:

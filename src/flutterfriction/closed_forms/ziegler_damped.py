@@ -23,9 +23,9 @@ from __future__ import annotations
 
 import functools
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
-import sympy as sp
 from numpy.typing import NDArray
 
 from flutterfriction.closed_forms.ziegler import (
@@ -36,7 +36,12 @@ from flutterfriction.closed_forms.ziegler import (
 from flutterfriction.errors import ParameterError
 from flutterfriction.models.ziegler import PendulumGroups, ZieglerPendulum
 
-_SYMBOLS = sp.symbols("rho1 rho2 y1 y2 lam k c epsilon gamma eta")
+if TYPE_CHECKING:
+    import sympy as sp
+
+_SYMBOL_NAMES = "rho1 rho2 y1 y2 lam k c epsilon gamma eta"
+# sympy is imported where the derivation runs (once per process, cached): importing it costs
+# ~0.3 s, which every job importing this module would otherwise pay.
 
 
 @functools.cache
@@ -46,7 +51,9 @@ def symbolic_coefficients() -> tuple[sp.Expr, ...]:
     The dimensionless matrices follow from dividing ``M s^2 + C s + K + G`` by ``k2`` with the
     groups of eqs. (17), (29) and ``omega~ = s l2 sqrt(m2/k2)``.
     """
-    r1, r2, y1, y2, lam, k, c, eps, gam, eta = _SYMBOLS
+    import sympy as sp
+
+    r1, r2, y1, y2, lam, k, c, eps, gam, eta = sp.symbols(_SYMBOL_NAMES)
     w = sp.Symbol("omega_tilde")
     M = sp.Matrix([[(r1 * y1**2 + r2 + 1) * lam**2, lam * (1 + r2 * y2)],
                    [lam * (1 + r2 * y2), 1 + r2 * y2**2]])
@@ -62,7 +69,9 @@ def symbolic_coefficients() -> tuple[sp.Expr, ...]:
 
 @functools.cache
 def _numeric_coefficients():
-    return sp.lambdify(_SYMBOLS, list(symbolic_coefficients()), "math")
+    import sympy as sp
+
+    return sp.lambdify(sp.symbols(_SYMBOL_NAMES), list(symbolic_coefficients()), "math")
 
 
 def _eps_c(pendulum: ZieglerPendulum) -> tuple[float, float]:

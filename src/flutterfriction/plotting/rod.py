@@ -234,17 +234,11 @@ def plot_beck_linearisation(data: dict[str, Any]) -> Figure:
     return fig
 
 
-PLOTS = {
-    "beck_linearisation": plot_beck_linearisation,
-    "beck_work_precision": plot_beck_work_precision,
-    "beck_hopf": plot_beck_hopf,
-    "fig15": plot_fig15,
-    "fig16": plot_fig16,
-    "fig17": plot_fig17,
-    "fig11": lambda d: plot_branches(d, "Fig. 11: the Beck rod, list (119)"),
-    "fig12": lambda d: plot_branches(
-        d, "Fig. 12: the Pflüger rod, list (119), tan α = "
-           f"{d['cases']['undamped']['groups']['tan_alpha']:.4g} (see errata)"),
-    "rod_fe_convergence": plot_fe_convergence,
-    "rod_stability_map": plot_stability_map,
-}
+def plot_fig11(data: dict[str, Any]) -> Figure:
+    return plot_branches(data, "Fig. 11: the Beck rod, list (119)")
+
+
+def plot_fig12(data: dict[str, Any]) -> Figure:
+    tan_alpha = data["cases"]["undamped"]["groups"]["tan_alpha"]
+    return plot_branches(data, f"Fig. 12: the Pflüger rod, list (119), tan α = {tan_alpha:.4g} "
+                               "(see errata)")

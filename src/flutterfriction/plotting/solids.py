@@ -131,11 +131,3 @@ def plot_flutter_map(data: dict[str, Any]) -> Figure:
                   "flutter appears", fontsize=8)
     fig.tight_layout()
     return fig
-
-
-PLOTS = {
-    "fig22": plot_fig22,
-    "acoustic_eigenvalues": plot_acoustic_eigenvalues,
-    "localization_directions": plot_localization_directions,
-    "flutter_map": plot_flutter_map,
-}

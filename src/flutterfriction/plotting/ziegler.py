@@ -213,16 +213,19 @@ def plot_fig02(data: dict[str, Any]) -> Figure:
     return fig
 
 
-PLOTS = {
-    "eq25": lambda d: plot_dead_load_spectrum(
-        d, r"Eq. (25): dead load on equal rods, $H_{cr}$ = (3-$\sqrt{5}$)/2 K/L"),
-    "eq46": lambda d: plot_follower_spectrum(
-        d, r"Eq. (46): $l_1=l_2=L$, $d=L$, $k_1=k_2=K$, $m_1=m_2$, $m_3=0$"),
-    "eq47": lambda d: plot_follower_spectrum(d, "List (47): the device of §2.10",
-                                             in_newtons=True),
-    "eq48": lambda d: plot_follower_spectrum(
-        d, r"Eq. (48): as eq. (46) but $d = L/2$ ($y_1 = 1/2$)"),
-    "fig02": plot_fig02,
-    "fig03": plot_fig03,
-    "fig04": plot_fig04,
-}
+def plot_eq25(data: dict[str, Any]) -> Figure:
+    return plot_dead_load_spectrum(
+        data, r"Eq. (25): dead load on equal rods, $H_{cr}$ = (3-$\sqrt{5}$)/2 K/L")
+
+
+def plot_eq46(data: dict[str, Any]) -> Figure:
+    return plot_follower_spectrum(
+        data, r"Eq. (46): $l_1=l_2=L$, $d=L$, $k_1=k_2=K$, $m_1=m_2$, $m_3=0$")
+
+
+def plot_eq47(data: dict[str, Any]) -> Figure:
+    return plot_follower_spectrum(data, "List (47): the device of §2.10", in_newtons=True)
+
+
+def plot_eq48(data: dict[str, Any]) -> Figure:
+    return plot_follower_spectrum(data, r"Eq. (48): as eq. (46) but $d = L/2$ ($y_1 = 1/2$)")

@@ -143,11 +143,3 @@ def plot_paradox_map(data: dict[str, Any]) -> Figure:
                  r"$l_1=l_2$, $k_1=k_2$, $m_3=0$; × = checked by Routh–Hurwitz at small "
                  r"$\epsilon$", fontsize=8)
     return fig
-
-
-PLOTS = {
-    "fig05": plot_fig05,
-    "paradox_limit": plot_paradox_limit,
-    "fig19_theory": plot_fig19_theory,
-    "paradox_map": plot_paradox_map,
-}

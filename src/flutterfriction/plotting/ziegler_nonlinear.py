@@ -121,7 +121,3 @@ def plot_limit_cycle_amplitude(data: dict[str, Any]) -> Figure:
     ax2.legend(fontsize=7)
     fig.tight_layout()
     return fig
-
-
-PLOTS = {"fig13": plot_fig13, "fig14": plot_fig14, "fig20": plot_fig20, "fig21": plot_fig21,
-         "limit_cycle_amplitude": plot_limit_cycle_amplitude}

@@ -1,0 +1,286 @@
+"""The one list of scenes: what each computes, which figures draw it, with their chapter captions.
+
+Everything that names scenes is derived from :data:`SCENES`: the workflow's solve and plot jobs
+(``workflow/rules/scenes.smk``), the notebooks' inputs, the report's sections and captions, the
+reproducibility check's list of figures that draw wall times, and the configuration check's
+list of scene sections. Adding a scene is one :class:`Scene` entry here plus its functions
+(``tests/test_registry.py`` proves it on a toy scene).
+
+Entries hold the functions themselves (real imports). A workflow job does not import this
+module: it receives its function's import path (:func:`flutterfriction.sources.import_path`)
+and imports that module only, so a solve job does not pay for matplotlib or for every other
+scene's solvers.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from types import MappingProxyType
+from typing import Any
+
+from flutterfriction import scenes as _scenes
+from flutterfriction.errors import ParameterError
+from flutterfriction.plotting import rod as rod_plots
+from flutterfriction.plotting import solids as solid_plots
+from flutterfriction.plotting import ziegler as ziegler_plots
+from flutterfriction.plotting import ziegler_damped as damped_plots
+from flutterfriction.plotting import ziegler_nonlinear as nonlinear_plots
+from flutterfriction.scenes import rod, solids, ziegler, ziegler_damped, ziegler_nonlinear
+from flutterfriction.scenes.sweep import Sweep
+from flutterfriction.sources import import_path  # noqa: F401  (re-exported for the workflow)
+
+#: The chapter's parts, in its order: the report's sections and the notebooks (same names).
+PARTS = ("ziegler", "ziegler_paradox", "rods", "limit_cycles", "solids")
+
+
+@dataclass(frozen=True)
+class FigureSpec:
+    """One figure: the function drawing it from its scene's data, and its caption (the
+    chapter's, or what it shows beyond the chapter)."""
+
+    plot: Callable[[dict[str, Any]], Any]
+    caption: str
+
+
+@dataclass(frozen=True)
+class Scene:
+    """One computation and the figures drawn from its data.
+
+    Attributes
+    ----------
+    name
+        The scene's name: ``results/data/<name>.json`` and its section of
+        ``workflow/config.yaml``.
+    compute
+        ``compute(params) -> dict``: the scene's data from its parameters (SI units).
+    part
+        The chapter part it belongs to (one of :data:`PARTS`): its notebook and report section.
+    figures
+        Figure name -> :class:`FigureSpec`, drawn from this scene's data (empty for tables,
+        errata and statements, which the check and the notebooks show).
+    sweep
+        For a bifurcation diagram or a map: its points scatter over several jobs.
+    slow
+        Tens of seconds or more: started first, and given a longer cluster runtime.
+    draws_wall_times
+        Its figures draw measured wall times, so they differ from run to run (the data do not).
+    """
+
+    name: str
+    compute: Callable[[dict[str, Any]], dict[str, Any]]
+    part: str
+    figures: Mapping[str, FigureSpec] = field(default_factory=dict)
+    sweep: Sweep | None = None
+    slow: bool = False
+    draws_wall_times: bool = False
+
+
+def _fig(plot: Callable[[dict[str, Any]], Any], caption: str) -> FigureSpec:
+    return FigureSpec(plot, caption)
+
+
+_ENTRIES = [
+    # §2.1–2.3 The Ziegler double pendulum
+    Scene("fig02", ziegler.fig02, "ziegler", {"fig02": _fig(
+        ziegler_plots.plot_fig02,
+        "Fig. 2: the Ziegler double pendulum (drawn by the same code as Fig. 4).")}),
+    Scene("fig03", ziegler.fig03, "ziegler", {"fig03": _fig(
+        ziegler_plots.plot_fig03,
+        "Fig. 3: the line β1 − γβ2 and the parabola (β1 − γβ2)² − 4ka of eq. (34) for list "
+        "(47), with the stable, flutter and divergence intervals.")}),
+    Scene("fig04", ziegler.fig04, "ziegler", {"fig04": _fig(
+        ziegler_plots.plot_fig04,
+        "Fig. 4: configurations every 0.04 s of the linear motion, flutter (P = 6.8 N, 0.44 s) "
+        "and divergence (P = 15.4 N, 0.2 s), from the exact matrix exponential.")}),
+    Scene("eq25", ziegler.eq25, "ziegler", {"eq25": _fig(
+        ziegler_plots.plot_eq25,
+        "ω² against the dead load: H_cr = (3 − √5)/2 K/L ≈ 0.382 K/L (eq. 25).")}),
+    Scene("eq46", ziegler.follower_load_scene, "ziegler", {"eq46": _fig(
+        ziegler_plots.plot_eq46,
+        "Re, Im ω² against the follower load: flutter at 2 K/L, divergence at 4 K/L "
+        "(eq. 46).")}),
+    Scene("eq47", ziegler.follower_load_scene, "ziegler", {"eq47": _fig(
+        ziegler_plots.plot_eq47,
+        "The same for the device of list (47): P_flu = 4.8038 N, P_div = 8.8042 N.")}),
+    Scene("eq48", ziegler.follower_load_scene, "ziegler", {"eq48": _fig(
+        ziegler_plots.plot_eq48,
+        "The same for the mass distribution of eq. (48): 17/8 and 25/8 K/L.")}),
+    Scene("errata_ziegler", ziegler.errata, "ziegler"),
+    # §2.2, 2.4, 2.10 Viscosity and the Ziegler paradox
+    Scene("fig05", ziegler_damped.fig05, "ziegler_paradox", {"fig05": _fig(
+        damped_plots.plot_fig05,
+        "Fig. 5: Re and Im of ω̃ against γ, undamped and for ε = 0.1, 0.5 (eq. 51): flutter "
+        "at 2, 1.338, 1.458 K/L.")}),
+    Scene("paradox_limit", ziegler_damped.paradox_limit, "ziegler_paradox", {
+        "paradox_limit": _fig(
+            damped_plots.plot_paradox_limit,
+            "The damped flutter load as ε → 0 (log axis): it tends to 4/3 K/L, not to the "
+            "undamped 2 K/L.")}),
+    Scene("fig19_theory", ziegler_damped.fig19_theory, "ziegler_paradox", {
+        "fig19_theory": _fig(
+            damped_plots.plot_fig19_theory,
+            "Fig. 19's theoretical bars for list (47), and the hinge viscosity inferred from "
+            "the quoted ratios 0.70 and 1.49.")}),
+    Scene("paradox_map", ziegler_damped.paradox_map, "ziegler_paradox", {"paradox_map": _fig(
+        damped_plots.plot_paradox_map,
+        "Beyond the chapter: vanishing-viscosity over undamped flutter load against c1/c2 and "
+        "the mass distribution, with the curve where the paradox vanishes.")}),
+    Scene("damped_dead_load", ziegler_damped.damped_dead_load, "ziegler_paradox"),
+    Scene("errata_damped", ziegler_damped.errata_damped, "ziegler_paradox"),
+    # §2.5–2.8 The Beck and Pflüger rods
+    Scene("fig11", rod.fig11, "rods", {"fig11": _fig(
+        rod_plots.plot_fig11,
+        "Fig. 11: Re and Im of ω̃ against p for the Beck rod, without and with internal "
+        "damping (list 119): flutter at p = 20.05 and 10.94.")}),
+    Scene("fig12", rod.fig12, "rods", {"fig12": _fig(
+        rod_plots.plot_fig12,
+        "Fig. 12: the Pflüger rod: flutter 16.51 / 7.78, divergence 30.22 / 30.52, at the "
+        "tip-mass ratio that reproduces them (see the errata).")}),
+    Scene("rod_fe_convergence", rod.rod_fe_convergence, "rods", {"rod_fe_convergence": _fig(
+        rod_plots.plot_fe_convergence,
+        "The finite-element twin: error of the flutter load and pulsation against elements "
+        "(rate h⁴) and against run time.")}, slow=True, draws_wall_times=True),
+    Scene("rod_stability_map", rod.rod_stability_map, "rods", {"rod_stability_map": _fig(
+        rod_plots.plot_stability_map,
+        "Beyond the chapter: flutter and divergence loads against the tip-mass ratio, "
+        "undamped and with vanishing internal damping.")}, sweep=rod.ROD_STABILITY_MAP),
+    Scene("errata_rods", rod.errata_rods, "rods"),
+    Scene("self_adjoint", rod.self_adjoint, "rods"),
+    # §2.9–2.11 Nonlinear dynamics and limit cycles
+    Scene("fig13", ziegler_nonlinear.fig13, "limit_cycles", {"fig13": _fig(
+        nonlinear_plots.plot_fig13,
+        "Fig. 13: the viscous Ziegler pendulum at P = 1.5 P*_flu reaching a stable limit cycle "
+        "(α1 against α2).")}),
+    Scene("fig14", ziegler_nonlinear.fig14, "limit_cycles", {"fig14": _fig(
+        nonlinear_plots.plot_fig14,
+        "Fig. 14: angular velocities against rotations on the way to the limit cycle.")}),
+    Scene("fig20", ziegler_nonlinear.fig20, "limit_cycles", {"fig20": _fig(
+        nonlinear_plots.plot_fig20,
+        "Fig. 20: transverse acceleration of the loaded end, linear (blows up) against "
+        "nonlinear (limit cycle), 6 s and a 1.5 s detail.")}),
+    Scene("fig21", ziegler_nonlinear.fig21, "limit_cycles", {"fig21": _fig(
+        nonlinear_plots.plot_fig21,
+        "Fig. 21: the path of the loaded end and the scratch it leaves on the moving "
+        "plate.")}),
+    Scene("beck_limit_cycle", rod.beck_limit_cycle, "limit_cycles", {
+        "fig15": _fig(rod_plots.plot_fig15,
+                      "Fig. 15: the nonlinear Beck rod of list (119) at P = 5.5 N: the tip's "
+                      "trajectory to the limit cycle."),
+        "fig16": _fig(rod_plots.plot_fig16, "Fig. 16: tip velocities against tip displacements."),
+        "fig17": _fig(rod_plots.plot_fig17,
+                      "Fig. 17: the tip's lateral against axial velocity.")}, slow=True),
+    Scene("limit_cycle_amplitude", ziegler_nonlinear.limit_cycle_amplitude, "limit_cycles", {
+        "limit_cycle_amplitude": _fig(
+            nonlinear_plots.plot_limit_cycle_amplitude,
+            "Beyond the chapter: the pendulum's bifurcation diagram (amplitude ∝ √(P − P_flu), "
+            "period → 2π/Ω_flu): a supercritical Hopf bifurcation.")},
+          sweep=ziegler_nonlinear.LIMIT_CYCLE_AMPLITUDE),
+    Scene("beck_linearisation", rod.beck_linearisation, "limit_cycles", {
+        "beck_linearisation": _fig(
+            rod_plots.plot_beck_linearisation,
+            "The nonlinear rod model linearised converges to the exact theory at h⁴: flutter "
+            "loads, growth rate and frequency at 5.5 N.")}),
+    Scene("beck_hopf", rod.beck_hopf, "limit_cycles", {"beck_hopf": _fig(
+        rod_plots.plot_beck_hopf,
+        "Beyond the chapter: the rod's limit cycles from the damped flutter load by "
+        "periodic-orbit continuation, and their Floquet multipliers against the normal form: "
+        "a supercritical Hopf bifurcation.")}, slow=True),
+    Scene("beck_work_precision", rod.beck_work_precision, "limit_cycles", {
+        "beck_work_precision": _fig(
+            rod_plots.plot_beck_work_precision,
+            "Work-precision of the rod's integrators on the cycle's return map: errors of "
+            "period and tip amplitude over one period (LSODA, BDF, Radau, generalized-α).")},
+          slow=True, draws_wall_times=True),
+    Scene("pendulum_work_precision", ziegler_nonlinear.pendulum_work_precision, "limit_cycles",
+          slow=True),
+    # §3 Frictional solids
+    Scene("fig22", solids.fig22, "solids", {"fig22": _fig(
+        solid_plots.plot_fig22,
+        "Fig. 22: the Coulomb cone, the normal a and the slip direction b, and a force path "
+        "computed exactly through stick, slip and unloading.")}),
+    Scene("acoustic_eigenvalues", solids.acoustic_eigenvalues, "solids", {
+        "acoustic_eigenvalues": _fig(
+            solid_plots.plot_acoustic_eigenvalues,
+            "Eigenvalues of the acoustic tensor against the plastic modulus g for a "
+            "nonassociative case: the complex (flutter) pair between g1 and g2.")}),
+    Scene("localization_directions", solids.localization_directions, "solids", {
+        "localization_directions": _fig(
+            solid_plots.plot_localization_directions,
+            "The localization modulus over band directions, its maximum over the sphere, "
+            "against Rudnicki and Rice (1975).")}),
+    Scene("flutter_map", solids.flutter_map, "solids", {"flutter_map": _fig(
+        solid_plots.plot_flutter_map,
+        "Which directions flutter against g; and flutter triggered by a small elastic "
+        "anisotropy at the coalescence of three eigenvalues.")}),
+    Scene("solids_statements", solids.solids_statements, "solids"),
+    Scene("errata_solids", solids.errata_solids, "solids"),
+]
+
+#: Scene name -> :class:`Scene`, in the chapter's order (read-only).
+SCENES: Mapping[str, Scene] = MappingProxyType({s.name: s for s in _ENTRIES})
+
+
+def figures() -> dict[str, tuple[Scene, FigureSpec]]:
+    """Figure name -> (the scene whose data it draws, its spec), in the chapter's order."""
+    return {f: (s, spec) for s in SCENES.values() for f, spec in s.figures.items()}
+
+
+def scenes_of(part: str) -> list[Scene]:
+    """The scenes of one chapter part (one notebook, one report section)."""
+    return [s for s in SCENES.values() if s.part == part]
+
+
+def check_registry(scenes: Mapping[str, Scene] = SCENES) -> list[str]:
+    """Problems of a registry, one line each (names unique across scenes and figures, parts
+    known, sweeps and figures well formed); empty when sound."""
+    problems = []
+    seen_figures: dict[str, str] = {}
+    for name, s in scenes.items():
+        if s.name != name:
+            problems.append(f"scene {name!r} is registered under another name ({s.name!r})")
+        if s.part not in PARTS:
+            problems.append(f"scene {name!r}: unknown part {s.part!r}; parts: {list(PARTS)}")
+        if not callable(s.compute):
+            problems.append(f"scene {name!r}: compute is not callable")
+        for f, spec in s.figures.items():
+            if f in seen_figures:
+                problems.append(f"figure {f!r} is drawn by {seen_figures[f]!r} and {name!r}")
+            seen_figures[f] = name
+            if f in scenes and f != name:
+                problems.append(f"figure {f!r} of {name!r} has the name of another scene")
+            if not callable(spec.plot) or not spec.caption:
+                problems.append(f"figure {f!r}: a plot function and a caption are required")
+    return problems
+
+
+def scene(name: str) -> Scene:
+    """The registered scene ``name`` (a one-line error naming the known scenes otherwise)."""
+    if name not in SCENES:
+        raise ParameterError(f"unknown scene {name!r}; known scenes: {sorted(SCENES)}")
+    return SCENES[name]
+
+
+def sweep_of(name: str) -> Sweep:
+    sweep = scene(name).sweep
+    if sweep is None:
+        raise ParameterError(f"{name!r} is not a sweep; sweeps: "
+                             f"{sorted(k for k, s in SCENES.items() if s.sweep)}")
+    return sweep
+
+
+def build_scene(name: str, params: dict[str, Any]) -> dict[str, Any]:
+    """Compute scene ``name`` from its parameters; the result records the parameters it used."""
+    return _scenes.build_scene(name, params, scene(name).compute)
+
+
+def build_scene_part(name: str, params: dict[str, Any], part: int, n_parts: int
+                     ) -> dict[str, Any]:
+    """Block ``part`` of ``n_parts`` of the sweep scene ``name``."""
+    return _scenes.build_scene_part(name, params, part, n_parts, sweep_of(name))
+
+
+def combine_scene_parts(name: str, params: dict[str, Any], parts: list[dict[str, Any]]
+                        ) -> dict[str, Any]:
+    """The sweep scene ``name`` gathered from its parts (same data as :func:`build_scene`)."""
+    return _scenes.combine_scene_parts(name, params, parts, sweep_of(name))
