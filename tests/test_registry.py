@@ -1,0 +1,106 @@
+"""The scene registry is the one list of scenes: adding a scene is one entry plus its functions."""
+
+from __future__ import annotations
+
+import os
+import shutil
+import subprocess
+import sys
+import textwrap
+
+import pytest
+from conftest import ROOT
+
+from flutterfriction.registry import PARTS, SCENES, check_registry, figures
+from flutterfriction.sources import import_path, module_sources, resolve
+
+
+def test_the_registry_is_sound():
+    assert check_registry() == []
+    assert {s.part for s in SCENES.values()} == set(PARTS)
+
+
+def test_a_job_finds_its_function_by_import_path():
+    for scene in SCENES.values():
+        assert resolve(import_path(scene.compute)) is scene.compute
+        if scene.sweep is not None:
+            assert resolve(import_path(scene.sweep, scene.compute.__module__)) is scene.sweep
+    for _, spec in figures().values():
+        assert resolve(import_path(spec.plot)) is spec.plot
+
+
+def test_a_scene_depends_on_the_modules_it_imports_and_no_others():
+    pkg = ROOT / "src" / "flutterfriction"
+    solids = module_sources([SCENES["fig22"].compute.__module__], pkg)
+    cycles = module_sources([SCENES["beck_hopf"].compute.__module__], pkg)
+    assert str(pkg / "analysis" / "acoustic.py") in solids
+    assert str(pkg / "analysis" / "acoustic.py") not in cycles
+    assert str(pkg / "analysis" / "rod_cycles.py") in cycles
+    assert str(pkg / "scenes" / "__init__.py") in cycles  # a parent package runs too
+    # a solve job does not depend on the plotting code, nor a plot job on the solvers
+    assert not any("/plotting/" in f for f in cycles)
+    plot = module_sources([figures()["fig11"][1].plot.__module__], pkg)
+    assert not any("/analysis/" in f for f in plot)
+
+
+TOY_SCENE = '''
+def compute(params):
+    """A toy scene: the data of one straight line."""
+    n = int(params.get("n_points", 5))
+    return {"x": list(range(n)), "quantities": {}}
+'''
+TOY_PLOT = '''
+from matplotlib.figure import Figure
+
+
+def plot(data):
+    fig = Figure(figsize=(3, 2))
+    ax = fig.add_subplot()
+    ax.plot(data["x"], data["x"])
+    ax.set_xlabel("x [-]")
+    ax.set_ylabel("y [-]")
+    return fig
+'''
+TOY_ENTRY = '''    Scene("toy", _toy.compute, "rods", {"toy": FigureSpec(_toy_plots.plot, "A toy figure.")}),
+'''
+
+
+@pytest.mark.slow
+def test_adding_a_scene_is_one_registry_entry(tmp_path):
+    """A copy of the project gets a toy scene: its two modules plus one registry entry (no
+    workflow file, no config, no report layout edited). The workflow plans its solve and plot
+    jobs as part of the default target, builds them, and the report lists its figure."""
+    ignore = shutil.ignore_patterns("__pycache__", "*.egg-info")
+    for part in ("src", "workflow", "notebooks"):
+        shutil.copytree(ROOT / part, tmp_path / part, ignore=ignore)
+    shutil.copy(ROOT / "Snakefile", tmp_path / "Snakefile")
+    pkg = tmp_path / "src" / "flutterfriction"
+    (pkg / "scenes" / "toy.py").write_text(TOY_SCENE)
+    (pkg / "plotting" / "toy.py").write_text(TOY_PLOT)
+    registry = pkg / "registry.py"
+    text = registry.read_text()
+    text = text.replace("from flutterfriction.scenes.sweep import Sweep\n",
+                        "from flutterfriction.scenes.sweep import Sweep\n"
+                        "from flutterfriction.scenes import toy as _toy\n"
+                        "from flutterfriction.plotting import toy as _toy_plots\n")
+    marker = "]\n\n#: Scene name"
+    assert marker in text
+    registry.write_text(text.replace(marker, TOY_ENTRY + marker))
+
+    env = {**os.environ, "PYTHONPATH": str(tmp_path / "src")}
+    snakemake = [sys.executable, "-m", "snakemake", "--quiet", "rules"]
+    plan = subprocess.run([*snakemake, "-n"], cwd=tmp_path, env=env, capture_output=True,
+                          text=True)
+    assert plan.returncode == 0, plan.stderr[-2000:]
+    run = subprocess.run([*snakemake, "-j1", "results/figures/toy.png"], cwd=tmp_path, env=env,
+                         capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr[-2000:]
+    assert (tmp_path / "results" / "data" / "toy.json").is_file()
+    assert (tmp_path / "results" / "figures" / "toy.png").stat().st_size > 1000
+    probe = textwrap.dedent("""
+        from flutterfriction.report import layout_figures, load_layout
+        print(layout_figures(load_layout("workflow/report.yaml")))
+    """)
+    shown = subprocess.run([sys.executable, "-c", probe], cwd=tmp_path, env=env,
+                           capture_output=True, text=True, check=True).stdout
+    assert "'toy'" in shown
