@@ -43,12 +43,17 @@ def plot_dead_load_spectrum(data: dict[str, Any], title: str) -> Figure:
     ax.axhline(0, color="k", lw=0.8)
     for val, name in ((e_cr, r"$\eta_{cr}$"), (e_sup, r"$\eta_{sup}$")):
         ax.axvline(val, color="k", ls="--", lw=0.8)
-        ax.annotate(f"{name} = {val:.4f}", (val, ax.get_ylim()[1]), rotation=90, va="top",
-                    ha="right", fontsize=8)
+        # Above the frame, clear of the branches.
+        ax.annotate(f"{name} = {val:.4f}", (val, 1.0), xycoords=("data", "axes fraction"),
+                    xytext=(0, 2), textcoords="offset points", ha="center", va="bottom",
+                    fontsize=8)
+    for name, xpos in (("stable", e_cr / 2), ("divergence", (e_sup + eta[-1]) / 2)):
+        ax.annotate(name, (xpos, 0.55), xycoords=("data", "axes fraction"), ha="center",
+                    fontsize=8)
     ax.set_xlim(eta[0], eta[-1])
-    ax.set_xlabel(r"dead load $\eta = H l_1/k_2$")
-    ax.set_ylabel(r"$\omega^2 = m_2 l_2^2\,\Omega^2/k_2$")
-    ax.set_title(title)
+    ax.set_xlabel(r"dead load $\eta = H l_1/k_2$ [-]")
+    ax.set_ylabel(r"$\omega^2 = m_2 l_2^2\,\Omega^2/k_2$ [-]")
+    ax.set_title(title, pad=14)
     ax.legend(loc="lower left")
     return fig
 
@@ -75,21 +80,23 @@ def plot_follower_spectrum(data: dict[str, Any], title: str, in_newtons: bool = 
         ax.axhline(0, color="k", lw=0.8)
         for val in (g_flu, g_div):
             ax.axvline(val * unit, color="k", ls="--", lw=0.8)
-        ax.set_ylabel(label)
+        ax.set_ylabel(label + r" [-]")
     fmt = ("{:.3f} N" if in_newtons else "{:.4f} K/L")
-    ax1.annotate(r"$P_{flu}$ = " + fmt.format(g_flu * unit), (g_flu * unit, ax1.get_ylim()[1]),
-                 rotation=90, va="top", ha="right", fontsize=8)
-    ax1.annotate(r"$P_{div}$ = " + fmt.format(g_div * unit), (g_div * unit, ax1.get_ylim()[1]),
-                 rotation=90, va="top", ha="right", fontsize=8)
+    # Threshold values above the frame, clear of the branches (ending / starting at their line).
+    for name, val, ha in ((r"$P_{flu}$", g_flu, "right"), (r"$P_{div}$", g_div, "left")):
+        ax1.annotate(name + " = " + fmt.format(val * unit), (val * unit, 1.0),
+                     xycoords=("data", "axes fraction"), xytext=(0, 2),
+                     textcoords="offset points", ha=ha, va="bottom", fontsize=8)
+    # Regime names just above Im = 0, inside the flutter ellipse and beside it.
     for name, xpos in (("stable", g_flu / 2), ("flutter", (g_flu + g_div) / 2),
                        ("divergence", (g_div + gamma[-1]) / 2)):
-        ax2.annotate(name, (xpos * unit, 0.04), xycoords=("data", "axes fraction"),
+        ax2.annotate(name, (xpos * unit, 0.58), xycoords=("data", "axes fraction"),
                      ha="center", fontsize=8)
     ax1.legend(loc="lower left")
-    ax1.set_title(title)
+    ax1.set_title(title, pad=14)
     ax2.set_xlim(x[0], x[-1])
     ax2.set_xlabel(r"follower load $P$ [N]" if in_newtons
-                   else r"follower load $\gamma = P l_1/k_2$")
+                   else r"follower load $\gamma = P l_1/k_2$ [-]")
     return fig
 
 
@@ -108,105 +115,164 @@ def plot_fig03(data: dict[str, Any]) -> Figure:
     for val, name in ((g_flu, r"$\gamma_{flu}$"), (vertex, r"$\beta_1/\beta_2$"),
                       (g_div, r"$\gamma_{div}$")):
         ax.axvline(val, color="k", ls="--" if val != vertex else ":", lw=0.8)
+        # Labels on the side of each line away from the parabola's steep flanks.
         ax.annotate(f"{name} = {val:.3f}", (val, 0.98), xycoords=("data", "axes fraction"),
-                    rotation=90, va="top", ha="right", fontsize=8)
+                    rotation=90, va="top", ha="left" if val == g_flu else "right", fontsize=8)
     ymin = min(line.min(), parab.min())
-    ax.set_ylim(1.15 * ymin, 1.2 * line.max())
-    for name, xpos in (("stable", g_flu / 2), ("flutter", (g_flu + g_div) / 2),
+    ax.set_ylim(1.35 * ymin, 1.2 * line.max())
+    for name, xpos in (("stable", g_flu / 2), ("flutter", (g_flu + vertex) / 2),
                        ("divergence", (g_div + gamma[-1]) / 2)):
         ax.annotate(name, (xpos, 0.03), xycoords=("data", "axes fraction"), ha="center",
                     fontsize=8)
     ax.set_xlim(gamma[0], gamma[-1])
-    ax.set_xlabel(r"$\gamma = P l_1/k_2$")
-    ax.set_ylabel("dimensionless")
+    ax.set_xlabel(r"$\gamma = P l_1/k_2$ [-]")
+    ax.set_ylabel("the two terms of eq. (34) [-]")
     unit = data["load_unit_N"]
     top = ax.secondary_xaxis("top", functions=(lambda g: g * unit, lambda P: P / unit))
     top.set_xlabel("P [N]")
-    ax.legend(loc="lower left", bbox_to_anchor=(0.0, 0.1))
+    ax.legend(loc="lower left", bbox_to_anchor=(0.0, 0.12))
     co = data["coefficients"]
     ax.set_title(rf"Eq. (34) for list (47): $a$ = {co['a']:.4f}, $\beta_1$ = {co['beta1']:.4f}, "
                  rf"$\beta_2$ = {co['beta2']:.4f}", pad=28)
     return fig
 
 
-def _upright(xy: np.ndarray) -> np.ndarray:
-    """Model (e1 along the undeformed pendulum) to drawing coordinates with e1 pointing up."""
-    xy = np.asarray(xy, dtype=float)
-    return np.stack([-xy[..., 1], xy[..., 0]], axis=-1)
+#: Frames whose linear angles exceed this are not drawn: there the linearisation of eq. (11)
+#: (sin a ~ a) is meaningless (the divergence's last frame reaches +188 / -221 degrees).
+FIG04_MAX_DEG = 45.0
 
 
 def plot_fig04(data: dict[str, Any]) -> Figure:
-    """Fig. 4: configurations of the linear motion every dt, flutter (top), divergence (bottom).
+    """Fig. 4: configurations of the linear motion every dt, flutter (upper), divergence (lower).
 
-    The pendulum is drawn upright (e1 pointing up, the load pushing down); angles are the
-    linear solution's, drawn with the exact rigid-rod kinematics of eq. (1).
+    The pendulum is drawn as in Fig. 2 (A on the left, e1 to the right, the load at C pushing
+    back along BC), at its true angles (the linear solution's, with the exact rigid-rod
+    kinematics of eq. 1). Beside each sequence, alpha1(t) and alpha2(t) of the same solution
+    with the drawn instants marked, so the growing oscillation (flutter) and the exponential
+    departure (divergence) read off the drawing. Frames with an angle beyond
+    ``FIG04_MAX_DEG`` are not drawn (their angles are printed instead).
     """
     cases = data["cases"]
-    n_max = max(len(c["times"]) for c in cases.values())
-    extents = []
-    for case in cases.values():
-        xy = _upright(np.concatenate([np.array(v) for v in case["points"].values()]))
-        extents.append((xy[:, 1].min(), xy[:, 1].max()))
-    L = float(np.linalg.norm(np.array(next(iter(cases.values()))["points"]["C"][0])))
-    heights = [hi - lo + 0.75 * L for lo, hi in extents]
-    spacing = 0.9 * L
-    width_in = 0.62 * n_max
-    scale_in = width_in / (n_max * spacing)
-    fig, axes = plt.subplots(len(cases), 1, figsize=(width_in, scale_in * sum(heights) + 0.8),
-                             gridspec_kw={"height_ratios": heights})
-    axes = np.atleast_1d(axes)
-    for ax, (name, case), (lo, hi) in zip(axes, cases.items(), extents, strict=True):
-        pts = {k: np.array(v) for k, v in case["points"].items()}
-        for i, t in enumerate(case["times"]):
-            frame = {k: v[i] for k, v in pts.items()}
-            draw_pendulum(ax, frame, data["masses"], scale=0.55 * L, springs=False,
-                          offset=(i * spacing, 0.0), transform=_upright)
-            a1, a2 = np.degrees(case["alpha"][i])
-            ax.annotate(f"{t:.2f} s", (i * spacing, hi + 0.12 * L), ha="center", fontsize=7)
-            ax.annotate(f"{a1:+.1f}°\n{a2:+.1f}°", (i * spacing, lo - 0.3 * L), ha="center",
-                        va="center", fontsize=6, color="0.35")
-        ax.set_aspect("equal")
-        ax.set_xlim(-0.5 * spacing, (n_max - 0.5) * spacing)
-        ax.set_ylim(lo - 0.5 * L, hi + 0.25 * L)
-        ax.set_axis_off()
-        ax.set_title(f"{name}: P = {case['P']:g} N, a configuration every "
-                     f"{case['times'][1] - case['times'][0]:.2f} s "
-                     r"(below: $\alpha_1$, $\alpha_2$)", fontsize=8, loc="left")
-    fig.suptitle("Linear eq. (11) solved exactly (matrix exponential), list (47)", fontsize=8,
-                 y=1.0)
+    order = [n for n in ("flutter", "divergence") if n in cases] + \
+        [n for n in cases if n not in ("flutter", "divergence")]
+    ncol = 4
+    rows = [int(np.ceil(len(cases[n]["times"]) / ncol)) for n in order]
+    L = float(np.linalg.norm(np.array(cases[order[0]]["points"]["B"][0])
+                             - np.array(cases[order[0]]["points"]["A"][0])))
+    span = float(np.linalg.norm(np.array(cases[order[0]]["points"]["C"][0])))
+    fig = plt.figure(figsize=(8.6, 1.05 * sum(rows) + 0.5 * len(order) + 0.5))
+    outer = fig.add_gridspec(len(order), 1, height_ratios=[r + 0.5 for r in rows], hspace=0.35,
+                             top=0.93, bottom=0.06)
+    for k, name in enumerate(order):
+        case = cases[name]
+        sub = outer[k].subgridspec(rows[k], ncol + 2, width_ratios=[1] * ncol + [0.15, 1.6],
+                                   wspace=0.05, hspace=0.12)
+        pts = {key: np.array(v) for key, v in case["points"].items()}
+        alpha = np.degrees(np.array(case["alpha"]))
+        times = case["times"]
+        dt = times[1] - times[0]
+        for i, t in enumerate(times):
+            ax = fig.add_subplot(sub[i // ncol, i % ncol])
+            ax.set_aspect("equal")
+            ax.set_xlim(-0.25 * span, 1.15 * span)
+            ax.set_ylim(-0.45 * span, 0.45 * span)
+            ax.set_xticks([])
+            ax.set_yticks([])
+            ax.grid(False)
+            for side in ax.spines.values():
+                side.set_color("0.8")
+            a1, a2 = alpha[i]
+            ax.text(0.02, 0.96, f"t = {t:.2f} s", transform=ax.transAxes, fontsize=7,
+                    va="top")
+            ax.text(0.02, 0.04, f"{a1:+.1f}°, {a2:+.1f}°", transform=ax.transAxes,
+                    fontsize=6.5, ha="left", va="bottom", color="0.35")
+            if max(abs(a1), abs(a2)) > FIG04_MAX_DEG:
+                ax.text(0.5, 0.5, f"|α| > {FIG04_MAX_DEG:g}°:\nlinear solution\nnot drawn",
+                        transform=ax.transAxes, ha="center", va="center", fontsize=7,
+                        color="0.35")
+                continue
+            ax.plot([0, span], [0, 0], color="0.7", lw=0.6, ls="--")
+            frame = {key: v[i] for key, v in pts.items()}
+            draw_pendulum(ax, frame, data["masses"], scale=0.5 * L, springs=False,
+                          loads={"P": 0.3 * L})
+        ax_t = fig.add_subplot(sub[:, ncol + 1])
+        t_d = np.array(case["t_dense"])
+        a_d = np.degrees(np.array(case["alpha_dense"]))
+        for j, (lab, col) in enumerate(((r"$\alpha_1$", "C0"), (r"$\alpha_2$", "C3"))):
+            ax_t.plot(t_d, a_d[:, j], color=col, lw=1.2, label=lab)
+            ax_t.plot(times, alpha[:, j], "o", ms=2.5, color=col)
+        ax_t.plot([], [], "o", ms=2.5, color="0.3", label="instants drawn")
+        lim = min(1.1 * np.abs(alpha).max(), FIG04_MAX_DEG + 15)
+        ax_t.set_ylim(-lim, lim)
+        if np.abs(alpha).max() > FIG04_MAX_DEG:
+            for sgn in (1, -1):
+                ax_t.axhspan(sgn * FIG04_MAX_DEG, sgn * lim, color="0.88", lw=0)
+            ax_t.text(0.03, 0.97, f"beyond ±{FIG04_MAX_DEG:g}°: not drawn",
+                      transform=ax_t.transAxes, fontsize=6.5, va="top", color="0.3")
+        ax_t.set_xlim(0, times[-1])
+        ax_t.set_xlabel("time t [s]")
+        ax_t.set_ylabel("linear solution [deg]")
+        ax_t.yaxis.set_label_position("right")
+        ax_t.yaxis.tick_right()
+        ax_t.legend(fontsize=7, loc="lower left")
+        label = {"flutter": "Flutter (upper part)", "divergence": "Divergence (lower part)"}
+        fig.text(0.1, outer[k].get_position(fig).y1 + 0.008,
+                 f"{label.get(name, name)}: P = {case['P']:g} N, initially "
+                 f"α1 = α2 = {alpha[0, 0]:+.1f}°; every {dt:.2f} s (α1, α2 at the lower "
+                 "left of each frame)", fontsize=8, va="bottom")
+    fig.suptitle("Linear eq. (11) solved exactly (matrix exponential), list (47); "
+                 "drawn as in Fig. 2 with the follower load P at C", fontsize=8.5, y=1.0)
     return fig
+
+
+def _dimension(ax, p: np.ndarray, q: np.ndarray, normal: np.ndarray, offset: float,
+               text: str) -> None:
+    """A dimension line parallel to p-q at ``offset`` along ``normal``, labelled ``text``."""
+    a, b = p + offset * normal, q + offset * normal
+    ax.annotate("", b, a, arrowprops={"arrowstyle": "|-|,widthA=0.25,widthB=0.25", "lw": 0.7,
+                                      "color": "0.3", "shrinkA": 0, "shrinkB": 0})
+    ax.annotate(text, (a + b) / 2, xytext=(10 * normal[0], 10 * normal[1]),
+                textcoords="offset points", ha="center", va="center", color="0.3", fontsize=9)
 
 
 def plot_fig02(data: dict[str, Any]) -> Figure:
     """Fig. 2: the Ziegler double pendulum with its springs, masses and the loads P and H."""
     pts = {k: np.array(v) for k, v in data["points"].items()}
     L = float(np.linalg.norm(pts["B"] - pts["A"]))
-    fig, ax = plt.subplots(figsize=(5.6, 3.8))
-    # The undeformed axis, and the rotations alpha1, alpha2 measured from e1.
+    fig, ax = plt.subplots(figsize=(5.6, 4.2))
+    # The undeformed axis, and the rotations alpha1, alpha2 measured from e1, drawn outside
+    # the masses D and E (at d and h from the hinges).
     ax.plot([0, 2.25 * L], [0, 0], color="0.6", lw=0.8, ls="--")
-    ax.plot([pts["B"][0], pts["B"][0] + 0.6 * L], [pts["B"][1]] * 2, color="0.6", lw=0.8,
+    ax.plot([pts["B"][0], pts["B"][0] + 0.75 * L], [pts["B"][1]] * 2, color="0.6", lw=0.8,
             ls="--")
     for centre, angle, name in ((pts["A"], data["alpha1"], r"$\alpha_1$"),
                                 (pts["B"], data["alpha2"], r"$\alpha_2$")):
-        ax.add_patch(Arc(centre, 0.56 * L, 0.56 * L, theta1=0, theta2=np.degrees(angle), lw=0.8))
+        ax.add_patch(Arc(centre, 1.2 * L, 1.2 * L, theta1=0, theta2=np.degrees(angle), lw=0.8))
         mid = angle / 2
-        ax.annotate(name, centre + 0.36 * L * np.array([np.cos(mid), np.sin(mid)]),
+        ax.annotate(name, centre + 0.7 * L * np.array([np.cos(mid), np.sin(mid)]),
                     ha="center", va="center")
     draw_pendulum(ax, pts, data["masses"], scale=L, loads={"P": 0.45 * L, "H": 0.45 * L},
                   labels=True)
-    for name, p, dxy in (("$k_1$", pts["A"], (0.14, -0.13)), ("$k_2$", pts["B"], (0.05, -0.16)),
-                         ("$m_1$", pts["D"], (0.05, -0.17)), ("$m_2$", pts["C"], (0.13, -0.1)),
-                         ("$m_3$", pts["E"], (0.15, -0.05))):
+    A, B, C, D, E = (pts[k] for k in "ABCDE")
+    n1 = np.array([-(B - A)[1], (B - A)[0]]) / np.linalg.norm(B - A)
+    n2 = np.array([-(C - B)[1], (C - B)[0]]) / np.linalg.norm(C - B)
+    # Lengths d = |AD|, l1 = |AB|, h = |BE|, l2 = |BC|, on the upper side of the rods.
+    for p, q, nn, off, name in ((A, D, n1, 0.25, "$d$"), (A, B, n1, 0.42, "$l_1$"),
+                                (B, E, n2, 0.2, "$h$"), (B, C, n2, 0.62, "$l_2$")):
+        _dimension(ax, p, q, nn, off * L, name)
+    for name, p, dxy in (("$k_1$", A, (0.1, -0.16)), ("$k_2$", B, (0.1, -0.15)),
+                         ("$m_1$", D, (0.06, -0.16)), ("$m_2$", C, (0.15, -0.1)),
+                         ("$m_3$", E, (0.13, -0.08))):
         ax.annotate(name, p + L * np.array(dxy), ha="center", va="center", color="0.2")
-    o = np.array([1.6 * L, -0.4 * L])
+    o = np.array([1.75 * L, -0.45 * L])
     ax.annotate("", o + [0.3 * L, 0], o, arrowprops={"arrowstyle": "-|>", "lw": 0.8})
     ax.annotate("", o + [0, 0.3 * L], o, arrowprops={"arrowstyle": "-|>", "lw": 0.8})
     ax.annotate(r"$\mathbf{e}_1$", o + [0.33 * L, 0], va="center")
     ax.annotate(r"$\mathbf{e}_2$", o + [0, 0.33 * L], ha="center")
     ax.set_aspect("equal")
     top = max(p[1] for p in pts.values())
-    ax.set_xlim(-0.35 * L, 2.45 * L)
-    ax.set_ylim(-0.5 * L, top + 0.45 * L)
+    ax.set_xlim(-0.5 * L, 2.45 * L)
+    ax.set_ylim(-0.55 * L, top + 0.45 * L)
     ax.set_axis_off()
     ax.set_title("The Ziegler double pendulum (follower load P parallel to BC, dead load H "
                  "parallel to $\\mathbf{e}_1$)", fontsize=8)

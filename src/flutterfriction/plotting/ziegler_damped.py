@@ -13,28 +13,59 @@ COLOURS = ["black", "C0", "C3", "C2", "C1"]
 
 
 def plot_fig05(data: dict[str, Any]) -> Figure:
-    """Fig. 5: Re and Im of omega~ against gamma, undamped and for each epsilon (eq. 51)."""
+    """Fig. 5: Re and Im of omega~ against gamma, undamped and for each epsilon (eq. 51).
+
+    A third panel zooms on the largest Re omega~ around the damped flutter loads, where it is
+    too small to see at the scale of the upper panel: it changes sign at the flutter load.
+    """
     gamma = np.array(data["gamma"])
-    fig, (ax_re, ax_im) = plt.subplots(2, 1, figsize=(5.4, 5.4), sharex=True)
+    fig = plt.figure(figsize=(5.4, 7.4))
+    outer = fig.add_gridspec(2, 1, height_ratios=[6, 2.3], hspace=0.3)
+    gs = outer[0].subgridspec(2, 1, hspace=0.08)
+    ax_re = fig.add_subplot(gs[0])
+    ax_im = fig.add_subplot(gs[1], sharex=ax_re)
+    ax_z = fig.add_subplot(outer[1])
+    damped = [c for c in data["cases"].values() if c["eps"] > 0]
+    lo = min(c["gamma_flu"] for c in damped) - 0.08
+    hi = max(c["gamma_flu"] for c in damped) + 0.08
+    window = (gamma >= lo) & (gamma <= hi)
+    damped_top = [np.max(np.array(c["re"]), axis=0)[window] for c in damped]
+    ztop = max(np.abs(t).max() for t in damped_top)
+    zexp = int(np.floor(np.log10(0.25 * ztop)))  # the zoom's values in units of 10**zexp
+    zs = 10.0 ** -zexp
     for colour, case in zip(COLOURS, data["cases"].values(), strict=False):
-        label = "undamped" if case["eps"] == 0 else rf"$\epsilon$ = {case['eps']:g}"
+        name = "undamped" if case["eps"] == 0 else rf"$\epsilon$ = {case['eps']:g}"
+        label = rf"{name}: $\gamma_{{flu}}$ = {case['gamma_flu']:.3f}"
         for i, branch in enumerate(case["re"]):
             ax_re.plot(gamma, branch, color=colour, lw=1.3, label=label if i == 0 else None)
         for branch in case["im"]:
             ax_im.plot(gamma, branch, color=colour, lw=1.3)
         for ax in (ax_re, ax_im):
             ax.axvline(case["gamma_flu"], color=colour, ls="--", lw=0.8)
-        ax_re.annotate(rf"$\gamma_{{flu}}$ = {case['gamma_flu']:.3f}", (case["gamma_flu"], 0.98),
-                       xycoords=("data", "axes fraction"), rotation=90, va="top", ha="right",
-                       fontsize=7, color=colour)
+        top = np.max(np.array(case["re"]), axis=0)
+        ax_z.plot(gamma[window], zs * top[window], color=colour, lw=1.3)
+        if case["eps"] > 0:
+            ax_z.axvline(case["gamma_flu"], color=colour, ls="--", lw=0.8)
+            ax_z.plot(case["gamma_flu"], 0.0, "o", color=colour, ms=4)
+            ax_z.annotate(f"{case['gamma_flu']:.3f}", (case["gamma_flu"], 0.0),
+                          xytext=(4, -12), textcoords="offset points", fontsize=7,
+                          color=colour)
     ax_re.axhline(0, color="k", lw=0.6)
-    ax_re.set_ylabel(r"Re $\tilde\omega$")
-    ax_im.set_ylabel(r"Im $\tilde\omega$")
-    ax_im.set_xlabel(r"$\gamma = P L/K$")
+    ax_z.axhline(0, color="k", lw=0.6)
+    ax_re.set_ylabel(r"Re $\tilde\omega$ [-]")
+    ax_im.set_ylabel(r"Im $\tilde\omega$ [-]")
+    ax_im.set_xlabel(r"$\gamma = P L/K$ [-]")
     ax_im.set_xlim(gamma[0], gamma[-1])
-    ax_re.legend(loc="lower left")
+    ax_re.tick_params(labelbottom=False)
+    ax_re.legend(loc="lower left", fontsize=7)
     ax_re.set_title(r"Fig. 5: $l_1=l_2=L$, $k_1=k_2=K$, $m_1=m_2$, $d=L$, $c_1=c_2$ (eq. 51); "
                     "dashed: flutter loads", fontsize=8)
+    ax_z.set_xlim(lo, hi)
+    ax_z.set_ylim(-0.25 * ztop * zs, 0.25 * ztop * zs)
+    ax_z.set_xlabel(r"$\gamma = P L/K$ [-]")
+    ax_z.set_ylabel(rf"largest Re $\tilde\omega$ [$10^{{{zexp}}}$]")
+    ax_z.set_title(r"zoom: the largest Re $\tilde\omega$ changes sign at the damped flutter "
+                   "loads (dots); undamped: 0 until 2", fontsize=8)
     return fig
 
 
@@ -98,11 +129,12 @@ def plot_fig19_theory(data: dict[str, Any]) -> Figure:
                      (q[key]["value"], ratio), xytext=(-118, 8),
                      textcoords="offset points", fontsize=7, color=colour)
     ax2.axvline(data["c_reference"], color="k", ls="--", lw=0.8)
-    ax2.annotate("§2.9: 0.006 N m s", (data["c_reference"], 0.02), rotation=90,
-                 xycoords=("data", "axes fraction"), ha="right", fontsize=7)
+    ax2.annotate(f"§2.9: {data['c_reference']:g} N m s", (data["c_reference"], 0.97),
+                 rotation=90, xycoords=("data", "axes fraction"), ha="right", va="top",
+                 fontsize=7)
     ax2.axhline(1.0, color="k", lw=0.6)
     ax2.set_xlabel(r"hinge viscosity $c_1 = c_2$ [N m s]")
-    ax2.set_ylabel("damped / undamped critical load")
+    ax2.set_ylabel("damped / undamped critical load [-]")
     ax2.legend(loc="upper left", fontsize=7)
     ax2.set_title("Ratios against viscosity", fontsize=8)
     fig.tight_layout()
@@ -114,9 +146,9 @@ def plot_paradox_map(data: dict[str, Any]) -> Figure:
     lc = np.array(data["log10_c"])
     fig, axes = plt.subplots(1, 2, figsize=(8.6, 3.8), sharex=True)
     panels = ((axes[0], np.array(data["log10_mass_ratio"]), data["ratio_mass"],
-               data["paradox_free_c_mass"], r"$\log_{10}(m_1/m_2)$   ($d = l_1$)"),
+               data["paradox_free_c_mass"], r"$\log_{10}(m_1/m_2)$ [-]   ($d = l_1$)"),
               (axes[1], np.array(data["d_ratio"]), data["ratio_d"], data["paradox_free_c_d"],
-               r"$d/l_1$   ($m_1 = m_2$)"))
+               r"$d/l_1$ [-]   ($m_1 = m_2$)"))
     norm = Normalize(vmin=0.0, vmax=1.0)
     for ax, y, z, free, ylabel in panels:
         im = ax.pcolormesh(lc, y, np.array(z), cmap="viridis", norm=norm, shading="auto")
@@ -136,9 +168,11 @@ def plot_paradox_map(data: dict[str, Any]) -> Figure:
         for pt in on_panel:
             yy = np.log10(pt["m1_over_m2"]) if ax is axes[0] else pt["d_over_l1"]
             ax.plot(np.log10(pt["c_ratio"]), yy, "x", color="w", ms=7, mew=1.8)
-        ax.set_xlabel(r"damping distribution $\log_{10}(c_1/c_2)$")
+        ax.set_xlabel(r"damping distribution $\log_{10}(c_1/c_2)$ [-]")
         ax.set_ylabel(ylabel)
-    fig.colorbar(im, ax=axes, label=r"$\lim_{\epsilon\to 0} P^*_{flu} / P_{flu}$(undamped)")
+    fig.subplots_adjust(wspace=0.38)
+    fig.colorbar(im, ax=axes,
+                 label=r"$\lim_{\epsilon\to 0} P^*_{flu} / P_{flu}$(undamped) [-]")
     fig.suptitle("Where the Ziegler paradox is strong (dark) and where it vanishes (ratio 1); "
                  r"$l_1=l_2$, $k_1=k_2$, $m_3=0$; × = checked by Routh–Hurwitz at small "
                  r"$\epsilon$", fontsize=8)

@@ -187,8 +187,12 @@ def fig04(params: dict[str, Any]) -> dict[str, Any]:
         times = dt * np.arange(int(round(T / dt)) + 1)
         states = linear_response(p, P, 0.0, [a0, a0, 0.0, 0.0], times)
         pos = p.positions(states[:, 0], states[:, 1])
+        # The same exact solution every dt/20, for the figure's alpha(t) panel.
+        t_dense = np.linspace(0.0, times[-1], 20 * (len(times) - 1) + 1)
+        dense = linear_response(p, P, 0.0, [a0, a0, 0.0, 0.0], t_dense)
         out["cases"][name] = {"P": P, "times": times.tolist(), "alpha": states[:, :2].tolist(),
-                              "points": {k: v.tolist() for k, v in pos.items()}}
+                              "points": {k: v.tolist() for k, v in pos.items()},
+                              "t_dense": t_dense.tolist(), "alpha_dense": dense[:, :2].tolist()}
         quantities[f"regime_{name}"] = _quantity(
             str(regime(p, P)), str(cf.follower_regime(p.groups(), P / p.load_unit)),
             "eigenvalues of the first-order form", "eq. (37) intervals", "")
