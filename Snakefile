@@ -12,13 +12,18 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 
 from snakemake.utils import min_version
 
-from flutterfriction.config import validate_config
+from flutterfriction.config import expand_parameter_lists, validate_config
 from flutterfriction.registry import SCENES, check_registry
 
 min_version("8.0")
 
 
 configfile: "workflow/config.yaml"
+
+
+# `snakemake --report report.html`: Snakemake's provenance report (code, runtimes, job graph) with
+# every figure and its caption; the reader's report is results/reports/index.html.
+report: "workflow/report/workflow.rst"
 
 
 # The whole configuration, every preset as it resolves, before the first job: one line per
@@ -28,6 +33,7 @@ _problems = check_registry() + validate_config(
 )
 if _problems:
     sys.exit("invalid configuration:\n  " + "\n  ".join(_problems))
+expand_parameter_lists(config)  # `rod: list119` -> its values (flutterfriction.parameters)
 
 
 include: "workflow/rules/common.smk"

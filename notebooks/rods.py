@@ -25,6 +25,7 @@ from IPython.display import Image, Markdown, display
 
 from flutterfriction.analysis.rod import critical_loads
 from flutterfriction.models.rod import Rod, RodGroups
+from flutterfriction.parameters import LIST_119
 
 DATA, FIGS = Path("results/data"), Path("results/figures")
 
@@ -62,7 +63,7 @@ def show(name, width=820):
 # scikit-fem), which are also the independent check.
 
 # %%
-rod119 = Rod(length=0.35, B=0.0332, rho=0.0546, D=7.078e-6)
+rod119 = Rod(**LIST_119)  # list (119): flutterfriction.parameters
 g = rod119.groups()
 display(Markdown(f"List (119): $\\eta$ = {g.eta:.6g}, load unit $B/l^2$ = {rod119.load_unit:.6g} N, "
                  f"time unit $T$ = {rod119.time_scale:.6g} s; $P$ = 5.5 N is $p$ = "

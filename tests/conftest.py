@@ -10,6 +10,7 @@ from hypothesis import HealthCheck, settings
 from hypothesis import strategies as st
 
 from flutterfriction import ZieglerPendulum
+from flutterfriction.parameters import LIST_47
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -25,8 +26,7 @@ settings.register_profile("explore", max_examples=2000, deadline=None,
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "ci" if os.environ.get("CI")
                                      else "default"))
 
-LIST47 = dict(l1=0.1, l2=0.1, d=0.1 / 3, h=0.1 / 3, m1=0.552, m2=0.046, m3=0.138, k1=0.189,
-              k2=0.189)
+LIST47 = dict(LIST_47)  # list (47): flutterfriction.parameters
 
 
 def _logu(lo: float, hi: float) -> st.SearchStrategy[float]:

@@ -157,3 +157,29 @@ def test_unknown_key_is_one_line(config):
 
     problems = validate_config(_with(config, ("scenes", "eq25", "n_pionts"), 3), SCHEMA_PATH)
     assert len(problems) == 1 and "n_pionts" in problems[0]
+
+
+def test_the_chapters_lists_as_the_chapter_states_them():
+    from flutterfriction.parameters import LIST_47, LIST_119, SEC_29
+
+    # list (47): l = 3d = 3h = 100 mm, m1 = 12 m2 = 4 m3 = 552 g, k1 = k2 = 0.189 N m
+    assert LIST_47["l1"] == LIST_47["l2"] == 0.1
+    assert 3 * LIST_47["d"] == pytest.approx(0.1, rel=1e-15) and LIST_47["h"] == LIST_47["d"]
+    assert LIST_47["m1"] == pytest.approx(12 * LIST_47["m2"]) == pytest.approx(4 * LIST_47["m3"])
+    assert LIST_47["m1"] == 0.552 and LIST_47["k1"] == LIST_47["k2"] == 0.189
+    # list (119): l = 0.350 m, rho = 0.0546 kg/m, B = 0.0332 N m^2, D = 7.078e-6 N m^2 s
+    assert dict(LIST_119) == {"length": 0.35, "B": 0.0332, "rho": 0.0546, "D": 7.078e-6}
+    assert SEC_29["d"] == SEC_29["l1"] and SEC_29["m3"] == 0.0 and SEC_29["c1"] == 0.006
+
+
+def test_the_config_names_the_lists_and_an_unknown_name_is_refused(config):
+    from flutterfriction.parameters import LIST_119
+
+    assert config["scenes"]["fig11"]["rod"] == dict(LIST_119)  # `rod: list119` resolved
+    raw = yaml.safe_load((ROOT / "workflow" / "config.yaml").read_text())
+    raw["scenes"]["fig11"]["rod"] = "list911"
+    problems = validate_config(raw, SCHEMA_PATH, scenes=SCENES)
+    assert problems == [problems[0]] and "scenes.fig11.rod: unknown parameter list 'list911'" \
+        in problems[0]
+    raw["scenes"]["fig11"]["rod"] = "list47"  # a pendulum's list where a rod's is expected
+    assert "unknown parameter list 'list47'" in validate_config(raw, SCHEMA_PATH)[0]

@@ -61,7 +61,8 @@ def plot(data):
     ax.set_ylabel("y [-]")
     return fig
 '''
-TOY_ENTRY = '''    Scene("toy", _toy.compute, "rods", {"toy": FigureSpec(_toy_plots.plot, "A toy figure.")}),
+TOY_ENTRY = '''    Scene("toy", _toy.compute, "rods",
+          {"toy": FigureSpec(_toy_plots.plot, "A toy figure.")}),
 '''
 
 

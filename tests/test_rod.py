@@ -15,8 +15,10 @@ from flutterfriction.analysis import rod as ar
 from flutterfriction.errors import ParameterError
 from flutterfriction.models.rod import Rod, RodGroups, characteristic_function
 from flutterfriction.models.rod_fe import assemble, fe_eigenvalues
+from flutterfriction.parameters import LIST_119
 
-ETA_119 = 7.078e-6 / (0.0332 * 0.35**2) * math.sqrt(0.0332 / 0.0546)
+ETA_119 = (LIST_119["D"] / (LIST_119["B"] * LIST_119["length"] ** 2)
+           * math.sqrt(LIST_119["B"] / LIST_119["rho"]))
 
 
 def f_mp(p, w, ta, gam=0, eta=0):

@@ -34,6 +34,7 @@ import sys
 from collections.abc import Sequence
 
 from flutterfriction.errors import ConvergenceError, ParameterError, check_nonnegative
+from flutterfriction.parameters import LIST_119, LIST_119_LOAD
 
 ZIEGLER_PARAMS = {
     "l1": "length of rod AB [m], > 0",
@@ -167,11 +168,11 @@ def build_parser() -> argparse.ArgumentParser:
                     "(2.9645 N for list (119), 4 elements), computed first; loads too close to "
                     "it, where the approach to the cycle outlasts --t-max, are refused.")
     for name, default, text in (
-            ("P", 5.5, f"follower load [N], P_flu < P <= {BECK_LOAD_MAX:g} P_flu"),
-            ("length", 0.35, "rod length l [m], 1e-6..1e6"),
-            ("B", 0.0332, "bending stiffness [N m^2], 1e-12..1e12"),
-            ("rho", 0.0546, "mass per length [kg/m], 1e-12..1e12"),
-            ("D", 7.078e-6, f"Kelvin-Voigt viscosity [N m^2 s], > 0, with eta = "
+            ("P", LIST_119_LOAD, f"follower load [N], P_flu < P <= {BECK_LOAD_MAX:g} P_flu"),
+            ("length", LIST_119["length"], "rod length l [m], 1e-6..1e6"),
+            ("B", LIST_119["B"], "bending stiffness [N m^2], 1e-12..1e12"),
+            ("rho", LIST_119["rho"], "mass per length [kg/m], 1e-12..1e12"),
+            ("D", LIST_119["D"], f"Kelvin-Voigt viscosity [N m^2 s], > 0, with eta = "
                             f"D/(B l^2) sqrt(B/rho) <= {BECK_ETA_MAX:g}"),
             ("kappa", 0.0, f"external damping [N s/m^2], >= 0, with gamma = kappa l^2/"
                            f"sqrt(rho B) <= {BECK_GAMMA_MAX:g}"),

@@ -15,12 +15,33 @@ from flutterfriction.errors import ParameterError
 TOP_LEVEL_KEYS = {"fidelity", "fidelity_presets", "scenes", "sweep_parts"}
 
 
+def expand_parameter_lists(config: dict[str, Any]) -> list[str]:
+    """Replace, in place, every chapter list named in a scene section (``pendulum: list47``,
+    ``rod: list119``; :data:`flutterfriction.parameters.LISTS`) by its values; one line per
+    unknown name (empty when all resolve)."""
+    from flutterfriction.parameters import NAMED_KEYS, parameter_list
+
+    problems = []
+    for scene, section in (config.get("scenes") or {}).items():
+        for key, kind in NAMED_KEYS.items():
+            if isinstance(section, dict) and isinstance(section.get(key), str):
+                try:
+                    section[key] = parameter_list(section[key], kind)
+                except ParameterError as exc:
+                    problems.append(f"config: scenes.{scene}.{key}: {exc}")
+    return problems
+
+
 def load_config(path: str | Path) -> dict[str, Any]:
-    """Load the workflow configuration and reject unknown top-level keys by name."""
+    """Load the workflow configuration (chapter lists named in it resolved) and reject
+    unknown top-level keys by name."""
     with open(path, encoding="utf-8") as fh:
         config = yaml.safe_load(fh)
     if not isinstance(config, dict):
         raise ParameterError(f"{path}: the configuration must be a mapping")
+    problems = expand_parameter_lists(config)
+    if problems:
+        raise ParameterError(problems[0])
     unknown = sorted(set(config) - TOP_LEVEL_KEYS)
     if unknown:
         raise ParameterError(f"{path}: unknown key(s) {unknown}; allowed: {sorted(TOP_LEVEL_KEYS)}")
@@ -159,6 +180,10 @@ def validate_config(config: dict[str, Any], schema_path: str | Path,
     scene is refused too. An empty list means valid."""
     with open(schema_path, encoding="utf-8") as fh:
         schema = yaml.safe_load(fh)
+    config = copy.deepcopy(config)
+    problems = expand_parameter_lists(config)
+    if problems:
+        return problems
     problems = _schema_problems(config, schema, "config: ")
     if scenes is not None:
         known = set(scenes)

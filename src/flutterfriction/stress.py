@@ -24,10 +24,10 @@ import numpy as np
 
 from flutterfriction.errors import ConvergenceError, ParameterError
 from flutterfriction.io import markdown_table
+from flutterfriction.parameters import LIST_47
 
 CORRECT, REFUSED, WRONG = "correct", "refused", "WRONG"
-LIST47 = {"l1": 0.1, "l2": 0.1, "d": 0.1 / 3, "h": 0.1 / 3, "m1": 0.552, "m2": 0.046,
-          "m3": 0.138, "k1": 0.189, "k2": 0.189}
+LIST47 = dict(LIST_47)  # list (47), defined once in flutterfriction.parameters
 
 
 @dataclass

@@ -119,3 +119,11 @@ def figure_plot(wildcards):
 
 def scene_priority(wildcards):
     return 10 if wildcards.scene in SLOW_SCENES else 0
+
+
+def figure_caption(wildcards):
+    return FIGURES[wildcards.scene][1].caption
+
+
+def figure_part(wildcards):
+    return FIGURES[wildcards.scene][0].part

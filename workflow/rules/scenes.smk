@@ -66,7 +66,13 @@ rule plot:
         timings=figure_timings,
     output:
         pdf="results/figures/{scene}.pdf",
-        png="results/figures/{scene}.png",
+        # in `snakemake --report`, with the figure's caption from the registry
+        png=report(
+            "results/figures/{scene}.png",
+            caption="../report/figure.rst",
+            category="Figures",
+            labels={"figure": "{scene}"},
+        ),
     log:
         "results/logs/plot/{scene}.log",
     wildcard_constraints:
@@ -80,6 +86,8 @@ rule plot:
         # quick preset: cheaper PNG/PDF rendering (see plotting.save_figure)
         draft=config.get("fidelity", "paper") == "quick",
         plot=figure_plot,
+        caption=figure_caption,
+        part=figure_part,
     script:
         "../scripts/plot_scene.py"
 
