@@ -67,15 +67,17 @@ clear_interrupted_outputs()
 def sweep_parts(wildcards):
     if wildcards.scene not in SWEEP_SCENES:
         return []
-    n = config.get("sweep_parts", 2)
-    return [f"results/data/parts/{wildcards.scene}/{k}-of-{n}.json" for k in range(n)]
+    return gather.sweep(f"results/data/parts/{wildcards.scene}/{{scatteritem}}.json")
 
 
 def benchmark_files(wildcards=None):
-    n = config.get("sweep_parts", 2)
     return (
         expand("results/benchmarks/{scene}.solve.tsv", scene=ALL_SCENES)
-        + [f"results/benchmarks/{s}.part{k}-of-{n}.tsv" for s in SWEEP_SCENES for k in range(n)]
+        + [
+            f
+            for s in SWEEP_SCENES
+            for f in gather.sweep(f"results/benchmarks/{s}.part{{scatteritem}}.tsv")
+        ]
         + expand("results/benchmarks/report_{nb}.tsv", nb=NOTEBOOK_REPORTS)
         + ["results/benchmarks/stress.tsv"]
     )

@@ -1,22 +1,26 @@
 # Every scene of src/flutterfriction/registry.py: a solver rule writing results/data/<scene>.json,
 # then one plot rule per figure drawn from it, writing results/figures/<figure>.{pdf,png}.
-# Sweeps (bifurcation diagrams, stability maps) scatter their points over `sweep_parts` jobs
-# (one SLURM job each on a cluster), gathered by the scene's solve job.
+# Sweeps (bifurcation diagrams, stability maps) scatter their points over the `sweep` jobs of
+# Snakemake's scatter-gather (`sweep_parts` in the config, or `--set-scatter sweep=64`; one SLURM
+# job each on a cluster), gathered by the scene's solve job.
+
+
+scattergather:
+    sweep=config.get("sweep_parts", 2),
 
 
 rule solve_part:
     input:
         scene_sources,
     output:
-        "results/data/parts/{scene}/{part}-of-{n}.json",
+        "results/data/parts/{scene}/{scatteritem}.json",
     log:
-        "results/logs/solve_part/{scene}/{part}-of-{n}.log",
+        "results/logs/solve_part/{scene}/{scatteritem}.log",
     benchmark:
-        "results/benchmarks/{scene}.part{part}-of-{n}.tsv"
+        "results/benchmarks/{scene}.part{scatteritem}.tsv"
     wildcard_constraints:
         scene="|".join(SWEEP_SCENES),
-        part=r"\d+",
-        n=r"\d+",
+        scatteritem=r"\d+-of-\d+",
     priority: 5
     conda:
         "../envs/flutterfriction.yaml"

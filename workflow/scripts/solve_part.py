@@ -7,6 +7,6 @@ from flutterfriction.sources import resolve
 log_job_output(snakemake.log[0])  # this job's output goes to its log file
 
 w = snakemake.wildcards
+k, n = (int(x) for x in w.scatteritem.split("-of-"))  # Snakemake's scatter item: 1-based
 sweep = resolve(snakemake.params.sweep)
-write_json(snakemake.output[0], build_scene_part(w.scene, snakemake.params.cfg, int(w.part),
-                                                 int(w.n), sweep))
+write_json(snakemake.output[0], build_scene_part(w.scene, snakemake.params.cfg, k - 1, n, sweep))
