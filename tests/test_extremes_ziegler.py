@@ -139,14 +139,15 @@ def test_round_off_discriminant_is_refused_not_minimised():
 
 def test_follower_gammas_at_range_edges_against_mpmath():
     """Within the range, at its edges, the coalescence loads match the 50-digit reference."""
-    from flutterfriction.stress import _mp_flutter_load
+    from flutterfriction.analysis.ziegler import flutter_load_multiprecision
 
     for over in ({"k1": 0.189e-6}, {"m1": 0.046e6}):
         q = {**LIST47, **over}
         p = ZieglerPendulum(**q)
         g_flu, _ = follower_critical_gammas(p)
         # 1e-12: measured 2e-14 and 1e-14 (one-ratio sweep, models.ziegler.RATIO_DECADES).
-        assert g_flu * p.load_unit == pytest.approx(float(_mp_flutter_load(q)), rel=1e-12)
+        assert g_flu * p.load_unit == pytest.approx(float(flutter_load_multiprecision(p)),
+                                                    rel=1e-12)
 
 
 # ---------------------------------------------------------------------- item 9: paradox limit

@@ -12,9 +12,10 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from flutterfriction.analysis import rod as ar
+from flutterfriction.analysis.rod import fe_eigenvalues
 from flutterfriction.errors import ParameterError
 from flutterfriction.models.rod import Rod, RodGroups, characteristic_function
-from flutterfriction.models.rod_fe import assemble, fe_eigenvalues
+from flutterfriction.models.rod_fe import assemble
 from flutterfriction.parameters import LIST_119
 
 ETA_119 = (LIST_119["D"] / (LIST_119["B"] * LIST_119["length"] ** 2)

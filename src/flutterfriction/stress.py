@@ -61,33 +61,12 @@ def _rel(a: float, b: float) -> float:
 
 
 # ---------------------------------------------------------------------- pendulum, exact refs
-def _mp_flutter_load(params: dict[str, float], dps: int = 50) -> mp.mpf:
-    """Undamped flutter load [N] of a pendulum from its matrices in ``dps``-digit arithmetic:
-    the smaller root of the discriminant of det(K(P) - Omega^2 M) in Omega^2 (no closed form
-    of ours is used)."""
-    with mp.workdps(dps):
-        q = {k: mp.mpf(v) for k, v in params.items()}
-        l1, l2, d, h = q["l1"], q["l2"], q["d"], q["h"]
-        m1, m2, m3, k1, k2 = q["m1"], q["m2"], q["m3"], q["k1"], q["k2"]
-        # Mass matrix of eq. (11) (point masses at D, C and E), stiffness and follower terms.
-        M = mp.matrix([[m1 * d**2 + (m2 + m3) * l1**2, (m2 * l2 + m3 * h) * l1],
-                       [(m2 * l2 + m3 * h) * l1, m2 * l2**2 + m3 * h**2]])
+def _mp_flutter_load(params: dict[str, float], dps: int = 50):
+    """The 50-digit flutter load of the pendulum with these parameters [N]."""
+    from flutterfriction.analysis.ziegler import flutter_load_multiprecision
+    from flutterfriction.models.ziegler import ZieglerPendulum
 
-        def disc(P):
-            K = mp.matrix([[k1 + k2 - P * l1, P * l1 - k2], [-k2, k2]])
-            # det(K - x M) = a x^2 - b x + c
-            a = mp.det(M)
-            b = K[0, 0] * M[1, 1] + K[1, 1] * M[0, 0] - K[0, 1] * M[1, 0] - K[1, 0] * M[0, 1]
-            c = mp.det(K)
-            return b**2 - 4 * a * c
-
-        # The discriminant is a quadratic in P: its smaller positive root is the flutter load.
-        d0, d1, d2 = disc(mp.mpf(0)), disc(mp.mpf(1)), disc(mp.mpf(2))
-        A2 = (d2 - 2 * d1 + d0) / 2
-        A1 = d1 - d0 - A2
-        roots = sorted([(-A1 - mp.sqrt(A1**2 - 4 * A2 * d0)) / (2 * A2),
-                        (-A1 + mp.sqrt(A1**2 - 4 * A2 * d0)) / (2 * A2)])
-        return min(r for r in roots if r > 0)
+    return flutter_load_multiprecision(ZieglerPendulum(**params), dps)
 
 
 def exceptional_point_cases() -> list[StressResult]:

@@ -35,7 +35,7 @@ from flutterfriction.errors import ConvergenceError, ParameterError
 Matrix = NDArray[np.float64]
 
 
-def _state_spectra(M: Matrix, C: Matrix, K0: Matrix, K1: Matrix, loads: ArrayLike) -> NDArray:
+def state_spectra(M: Matrix, C: Matrix, K0: Matrix, K1: Matrix, loads: ArrayLike) -> NDArray:
     """Spectra of the first-order form for many loads in one batched call, shape (m, 2n)."""
     p = np.atleast_1d(np.asarray(loads, dtype=float))
     n = M.shape[0]
@@ -54,7 +54,7 @@ class _System:
             raise ParameterError("C must be non-zero: use the coalescence solver when undamped")
 
     def spectra(self, loads: ArrayLike) -> NDArray:
-        return _state_spectra(self.M, self.C, self.K0, self.K1, loads)
+        return state_spectra(self.M, self.C, self.K0, self.K1, loads)
 
     def coefficients(self, load: float) -> NDArray:
         return characteristic_polynomial(self.M, self.C, self.K0 + load * self.K1)

@@ -24,10 +24,10 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.optimize import brentq, linear_sum_assignment, minimize_scalar
 
-from flutterfriction.analysis.stability import Regime
+from flutterfriction.analysis.stability import Regime, state_eigenvalues
 from flutterfriction.errors import ConvergenceError, ParameterError, check_positive
 from flutterfriction.models.rod import RodGroups, characteristic_function
-from flutterfriction.models.rod_fe import assemble, fe_eigenvalues
+from flutterfriction.models.rod_fe import assemble
 
 
 @dataclass(frozen=True)
@@ -782,3 +782,9 @@ def branches(g: RodGroups, p_values: NDArray, n_modes: int = 2,
         rows, cols = linear_sum_assignment(cost)
         out[i, rows] = truth[cols]
     return out
+
+
+def fe_eigenvalues(g: RodGroups, p: float, n_elements: int, follower: bool = True) -> NDArray:
+    """All eigenvalues ``omega~`` of the discretised rod at load ``p`` (first-order form)."""
+    fe = assemble(g, n_elements)
+    return state_eigenvalues(fe.M, fe.K_B + p * fe.load_matrix(follower), fe.C)

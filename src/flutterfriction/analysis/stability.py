@@ -18,7 +18,6 @@ Critical loads are computed as the exact points where the spectrum changes natur
 from __future__ import annotations
 
 from collections.abc import Callable
-from enum import StrEnum
 
 import numpy as np
 import scipy.linalg as sla
@@ -26,16 +25,9 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq, minimize_scalar
 
 from flutterfriction.errors import ConvergenceError
+from flutterfriction.results import Regime  # noqa: F401  (re-exported)
 
 Matrix = NDArray[np.float64]
-
-
-class Regime(StrEnum):
-    """Nature of the linearised motion about equilibrium (chapter §2.3)."""
-
-    STABLE = "stable"
-    FLUTTER = "flutter"
-    DIVERGENCE = "divergence"
 
 
 def first_order_matrix(M: ArrayLike, K: ArrayLike, C: ArrayLike | None = None) -> Matrix:

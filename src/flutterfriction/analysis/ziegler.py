@@ -7,7 +7,7 @@ nothing here uses the chapter's formulas (19)–(48).
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass
+from typing import Any
 
 import numpy as np
 import scipy.linalg as sla
@@ -23,27 +23,7 @@ from flutterfriction.analysis.stability import (
 )
 from flutterfriction.errors import ConvergenceError, check_real
 from flutterfriction.models.ziegler import DimensionlessMatrices, ZieglerPendulum
-
-
-@dataclass(frozen=True)
-class CriticalLoads:
-    """Critical loads of the pendulum [N]; ``None`` when a load does not exist.
-
-    ``P_flu``, ``P_div`` are for the pendulum's own hinge viscosities (damped flutter is the
-    Hopf crossing, damped divergence the load where the unstable pair becomes real);
-    ``P_flu_undamped``, ``P_div_undamped`` for viscosity absent "from the beginning". The dead
-    loads ``H_cr``, ``H_sup`` are quasi-static and do not depend on viscosity (§2.2, after eq. 31).
-    """
-
-    P_flu: float | None
-    P_div: float | None
-    H_cr: float | None
-    H_sup: float | None
-    P_flu_undamped: float | None = None
-    P_div_undamped: float | None = None
-
-    def as_dict(self) -> dict[str, float | None]:
-        return asdict(self)
+from flutterfriction.results import CriticalLoads  # noqa: F401  (re-exported)
 
 
 def _dimensionless(pendulum: ZieglerPendulum) -> DimensionlessMatrices:
@@ -265,3 +245,32 @@ def linear_response(pendulum: ZieglerPendulum, P: float, H: float, state0: Array
                            pendulum.stiffness_matrix() + pendulum.geometric_matrix(P, H),
                            pendulum.viscosity_matrix())
     return np.array([sla.expm(A * ti) @ x0 for ti in t])
+
+
+def flutter_load_multiprecision(pendulum: ZieglerPendulum, dps: int = 50) -> Any:
+    """Undamped flutter load [N] in ``dps``-digit arithmetic (an ``mpmath.mpf``): the smaller
+    positive root of the discriminant of det(K + P F - Omega^2 M) in Omega^2, a quadratic in P
+    (eq. 34), from the model's matrices of eq. (11) (exact in binary; no closed form of ours is
+    used). The reference of the stress tests and the pendulum's work-precision scene."""
+    import mpmath as mp
+
+    with mp.workdps(dps):
+        M = mp.matrix(pendulum.mass_matrix().tolist())
+        K0 = mp.matrix(pendulum.stiffness_matrix().tolist())
+        F = mp.matrix(pendulum.follower_load_matrix().tolist())
+
+        def disc(P):
+            K = K0 + P * F
+            # det(K - x M) = a x^2 - b x + c
+            a = mp.det(M)
+            b = K[0, 0] * M[1, 1] + K[1, 1] * M[0, 0] - K[0, 1] * M[1, 0] - K[1, 0] * M[0, 1]
+            c = mp.det(K)
+            return b**2 - 4 * a * c
+
+        # The discriminant is a quadratic in P: three values fix it exactly.
+        d0, d1, d2 = disc(mp.mpf(0)), disc(mp.mpf(1)), disc(mp.mpf(2))
+        A2 = (d2 - 2 * d1 + d0) / 2
+        A1 = d1 - d0 - A2
+        root = mp.sqrt(A1**2 - 4 * A2 * d0)
+        roots = sorted([(-A1 - root) / (2 * A2), (-A1 + root) / (2 * A2)])
+        return min(r for r in roots if r > 0)

@@ -19,9 +19,8 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from flutterfriction.analysis.stability import Regime
-from flutterfriction.analysis.ziegler import CriticalLoads
 from flutterfriction.models.ziegler import PendulumGroups, ZieglerPendulum
+from flutterfriction.results import CriticalLoads, Regime
 
 
 def coefficient_a(g: PendulumGroups) -> float:

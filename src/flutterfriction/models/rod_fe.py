@@ -84,11 +84,3 @@ def assemble(g: RodGroups, n_elements: int) -> RodFE:
     K_f[iu, iux] = 1.0  # row: test function w(1); column: v'(1)
     C = g.eta * K_B + g.gamma * M0
     return RodFE(M=M, C=C, K_B=K_B.copy(), K_G=K_G.copy(), K_f=K_f, n_elements=int(n_elements))
-
-
-def fe_eigenvalues(g: RodGroups, p: float, n_elements: int, follower: bool = True) -> NDArray:
-    """All eigenvalues ``omega~`` of the discretised rod at load ``p`` (first-order form)."""
-    from flutterfriction.analysis.stability import state_eigenvalues
-
-    fe = assemble(g, n_elements)
-    return state_eigenvalues(fe.M, fe.K_B + p * fe.load_matrix(follower), fe.C)

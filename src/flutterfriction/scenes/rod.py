@@ -20,7 +20,7 @@ from flutterfriction.errors import (
 from flutterfriction.models.rod import Rod, RodGroups
 from flutterfriction.models.rod_fe import assemble
 from flutterfriction.scenes.sweep import Sweep
-from flutterfriction.scenes.ziegler import _n_points, _quantity, _take
+from flutterfriction.scenes.common import n_points, quantity, take
 
 EXACT = "Newton on the exact characteristic function, eq. (118)"
 
@@ -30,7 +30,7 @@ def _rod(params: dict[str, Any]) -> Rod:
     if not isinstance(r, dict):
         raise ParameterError("scene parameters need a 'rod' section (length, B, rho, D, ...)")
     allowed = {"length", "B", "rho", "D", "kappa", "tip_mass"}
-    _take(r, allowed)
+    take(r, allowed)
     return Rod(**r)
 
 
@@ -45,9 +45,9 @@ def _loads_quantities(prefix: str, g: RodGroups, n_fe: int) -> tuple[dict, ar.Ro
     exact = ar.critical_loads(g)
     fe = ar.fe_critical_loads(g, n_fe)
     method_fe = f"finite elements ({n_fe} Hermite elements), pendulum solvers on the matrices"
-    q = {f"{prefix}_p_flu": _quantity(exact.p_flu, fe.p_flu, EXACT, method_fe, "")}
+    q = {f"{prefix}_p_flu": quantity(exact.p_flu, fe.p_flu, EXACT, method_fe, "")}
     if exact.p_div is not None and fe.p_div is not None:
-        q[f"{prefix}_p_div"] = _quantity(exact.p_div, fe.p_div, EXACT, method_fe, "")
+        q[f"{prefix}_p_div"] = quantity(exact.p_div, fe.p_div, EXACT, method_fe, "")
     return q, exact
 
 
@@ -56,7 +56,7 @@ def _branch_scene(params: dict[str, Any], tan_alpha: float) -> dict[str, Any]:
     g_damped = RodGroups(tan_alpha=tan_alpha, eta=rod.groups().eta, gamma=rod.groups().gamma)
     g_undamped = RodGroups(tan_alpha=tan_alpha)
     p_max = check_positive("p_max", params.get("p_max", 35.0))
-    p = np.linspace(0.0, p_max, _n_points(params))
+    p = np.linspace(0.0, p_max, n_points(params))
     n_modes = int(params.get("n_modes", 2))
     n_fe = _fe_n(params)
     cases, quantities = {}, {}
@@ -67,12 +67,12 @@ def _branch_scene(params: dict[str, Any], tan_alpha: float) -> dict[str, Any]:
         cases[name] = {"groups": vars(g), "re": w.real.T.tolist(), "im": w.imag.T.tolist(),
                        "critical": exact.as_dict()}
     if "P_N" in params:  # list (119): "P = 5.5 N (inside the flutter region)"
+        from flutterfriction.analysis.rod import fe_eigenvalues
         from flutterfriction.analysis.stability import classify
-        from flutterfriction.models.rod_fe import fe_eigenvalues
 
         p_load = float(params["P_N"]) / rod.load_unit
         exact = ar.eigenvalues(p_load, g_damped, n_modes=3)
-        quantities[f"regime_at_{params['P_N']:g}N"] = _quantity(
+        quantities[f"regime_at_{params['P_N']:g}N"] = quantity(
             str(classify(exact)), str(classify(fe_eigenvalues(g_damped, p_load, n_fe))),
             "eigenvalues of eq. (118) (3 lowest modes)", f"FE spectrum ({n_fe} elements)", "")
     return {"p": p.tolist(), "cases": cases, "quantities": quantities, "eta": g_damped.eta,
@@ -82,13 +82,13 @@ def _branch_scene(params: dict[str, Any], tan_alpha: float) -> dict[str, Any]:
 def fig11(params: dict[str, Any]) -> dict[str, Any]:
     """Beck rod (no tip mass), list (119): branches of omega~ against p, undamped and with
     internal damping; flutter at 20.05 and 10.94 (§2.7)."""
-    _take(params, {"rod", "p_max", "n_points", "n_modes", "fe_elements", "P_N"})
+    take(params, {"rod", "p_max", "n_points", "n_modes", "fe_elements", "P_N"})
     return _branch_scene(params, 0.0)
 
 
 def fig12(params: dict[str, Any]) -> dict[str, Any]:
     """Pflüger rod, list (119) plus a tip mass ``tan(alpha) = M/(rho l)`` (see errata_rods)."""
-    _take(params, {"rod", "tan_alpha", "p_max", "n_points", "n_modes", "fe_elements", "P_N"})
+    take(params, {"rod", "tan_alpha", "p_max", "n_points", "n_modes", "fe_elements", "P_N"})
     return _branch_scene(params, check_nonnegative("tan_alpha", params["tan_alpha"]))
 
 
@@ -96,7 +96,7 @@ def fig12(params: dict[str, Any]) -> dict[str, Any]:
 def errata_rods(params: dict[str, Any]) -> dict[str, Any]:
     """Fig. 12's quoted loads (16.51, 30.22, 7.78, 30.52) against the stated tan(alpha) = 1, and
     the interval of tan(alpha) that reproduces all four to their printed digits."""
-    _take(params, {"rod", "stated_tan_alpha", "quoted", "bracket"})
+    take(params, {"rod", "stated_tan_alpha", "quoted", "bracket"})
     rod = _rod(params)
     eta = rod.groups().eta
     stated = check_positive("stated_tan_alpha", params.get("stated_tan_alpha", 1.0))
@@ -111,7 +111,7 @@ def errata_rods(params: dict[str, Any]) -> dict[str, Any]:
         try:
             u = ar.continue_critical_loads(RodGroups(tan_alpha=t), seed_u)
             d = ar.continue_critical_loads(RodGroups(tan_alpha=t, eta=eta), seed_d)
-        except Exception:
+        except ConvergenceError:
             u = ar.critical_loads(RodGroups(tan_alpha=t))
             d = ar.critical_loads(RodGroups(tan_alpha=t, eta=eta))
         return {"p_flu_undamped": u.p_flu, "p_div_undamped": u.p_div,
@@ -140,7 +140,7 @@ def errata_rods(params: dict[str, Any]) -> dict[str, Any]:
     return {"windows": windows, "common_window": common, "tan_alpha_inferred": middle,
             "at_stated": at_stated, "at_inferred": at_middle, "at_alpha_1_rad": at_one_rad,
             "errata": errata,
-            "quantities": {"tan_alpha_window_width": _quantity(
+            "quantities": {"tan_alpha_window_width": quantity(
                 common[1] - common[0], common[1] - common[0], "intersection of the four windows",
                 "same", "")}}
 
@@ -149,13 +149,13 @@ def errata_rods(params: dict[str, Any]) -> dict[str, Any]:
 def rod_fe_convergence(params: dict[str, Any]) -> dict[str, Any]:
     """Work-precision of the FE twin: error of the flutter load and pulsation against the
     number of elements and against run time, for each case."""
-    _take(params, {"cases", "elements", "repeats"})
+    take(params, {"cases", "elements", "repeats"})
     elements = [int(n) for n in params["elements"]]
     repeats = int(params.get("repeats", 3))
     out: dict[str, Any] = {"elements": elements, "cases": {}}
     quantities = {}
     for name, spec in params["cases"].items():
-        _take(spec, {"tan_alpha", "eta", "gamma"})
+        take(spec, {"tan_alpha", "eta", "gamma"})
         g = RodGroups(**spec)
         exact = ar.critical_loads(g)
         err_p, err_w, times = [], [], []
@@ -176,9 +176,9 @@ def rod_fe_convergence(params: dict[str, Any]) -> dict[str, Any]:
         out["cases"][name] = {"groups": vars(g), "exact": exact.as_dict(), "rel_error_p": err_p,
                               "rel_error_omega": err_w, "time_s": times, "rate": rate,
                               "constant": float(np.exp(log_c))}
-        quantities[f"{name}_rate"] = _quantity(float(rate), 4.0, "least-squares slope",
+        quantities[f"{name}_rate"] = quantity(float(rate), 4.0, "least-squares slope",
                                                "cubic Hermite elements: O(h^4)", "")
-        quantities[f"{name}_finest"] = _quantity(
+        quantities[f"{name}_finest"] = quantity(
             float(ar.fe_critical_loads(g, elements[-1]).p_flu), exact.p_flu,
             f"FE, {elements[-1]} elements", EXACT, "")
     out["quantities"] = quantities
@@ -188,7 +188,7 @@ def rod_fe_convergence(params: dict[str, Any]) -> dict[str, Any]:
 # ---------------------------------------------------------------------- stability map
 def _map_points(params: dict[str, Any]) -> list[list[Any]]:
     """(case, tip-mass ratio) for the undamped rod and the rod with vanishing damping."""
-    _take(params, {"log10_ratio_range", "n_ratios", "eta_small"})
+    take(params, {"log10_ratio_range", "n_ratios", "eta_small"})
     lo, hi = params.get("log10_ratio_range", [-2.0, 2.0])
     n = int(params.get("n_ratios", 41))
     if n < 3 or not lo < hi:
@@ -206,7 +206,7 @@ def _map_compute(params: dict[str, Any], points: list[list[Any]]) -> list[dict[s
         if prev is not None and case == prev_case and (prev.p_div is not None or r < 0.3):
             try:  # continuation in the mass ratio (ms); a fresh FE-guessed solve otherwise
                 c = ar.continue_critical_loads(g, prev)
-            except Exception:
+            except ConvergenceError:
                 c = None
         if c is None:
             c = ar.critical_loads(g)
@@ -223,7 +223,7 @@ def _map_combine(params: dict[str, Any], results: list[dict[str, Any]]) -> dict[
         rows = [res for (case, _), res in zip(points, results, strict=True) if case == name]
         out[name] = {"p_flu": [x["p_flu"] for x in rows], "p_div": [x["p_div"] for x in rows]}
     beck = ar.critical_loads(RodGroups(eta=eta))
-    out["quantities"] = {"beck_vanishing_damping": _quantity(
+    out["quantities"] = {"beck_vanishing_damping": quantity(
         beck.p_flu, ar.fe_critical_loads(RodGroups(eta=eta), 64).p_flu, EXACT,
         "finite elements (64 Hermite elements)", "")}
     return out
@@ -244,7 +244,7 @@ def rod_stability_map(params: dict[str, Any]) -> dict[str, Any]:
 def self_adjoint(params: dict[str, Any]) -> dict[str, Any]:
     """§2.8: the dead-load operator is symmetric and the follower one is not; the dead-load Beck
     rod buckles (divergence through omega~ = 0) at p = pi^2/4."""
-    _take(params, {"fe_elements", "p_test"})
+    take(params, {"fe_elements", "p_test"})
     n = _fe_n(params)
     p = float(params.get("p_test", 3.0))
     fe = assemble(RodGroups(), n)
@@ -265,12 +265,12 @@ def self_adjoint(params: dict[str, Any]) -> dict[str, Any]:
         lhs[kind] = float(Ys[3] * Xs[0] - Ys[0] * Xs[3] + p * (Ys[1] * Xs[0] - Ys[0] * Xs[1]))
     return {"asymmetry": asym, "eq126": lhs, "p_test": p,
             "quantities": {
-                "dead_load_buckling": _quantity(p_buckle, math.pi**2 / 4,
+                "dead_load_buckling": quantity(p_buckle, math.pi**2 / 4,
                                                 f"FE, {n} elements: K_B v = p K_G v",
                                                 "Euler: pi^2/4", ""),
-                "eq126_dead": _quantity(lhs["dead"], 0.0, "eq. (126) on test functions", "zero",
+                "eq126_dead": quantity(lhs["dead"], 0.0, "eq. (126) on test functions", "zero",
                                         ""),
-                "asymmetry_dead": _quantity(asym["dead"], 0.0,
+                "asymmetry_dead": quantity(asym["dead"], 0.0,
                                             "||K - K^T|| / ||p K_G||, dead load",
                                             "zero", "")}}
 
@@ -303,7 +303,7 @@ def beck_limit_cycle(params: dict[str, Any]) -> dict[str, Any]:
     from flutterfriction.analysis.rod_dynamics import beck_limit_cycle as solve
     from flutterfriction.models.rod_nonlinear import NonlinearRod
 
-    _take(params, {"rod", "P_N", "meshes", "method", "fine_method", "rtol", "tol",
+    take(params, {"rod", "P_N", "meshes", "method", "fine_method", "rtol", "tol",
                    "initial_tip_rotation"})
     rod = _rod(params)
     P = check_positive("P_N", params["P_N"], "N")
@@ -328,16 +328,16 @@ def beck_limit_cycle(params: dict[str, Any]) -> dict[str, Any]:
         "history": runs[0].history, "history_mesh": meshes[0],
         "shapes": main.shapes, "shapes_mesh": meshes[-2],
         "quantities": {
-            "tip_amplitude": _quantity(main.tip_amplitude_m, fine.tip_amplitude_m, prim, check,
+            "tip_amplitude": quantity(main.tip_amplitude_m, fine.tip_amplitude_m, prim, check,
                                        "m"),
-            "period": _quantity(main.period_s, fine.period_s, prim, check, "s"),
-            "tip_rotation_amplitude": _quantity(main.tip_rotation_amplitude_rad,
+            "period": quantity(main.period_s, fine.period_s, prim, check, "s"),
+            "tip_rotation_amplitude": quantity(main.tip_rotation_amplitude_rad,
                                                 fine.tip_rotation_amplitude_rad, prim, check,
                                                 "rad"),
-            "energy_balance": _quantity(main.energy_balance_error, fine.energy_balance_error,
+            "energy_balance": quantity(main.energy_balance_error, fine.energy_balance_error,
                                         "|W_P - W_D|/W_D on the cycle, primary mesh",
                                         "same, finest mesh", ""),
-            "reaches_limit_cycle": _quantity("limit cycle", "limit cycle",
+            "reaches_limit_cycle": quantity("limit cycle", "limit cycle",
                                              "Poincare section converges (transient mesh)",
                                              "Poincare section converges (finest mesh)", ""),
         }}
@@ -360,7 +360,7 @@ def beck_work_precision(params: dict[str, Any]) -> dict[str, Any]:
     from flutterfriction.analysis.rod_dynamics import _tip_state, generalized_alpha
     from flutterfriction.models.rod_nonlinear import NonlinearRod
 
-    _take(params, {"rod", "P_N", "meshes", "t_end", "rtols", "methods", "dts"})
+    take(params, {"rod", "P_N", "meshes", "t_end", "rtols", "methods", "dts"})
     rod = _rod(params)
     P = check_positive("P_N", params["P_N"], "N")
     T = check_positive("t_end", params.get("t_end", 0.5), "s")
@@ -431,7 +431,7 @@ def beck_work_precision(params: dict[str, Any]) -> dict[str, Any]:
             best[group] = min(best.get(group, np.inf), err)
     out["best_error"] = best
     out["quantities"] = {
-        "stiff_integrators_reach_target": _quantity(
+        "stiff_integrators_reach_target": quantity(
             best["scipy"], 0.0, "best return-map error of scipy's stiff integrators",
             "the issue's 0.1% target", "")}
     return out
@@ -466,7 +466,7 @@ def beck_linearisation(params: dict[str, Any]) -> dict[str, Any]:
     from flutterfriction.analysis.stability import _refine_roots, discriminant, pencil_eigenvalues
     from flutterfriction.models.rod_nonlinear import NonlinearRod
 
-    _take(params, {"rod", "P_N", "meshes"})
+    take(params, {"rod", "P_N", "meshes"})
     rod = _rod(params)
     P = check_positive("P_N", params["P_N"], "N")
     meshes = [int(n) for n in params["meshes"]]
@@ -511,11 +511,11 @@ def beck_linearisation(params: dict[str, Any]) -> dict[str, Any]:
         "exact": {"P_flu": exact_flu, "P_flu_damped": exact_flu_d, "growth": s_exact.real,
                   "frequency": abs(s_exact.imag)},
         "quantities": {
-            "growth_rate": _quantity(last["growth"], float(s_exact.real), label,
+            "growth_rate": quantity(last["growth"], float(s_exact.real), label,
                                      EXACT + " (eigenvalue / T)", "1/s"),
-            "frequency": _quantity(last["frequency"], float(abs(s_exact.imag)), label,
+            "frequency": quantity(last["frequency"], float(abs(s_exact.imag)), label,
                                    EXACT + " (eigenvalue / T)", "rad/s"),
-            "growth_rate_order": _quantity(rates["growth"], 4.0,
+            "growth_rate_order": quantity(rates["growth"], 4.0,
                                            "log2 of successive error ratios",
                                            "P2 elements for theta = v': O(h^4)", ""),
         }}
@@ -531,7 +531,7 @@ def beck_hopf(params: dict[str, Any]) -> dict[str, Any]:
     with sigma the exact linear growth rate."""
     from flutterfriction.analysis.rod_cycles import cycle_branch
 
-    _take(params, {"rod", "n_elements", "A_max", "rtol", "max_points"})
+    take(params, {"rod", "n_elements", "A_max", "rtol", "max_points"})
     rod = _rod(params)
     b = cycle_branch(rod, n_elements=int(params.get("n_elements", 4)),
                      A_max=check_positive("A_max", params.get("A_max", 0.09), "m"),
@@ -567,15 +567,15 @@ def beck_hopf(params: dict[str, Any]) -> dict[str, Any]:
         "continuation": {"integrations": b.integrations, "rejected_steps": b.rejected_steps,
                          "newton_iterations": b.newton_iterations, "log": b.log},
         "quantities": {
-            "amplitude_exponent": _quantity(slope, 0.5, "log-log slope of A against P - P_flu "
+            "amplitude_exponent": quantity(slope, 0.5, "log-log slope of A against P - P_flu "
                                             "(first four cycles)", "supercritical normal form",
                                             ""),
-            "amplitude_decay": _quantity(
+            "amplitude_decay": quantity(
                 first["slow_decay"], first["normal_form_decay"],
                 f"1 - slow Floquet multiplier of the cycle at A = {first['A']:.3f} m "
                 "(return map of the variational monodromy)",
                 "normal form 1 - exp(-2 sigma T), sigma from the exact eq. (118)", ""),
-            "hopf_type": _quantity(
+            "hopf_type": quantity(
                 "supercritical" if stable and dP[-1] > dP[0] > 0 else "not supercritical",
                 "stable cycles" if stable else "unstable cycles",
                 "branch bends to P > P_flu (pseudo-arclength shooting)",

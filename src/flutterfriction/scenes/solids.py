@@ -13,7 +13,7 @@ from flutterfriction.analysis import acoustic as ac
 from flutterfriction.errors import ParameterError, check_positive
 from flutterfriction.models import solid as so
 from flutterfriction.models.contact import CoulombContact, integrate_path
-from flutterfriction.scenes.ziegler import _n_points, _quantity, _take
+from flutterfriction.scenes.common import n_points, quantity, take
 
 
 def _unit(t: Any) -> np.ndarray:
@@ -32,7 +32,7 @@ def _direction_in_plane(theta: np.ndarray) -> np.ndarray:
 # ---------------------------------------------------------------------- Fig. 22
 def fig22(params: dict[str, Any]) -> dict[str, Any]:
     """The Coulomb cone, the normal a and the slip direction b, and a computed force path."""
-    _take(params, {"k_N", "k_T", "mu", "path"})
+    take(params, {"k_N", "k_T", "mu", "path"})
     c = CoulombContact(params["k_N"], params["k_T"], params["mu"])
     r = integrate_path(c, params["path"])
     slip_pt = r.p[r.branch.index("slip")]
@@ -45,12 +45,12 @@ def fig22(params: dict[str, Any]) -> dict[str, Any]:
         "branch": r.branch, "slip_point": slip_pt.tolist(),
         "a": c.gradient(slip_pt).tolist(), "b": c.slip_direction(slip_pt).tolist(),
         "quantities": {
-            "slip_operator_C21": _quantity(float(C[1, 0]), float(closed[1, 0]),
+            "slip_operator_C21": quantity(float(C[1, 0]), float(closed[1, 0]),
                                            "eq. (143) from E, a, b", "closed form mu k_N sgn p_T",
                                            "N/m"),
-            "slip_operator_asymmetry": _quantity(float(C[1, 0] - C[0, 1]), c.mu * c.k_N,
+            "slip_operator_asymmetry": quantity(float(C[1, 0] - C[0, 1]), c.mu * c.k_N,
                                                  "C21 - C12 of eq. (143)", "mu k_N", "N/m"),
-            "cone_drift_while_slipping": _quantity(float(drift), 0.0,
+            "cone_drift_while_slipping": quantity(float(drift), 0.0,
                                                    "max |f| on the slip pieces", "zero", "N"),
         }}
 
@@ -66,11 +66,11 @@ def _nonassociative_case(params: dict[str, Any]):
 def acoustic_eigenvalues(params: dict[str, Any]) -> dict[str, Any]:
     """Eigenvalues of A(n) against g for a nonassociative case: localization, coalescences and
     the complex (flutter) pair between g1 and g2 (eqs. 179–188)."""
-    _take(params, {"lam", "mu", "P", "Q", "n", "g_min", "g_max", "n_points"})
+    take(params, {"lam", "mu", "P", "Q", "n", "g_min", "g_max", "n_points"})
     lam, mu, P, Q, n = _nonassociative_case(params)
     E = so.isotropic_elasticity(lam, mu)
     g = np.geomspace(check_positive("g_min", params["g_min"]),
-                     check_positive("g_max", params["g_max"]), _n_points(params))
+                     check_positive("g_max", params["g_max"]), n_points(params))
     eta = np.array([np.sort_complex(np.linalg.eigvals(so.acoustic_tensor(E, P, Q, gi, n)))
                     for gi in g])
     closed = np.array([so.acoustic_eigenvalues_isotropic(lam, mu, P, Q, gi, n) for gi in g])
@@ -84,11 +84,11 @@ def acoustic_eigenvalues(params: dict[str, Any]) -> dict[str, Any]:
         "g_localization": gE, "flutter_interval": list(interval),
         "max_closed_vs_eig": float(np.max(np.abs(np.sort_complex(closed) - eta))),
         "quantities": {
-            "g1": _quantity(interval[0], brute[0][0], "closed form eq. (188), corrected",
+            "g1": quantity(interval[0], brute[0][0], "closed form eq. (188), corrected",
                             "brute force: discriminant of det(A - eta I) (Brent)", "Pa"),
-            "g2": _quantity(interval[1], brute[0][1], "closed form eq. (188), corrected",
+            "g2": quantity(interval[1], brute[0][1], "closed form eq. (188), corrected",
                             "brute force: discriminant of det(A - eta I) (Brent)", "Pa"),
-            "g_localization": _quantity(gE, so.localization_modulus(E, P, Q, n),
+            "g_localization": quantity(gE, so.localization_modulus(E, P, Q, n),
                                         "closed form eq. (185)", "general eq. (166)", "Pa"),
         }}
 
@@ -119,14 +119,14 @@ def rudnicki_rice_hcr(G: float, nu: float, beta: float, mu_f: float, N: float) -
 def localization_directions(params: dict[str, Any]) -> dict[str, Any]:
     """g_E(n) over the directions of the (sigma_1, sigma_3) principal plane and its maximum over
     the whole sphere, against Rudnicki and Rice's closed form."""
-    _take(params, {"G", "nu", "beta", "mu_f", "N", "n_points", "n_search"})
+    take(params, {"G", "nu", "beta", "mu_f", "N", "n_points", "n_search"})
     G, nu = check_positive("G", params["G"]), float(params["nu"])
     if not -1 < nu < 0.5:
         raise ParameterError(f"nu must lie in (-1, 0.5), got {nu}")
     lam = 2 * G * nu / (1 - 2 * nu)
     E = so.isotropic_elasticity(lam, G)
     P, Q = _dp_state(params)
-    theta = np.linspace(0, np.pi, _n_points(params))
+    theta = np.linspace(0, np.pi, n_points(params))
     gE = ac.localization_moduli(E, P, Q, _direction_in_plane(theta))
     g_max, n_max = ac.max_localization_modulus(E, P, Q, int(params.get("n_search", 4000)))
     QEP = float(np.einsum("ij,ij->", Q, so.apply(E, P)))
@@ -134,7 +134,7 @@ def localization_directions(params: dict[str, Any]) -> dict[str, Any]:
     return {
         "theta": theta.tolist(), "g_E": gE.tolist(), "g_max": g_max, "n_max": n_max.tolist(),
         "theta_max_in_plane": float(theta[np.argmax(gE)]),
-        "quantities": {"h_cr": _quantity(g_max - QEP, h_rr,
+        "quantities": {"h_cr": quantity(g_max - QEP, h_rr,
                                          "max over the sphere of eq. (166) minus Q.E[P]",
                                          "Rudnicki and Rice (1975), closed form", "Pa")}}
 
@@ -145,10 +145,10 @@ def flutter_map(params: dict[str, Any]) -> dict[str, Any]:
     (closed form, verified by brute force at a few points); (b) a deviatoric-associative
     Drucker–Prager material at coalescence (no flutter with isotropic elasticity): the fraction
     of directions that flutter as a small elastic anisotropy grows (Bigoni and Loret 1999)."""
-    _take(params, {"plane_case", "anisotropy", "n_points"})
+    take(params, {"plane_case", "anisotropy", "n_points"})
     pc = params["plane_case"]
     lam, mu, P, Q, _ = _nonassociative_case({**pc, "n": [1, 0, 0]})
-    theta = np.linspace(0, np.pi, _n_points(params))
+    theta = np.linspace(0, np.pi, n_points(params))
     dirs = _direction_in_plane(theta)
     bounds = [so.flutter_interval_isotropic(lam, mu, P, Q, n) for n in dirs]
     gE = [so.localization_modulus_isotropic(lam, mu, P, Q, n) for n in dirs]
@@ -157,11 +157,11 @@ def flutter_map(params: dict[str, Any]) -> dict[str, Any]:
     for i in np.linspace(0, len(theta) - 1, 7).astype(int)[1:-1]:
         if bounds[i] is not None:
             brute = ac.flutter_interval_bruteforce(E, P, Q, dirs[i], g_max=10 * bounds[i][1])
-            checks[f"g2_theta{theta[i]:.3f}"] = _quantity(
+            checks[f"g2_theta{theta[i]:.3f}"] = quantity(
                 bounds[i][1], brute[0][1], "closed form eq. (188), corrected", "brute force",
                 "Pa")
     an = params["anisotropy"]
-    _take(an, {"lam", "mu", "sigma", "friction_deg", "dilatancy_deg", "seed", "eps_values",
+    take(an, {"lam", "mu", "sigma", "friction_deg", "dilatancy_deg", "seed", "eps_values",
                "patch_deg", "n_patch", "n_g"})
     lam2, mu2 = float(an["lam"]), check_positive("mu", an["mu"])
     Pd, Qd = so.drucker_prager_tensors(np.diag(an["sigma"]), math.radians(an["friction_deg"]),
@@ -178,7 +178,7 @@ def flutter_map(params: dict[str, Any]) -> dict[str, Any]:
         flutters = ac.flutters_somewhere(E0 + float(eps) * T, Pd, Qd, dirs, g_scan)
         fractions.append(float(np.mean(flutters)))
         maps.append(flutters.reshape(len(offsets), len(offsets)).astype(int).tolist())
-    checks["isotropic_flutter_directions"] = _quantity(
+    checks["isotropic_flutter_directions"] = quantity(
         int(round(fractions[0] * len(dirs))), 0, "brute force near coalescence, eps = 0",
         "Loret et al. (1990): excluded", "")
     return {"theta": theta.tolist(),
@@ -215,7 +215,7 @@ def solids_statements(params: dict[str, Any]) -> dict[str, Any]:
     """The statements of §3.5 on random samples (seeded): deviatoric associativity excludes
     flutter (eqs. 187, 191), flutter never at g <= g_cr^E(n), triple coalescence at mu (eq.
     190, 194)."""
-    _take(params, {"n_samples", "seed"})
+    take(params, {"n_samples", "seed"})
     rng = np.random.default_rng(int(params.get("seed", 1)))
     n_samples = int(params.get("n_samples", 2000))
     min_191, worst_gap, n_flutter_cases = np.inf, np.inf, 0
@@ -252,17 +252,17 @@ def solids_statements(params: dict[str, Any]) -> dict[str, Any]:
     return {
         "n_samples": n_samples, "n_flutter_cases": n_flutter_cases,
         "quantities": {
-            "deviatoric_associativity_no_flutter": _quantity(
+            "deviatoric_associativity_no_flutter": quantity(
                 "excluded" if complex_found == 0 else f"{complex_found} flutter",
                 "excluded" if min_191 >= -1e-12 else "violated",
                 "brute force: cubic discriminant of A at random g > 0",
                 "eq. (191) >= 0 on the samples", ""),
-            "flutter_above_localization": _quantity(
+            "flutter_above_localization": quantity(
                 "always" if worst_gap >= -1e-10 else "violated",
                 "always" if n_flutter_cases > 0 else "no flutter sampled",
                 "g1 - g_cr^E(n) >= 0 on random nonassociative samples",
                 "eq. (186): Delta >= 0 for g <= g_cr^E", ""),
-            "triple_coalescence": _quantity(
+            "triple_coalescence": quantity(
                 float(np.max(np.abs(char - triple)) / mu**3), 0.0,
                 "char. polynomial of A at g_cr^C (eq. 194), n an eigenvector of S^ (eq. 193)",
                 "(eta - mu)^3", ""),
@@ -272,7 +272,7 @@ def solids_statements(params: dict[str, Any]) -> dict[str, Any]:
 # ---------------------------------------------------------------------- errata of §3
 def errata_solids(params: dict[str, Any]) -> dict[str, Any]:
     """Eq. (188) as printed vs corrected vs brute force, for the nonassociative case."""
-    _take(params, {"lam", "mu", "P", "Q", "n"})
+    take(params, {"lam", "mu", "P", "Q", "n"})
     lam, mu, P, Q, n = _nonassociative_case(params)
     E = so.isotropic_elasticity(lam, mu)
     corrected = so.flutter_interval_isotropic(lam, mu, P, Q, n)

@@ -21,35 +21,10 @@ from flutterfriction.analysis.ziegler import (
 from flutterfriction.closed_forms import ziegler as cf
 from flutterfriction.errors import ParameterError, check_positive, check_real
 from flutterfriction.models.ziegler import ZieglerPendulum
+from flutterfriction.scenes.common import n_points, pendulum_of, quantity, take
 
 NUMERIC_FLUTTER = "coalescence of Omega^2 eigenvalues (Brent on the discriminant)"
 NUMERIC_BUCKLING = "generalised eigenproblem K a = H diag(l1, l2) a"
-
-
-def _quantity(value: float | str, independent: float | str, method: str, independent_method: str,
-              unit: str) -> dict[str, Any]:
-    return {"value": value, "independent": independent, "method": method,
-            "independent_method": independent_method, "unit": unit}
-
-
-def _take(params: dict[str, Any], allowed: set[str]) -> dict[str, Any]:
-    unknown = sorted(set(params) - allowed)
-    if unknown:
-        raise ParameterError(f"unknown scene parameter(s) {unknown}; allowed: {sorted(allowed)}")
-    return params
-
-
-def _pendulum(params: dict[str, Any]) -> ZieglerPendulum:
-    if "pendulum" not in params:
-        raise ParameterError("scene parameters need a 'pendulum' section")
-    return ZieglerPendulum.from_mapping(params["pendulum"])
-
-
-def _n_points(params: dict[str, Any]) -> int:
-    n = params.get("n_points", 401)
-    if isinstance(n, bool) or not isinstance(n, int) or n < 11:
-        raise ParameterError(f"n_points must be an integer >= 11, got {n!r}")
-    return n
 
 
 def _spectrum_curve(pendulum: ZieglerPendulum, K1: np.ndarray, loads: np.ndarray) -> dict:
@@ -62,25 +37,25 @@ def _spectrum_curve(pendulum: ZieglerPendulum, K1: np.ndarray, loads: np.ndarray
 # ---------------------------------------------------------------------- eq. (25), dead load
 def eq25(params: dict[str, Any]) -> dict[str, Any]:
     """Dead-load buckling loads and the omega^2 branches against eta = H l1/k2 (§2.2)."""
-    _take(params, {"pendulum", "n_points", "eta_max"})
-    p = _pendulum(params)
+    take(params, {"pendulum", "n_points", "eta_max"})
+    p = pendulum_of(params)
     g = p.groups()
     u = p.load_unit
     H_cr, H_sup = dead_critical_loads(p)
     e_cr, e_sup = cf.buckling_etas(g)
     eta_max = check_positive("eta_max", params.get("eta_max", 1.25 * e_sup))
-    eta = np.linspace(0.0, eta_max, _n_points(params))
+    eta = np.linspace(0.0, eta_max, n_points(params))
     curve = _spectrum_curve(p, p.dead_load_matrix(), eta * u)
     closed = cf.omega2_dead_load(g, eta)
     return {
         "groups": vars(g),
         "quantities": {
-            "eta_cr": _quantity(H_cr / u, e_cr, NUMERIC_BUCKLING, "closed form eq. (22)", "K/L"),
-            "eta_cr_eq25": _quantity(H_cr / u, cf.buckling_eta_equal_rods(), NUMERIC_BUCKLING,
+            "eta_cr": quantity(H_cr / u, e_cr, NUMERIC_BUCKLING, "closed form eq. (22)", "K/L"),
+            "eta_cr_eq25": quantity(H_cr / u, cf.buckling_eta_equal_rods(), NUMERIC_BUCKLING,
                                      "closed form eq. (25), (3 - sqrt 5)/2", "K/L"),
-            "eta_sup": _quantity(H_sup / u, e_sup, NUMERIC_BUCKLING, "closed form eq. (22)",
+            "eta_sup": quantity(H_sup / u, e_sup, NUMERIC_BUCKLING, "closed form eq. (22)",
                                  "K/L"),
-            "H_cr": _quantity(H_cr, e_cr * u, NUMERIC_BUCKLING, "closed form eq. (22)", "N"),
+            "H_cr": quantity(H_cr, e_cr * u, NUMERIC_BUCKLING, "closed form eq. (22)", "N"),
         },
         "curve": {"eta": eta.tolist(), **curve,
                   "omega2_closed_form": closed.T.tolist()},
@@ -94,8 +69,8 @@ def follower_load_scene(params: dict[str, Any]) -> dict[str, Any]:
     The closed-form twin is eq. (39)/(41) in general and eq. (42) (with its divergence twin)
     when m3 = 0; eqs. (44)–(45) when eq. (43) also holds.
     """
-    _take(params, {"pendulum", "n_points", "gamma_max", "regime_checks"})
-    p = _pendulum(params)
+    take(params, {"pendulum", "n_points", "gamma_max", "regime_checks"})
+    p = pendulum_of(params)
     g = p.groups()
     u = p.load_unit
     P_flu, P_div = follower_critical_loads(p)
@@ -105,18 +80,18 @@ def follower_load_scene(params: dict[str, Any]) -> dict[str, Any]:
         g_flu, g_div = cf.two_mass_gammas(g.lam, g.y1, g.rho1, g.k)
         method_cf = "closed form eq. (42) and its divergence twin"
     quantities = {
-        "gamma_flu": _quantity(P_flu / u, g_flu, NUMERIC_FLUTTER, method_cf, "K/L"),
-        "gamma_div": _quantity(P_div / u, g_div, NUMERIC_FLUTTER, method_cf, "K/L"),
-        "P_flu": _quantity(P_flu, g_flu * u, NUMERIC_FLUTTER, method_cf, "N"),
-        "P_div": _quantity(P_div, g_div * u, NUMERIC_FLUTTER, method_cf, "N"),
+        "gamma_flu": quantity(P_flu / u, g_flu, NUMERIC_FLUTTER, method_cf, "K/L"),
+        "gamma_div": quantity(P_div / u, g_div, NUMERIC_FLUTTER, method_cf, "K/L"),
+        "P_flu": quantity(P_flu, g_flu * u, NUMERIC_FLUTTER, method_cf, "N"),
+        "P_div": quantity(P_div, g_div * u, NUMERIC_FLUTTER, method_cf, "N"),
     }
     for load in params.get("regime_checks", []):
         P = check_real("regime_checks", load)
-        quantities[f"regime_at_{P:g}N"] = _quantity(
+        quantities[f"regime_at_{P:g}N"] = quantity(
             str(regime(p, P)), str(cf.follower_regime(g, P / u)),
             "eigenvalues of the first-order form", "eq. (37) intervals", "")
     gamma_max = check_positive("gamma_max", params.get("gamma_max", 1.25 * g_div))
-    gamma = np.linspace(0.0, gamma_max, _n_points(params))
+    gamma = np.linspace(0.0, gamma_max, n_points(params))
     curve = _spectrum_curve(p, p.follower_load_matrix(), gamma * u)
     closed = cf.omega2_follower(g, gamma)
     return {
@@ -132,13 +107,13 @@ def follower_load_scene(params: dict[str, Any]) -> dict[str, Any]:
 # ---------------------------------------------------------------------- Fig. 3
 def fig03(params: dict[str, Any]) -> dict[str, Any]:
     """The line beta1 - gamma beta2 and the parabola (beta1 - gamma beta2)^2 - 4ka (eq. 34)."""
-    _take(params, {"pendulum", "n_points", "gamma_max"})
-    p = _pendulum(params)
+    take(params, {"pendulum", "n_points", "gamma_max"})
+    p = pendulum_of(params)
     g = p.groups()
     g_flu, g_div = cf.flutter_divergence_gammas(g)
     P_flu, P_div = follower_critical_loads(p)
     gamma_max = check_positive("gamma_max", params.get("gamma_max", 1.3 * g_div))
-    gamma = np.linspace(0.0, gamma_max, _n_points(params))
+    gamma = np.linspace(0.0, gamma_max, n_points(params))
     line, parabola = cf.follower_line_and_parabola(g, gamma)
     b1, b2 = cf.coefficient_beta1(g), cf.coefficient_beta2(g)
     return {
@@ -146,11 +121,11 @@ def fig03(params: dict[str, Any]) -> dict[str, Any]:
         "load_unit_N": p.load_unit,
         "coefficients": {"a": cf.coefficient_a(g), "beta1": b1, "beta2": b2},
         "quantities": {
-            "gamma_flu": _quantity(g_flu, P_flu / p.load_unit, "closed form eq. (37)",
+            "gamma_flu": quantity(g_flu, P_flu / p.load_unit, "closed form eq. (37)",
                                    NUMERIC_FLUTTER, "K/L"),
-            "gamma_div": _quantity(g_div, P_div / p.load_unit, "closed form eq. (37)",
+            "gamma_div": quantity(g_div, P_div / p.load_unit, "closed form eq. (37)",
                                    NUMERIC_FLUTTER, "K/L"),
-            "gamma_vertex": _quantity(b1 / b2, b1 / b2, "beta1/beta2", "beta1/beta2", "K/L"),
+            "gamma_vertex": quantity(b1 / b2, b1 / b2, "beta1/beta2", "beta1/beta2", "K/L"),
         },
         "curve": {"gamma": gamma.tolist(), "line": line.tolist(), "parabola": parabola.tolist()},
     }
@@ -159,8 +134,8 @@ def fig03(params: dict[str, Any]) -> dict[str, Any]:
 # ---------------------------------------------------------------------- Fig. 2 and Fig. 4
 def fig02(params: dict[str, Any]) -> dict[str, Any]:
     """Geometry of the schematic: the pendulum at the rotations to draw (degrees)."""
-    _take(params, {"pendulum", "alpha1_deg", "alpha2_deg"})
-    p = _pendulum(params)
+    take(params, {"pendulum", "alpha1_deg", "alpha2_deg"})
+    p = pendulum_of(params)
     a1 = math.radians(check_real("alpha1_deg", params.get("alpha1_deg", 20.0)))
     a2 = math.radians(check_real("alpha2_deg", params.get("alpha2_deg", 45.0)))
     pos = p.positions(a1, a2)
@@ -171,8 +146,8 @@ def fig02(params: dict[str, Any]) -> dict[str, Any]:
 
 def fig04(params: dict[str, Any]) -> dict[str, Any]:
     """Exact linear motion (eq. 11, matrix exponential) drawn every ``dt`` seconds."""
-    _take(params, {"pendulum", "cases", "dt"})
-    p = _pendulum(params)
+    take(params, {"pendulum", "cases", "dt"})
+    p = pendulum_of(params)
     dt = check_positive("dt", params.get("dt", 0.04), "s")
     cases = params.get("cases")
     if not isinstance(cases, dict) or not cases:
@@ -180,7 +155,7 @@ def fig04(params: dict[str, Any]) -> dict[str, Any]:
     out: dict[str, Any] = {"masses": {"m1": p.m1, "m2": p.m2, "m3": p.m3}, "cases": {}}
     quantities = {}
     for name, case in cases.items():
-        _take(case, {"P", "duration", "alpha0_deg"})
+        take(case, {"P", "duration", "alpha0_deg"})
         P = check_real(f"cases.{name}.P", case["P"])
         T = check_positive(f"cases.{name}.duration", case["duration"], "s")
         a0 = math.radians(check_real(f"cases.{name}.alpha0_deg", case["alpha0_deg"]))
@@ -193,7 +168,7 @@ def fig04(params: dict[str, Any]) -> dict[str, Any]:
         out["cases"][name] = {"P": P, "times": times.tolist(), "alpha": states[:, :2].tolist(),
                               "points": {k: v.tolist() for k, v in pos.items()},
                               "t_dense": t_dense.tolist(), "alpha_dense": dense[:, :2].tolist()}
-        quantities[f"regime_{name}"] = _quantity(
+        quantities[f"regime_{name}"] = quantity(
             str(regime(p, P)), str(cf.follower_regime(p.groups(), P / p.load_unit)),
             "eigenvalues of the first-order form", "eq. (37) intervals", "")
     out["quantities"] = quantities
@@ -238,8 +213,8 @@ def _linearised_stiffness(p: ZieglerPendulum, P: float, H: float) -> np.ndarray:
 
 def errata(params: dict[str, Any]) -> dict[str, Any]:
     """Numbers that show each erratum of §2.1–2.3: printed form, corrected form, independent."""
-    _take(params, {"pendulum", "P", "H"})
-    p = _pendulum(params)
+    take(params, {"pendulum", "P", "H"})
+    p = pendulum_of(params)
     P = check_real("P", params.get("P", 1.0))
     H = check_real("H", params.get("H", 1.0))
     g = p.groups()

@@ -14,7 +14,7 @@ from typing import Any
 import numpy as np
 from scipy.optimize import brentq
 
-from flutterfriction.analysis.damped import _state_spectra
+from flutterfriction.analysis.damped import state_spectra
 from flutterfriction.analysis.ziegler import (
     damped_dead_load_onset,
     damped_divergence_load,
@@ -25,7 +25,7 @@ from flutterfriction.closed_forms import ziegler as cf
 from flutterfriction.closed_forms import ziegler_damped as cfd
 from flutterfriction.errors import ParameterError, check_positive
 from flutterfriction.models.ziegler import ZieglerPendulum
-from flutterfriction.scenes.ziegler import _n_points, _pendulum, _quantity, _take
+from flutterfriction.scenes.common import n_points, pendulum_of, quantity, take
 
 RH = "exact Routh-Hurwitz on the characteristic polynomial (bisection on the verdict)"
 EIG_CROSS = "eigenvalues: Re s = 0 crossing (Brent)"
@@ -49,20 +49,20 @@ def _eps_list(params: dict[str, Any], key: str = "eps_values") -> list[float]:
 # ---------------------------------------------------------------------- Fig. 5
 def fig05(params: dict[str, Any]) -> dict[str, Any]:
     """Re and Im of omega~ against gamma, undamped and for each epsilon (eqs. 33, 51)."""
-    _take(params, {"pendulum", "eps_values", "gamma_max", "n_points"})
-    p0 = _pendulum(params)
+    take(params, {"pendulum", "eps_values", "gamma_max", "n_points"})
+    p0 = pendulum_of(params)
     u = p0.load_unit
     T = p0.l2 * math.sqrt(p0.m2 / p0.k2)  # omega~ = s T (eq. 30)
     gamma = np.linspace(0.0, check_positive("gamma_max", params.get("gamma_max", 5.0)),
-                        _n_points(params))
+                        n_points(params))
     g_flu0, g_div0 = (x / u for x in follower_critical_loads(p0))
     quantities = {
-        "gamma_flu_undamped": _quantity(g_flu0, cf.flutter_divergence_gammas(p0.groups())[0],
+        "gamma_flu_undamped": quantity(g_flu0, cf.flutter_divergence_gammas(p0.groups())[0],
                                         "eigenvalue coalescence", "closed form eq. (39)", "K/L")}
     cases = {}
     for eps in [0.0, *_eps_list(params)]:
         p = with_viscosity(p0, eps) if eps > 0 else p0
-        s = _state_spectra(p.mass_matrix(), p.viscosity_matrix(), p.stiffness_matrix(),
+        s = state_spectra(p.mass_matrix(), p.viscosity_matrix(), p.stiffness_matrix(),
                            p.follower_load_matrix(), gamma * u) * T
         case: dict[str, Any] = {"eps": eps, "re": np.sort(s.real, axis=1).T.tolist(),
                                 "im": np.sort(s.imag, axis=1).T.tolist()}
@@ -71,10 +71,10 @@ def fig05(params: dict[str, Any]) -> dict[str, Any]:
             gf_eig = damped_flutter_load(p, "eigenvalues") / u
             gd_eig = damped_divergence_load(p, "eigenvalues") / u
             gd_alg = damped_divergence_load(p, "algebraic") / u
-            quantities[f"gamma_flu_eps{eps:g}"] = _quantity(gf_rh, gf_eig, RH, EIG_CROSS, "K/L")
-            quantities[f"eq54_eps{eps:g}"] = _quantity(cfd.eq54_flutter_gamma(eps), gf_rh,
+            quantities[f"gamma_flu_eps{eps:g}"] = quantity(gf_rh, gf_eig, RH, EIG_CROSS, "K/L")
+            quantities[f"eq54_eps{eps:g}"] = quantity(cfd.eq54_flutter_gamma(eps), gf_rh,
                                                        "closed form eq. (54)", RH, "K/L")
-            quantities[f"gamma_div_eps{eps:g}"] = _quantity(gd_eig, gd_alg, EIG_COAL,
+            quantities[f"gamma_div_eps{eps:g}"] = quantity(gd_eig, gd_alg, EIG_COAL,
                                                             ALGEBRAIC, "K/L")
             case.update(gamma_flu=gf_rh, gamma_div=gd_eig)
         else:
@@ -86,13 +86,13 @@ def fig05(params: dict[str, Any]) -> dict[str, Any]:
 # ---------------------------------------------------------------------- the paradox limit
 def paradox_limit(params: dict[str, Any]) -> dict[str, Any]:
     """P*_flu against epsilon -> 0 (log axis): the jump from 2 K/L to 4/3 K/L (eq. 54)."""
-    _take(params, {"pendulum", "eps_min", "eps_max", "n_points"})
-    p0 = _pendulum(params)
+    take(params, {"pendulum", "eps_min", "eps_max", "n_points"})
+    p0 = pendulum_of(params)
     u = p0.load_unit
     g = p0.groups()
     eps_min = check_positive("eps_min", params.get("eps_min", 1e-4))
     eps_max = check_positive("eps_max", params.get("eps_max", 2.0))
-    n = max(11, _n_points(params) // 20)
+    n = max(11, n_points(params) // 20)
     eps = np.geomspace(eps_min, eps_max, n)
     numeric = np.array([damped_flutter_load(with_viscosity(p0, e), "routh") / u for e in eps])
     closed = np.array([cfd.damped_flutter_gamma(g, e, 1.0) for e in eps])
@@ -104,11 +104,11 @@ def paradox_limit(params: dict[str, Any]) -> dict[str, Any]:
         "gamma_flu_closed_form": closed.tolist(), "gamma_flu_eq54": eq54.tolist(),
         "gamma_flu_undamped": g_flu0, "gamma_flu_limit": limit,
         "quantities": {
-            "limit": _quantity(limit, float(numeric[0]), "closed form, eps -> 0",
+            "limit": quantity(limit, float(numeric[0]), "closed form, eps -> 0",
                                f"Routh-Hurwitz at eps = {eps_min:g}", "K/L"),
-            "undamped": _quantity(g_flu0, cf.flutter_divergence_gammas(g)[0],
+            "undamped": quantity(g_flu0, cf.flutter_divergence_gammas(g)[0],
                                   "eigenvalue coalescence", "closed form eq. (39)", "K/L"),
-            "max_closed_vs_numeric": _quantity(
+            "max_closed_vs_numeric": quantity(
                 float(np.max(np.abs(closed / numeric - 1))), 0.0,
                 "max relative difference, closed form vs Routh-Hurwitz over the curve",
                 "zero", ""),
@@ -120,9 +120,9 @@ def paradox_limit(params: dict[str, Any]) -> dict[str, Any]:
 def fig19_theory(params: dict[str, Any]) -> dict[str, Any]:
     """Flutter and divergence loads with and without hinge viscosity for list (47), c1 = c2 = c;
     the viscosity inferred from the quoted ratios 0.70 (flutter) and 1.49 (divergence)."""
-    _take(params, {"pendulum", "c_reference", "flutter_ratio", "divergence_ratio",
+    take(params, {"pendulum", "c_reference", "flutter_ratio", "divergence_ratio",
                    "c_min", "c_max", "n_points"})
-    p0 = _pendulum(params)
+    p0 = pendulum_of(params)
     u = p0.load_unit
     g = p0.groups()
     c_ref = check_positive("c_reference", params["c_reference"], "N m s")
@@ -142,7 +142,7 @@ def fig19_theory(params: dict[str, Any]) -> dict[str, Any]:
     def divergence_ratio(c: float, method: str = "eigenvalues") -> float:
         return damped_divergence_load(hinge(c), method) / P_div0
 
-    n = max(11, _n_points(params) // 20)
+    n = max(11, n_points(params) // 20)
     cs = np.geomspace(c_min, c_max, n)
     curve_flu = [flutter_ratio_closed(c) for c in cs]
     curve_div = [divergence_ratio(c) for c in cs]
@@ -161,17 +161,17 @@ def fig19_theory(params: dict[str, Any]) -> dict[str, Any]:
         "bars": {"P_flu_undamped": P_flu0, "P_div_undamped": P_div0,
                  "P_flu_damped": P_flu_c, "P_div_damped": P_div_c},
         "quantities": {
-            "flutter_ratio_at_c_ref": _quantity(
+            "flutter_ratio_at_c_ref": quantity(
                 P_flu_c / P_flu0, flutter_ratio_closed(c_ref),
                 RH, "closed form (generalised eq. 54)", ""),
-            "divergence_ratio_at_c_ref": _quantity(
+            "divergence_ratio_at_c_ref": quantity(
                 P_div_c / P_div0, divergence_ratio(c_ref, "algebraic"), EIG_COAL, ALGEBRAIC, ""),
-            "c_from_flutter_ratio": _quantity(
+            "c_from_flutter_ratio": quantity(
                 c_flu, brentq(lambda c: damped_flutter_load(hinge(c), "routh") / P_flu0 - r_flu,
                               0.5 * c_flu, 2 * c_flu, xtol=1e-12),
                 "closed form ratio = quoted ratio (Brent)",
                 "Routh-Hurwitz ratio = quoted ratio (Brent)", "N m s"),
-            "c_from_divergence_ratio": _quantity(
+            "c_from_divergence_ratio": quantity(
                 c_div, c_div_alg, "eigenvalue ratio = quoted ratio (Brent)",
                 "algebraic ratio = quoted ratio (Brent)", "N m s"),
         },
@@ -183,9 +183,9 @@ def paradox_map(params: dict[str, Any]) -> dict[str, Any]:
     """lim_{eps->0} P*_flu / P_flu(undamped) over the damping ratio c1/c2 and the mass
     distribution (m1/m2 with d = l1; d/l1 with m1 = m2), from the closed form, verified by
     Routh–Hurwitz at small epsilon at a few points."""
-    _take(params, {"pendulum", "log10_c_range", "log10_mass_ratio_range", "d_ratio_range",
+    take(params, {"pendulum", "log10_c_range", "log10_mass_ratio_range", "d_ratio_range",
                    "n_grid", "check_points", "eps_check"})
-    p0 = _pendulum(params)
+    p0 = pendulum_of(params)
     n = int(params.get("n_grid", 81))
     if n < 5:
         raise ParameterError(f"n_grid must be >= 5, got {n}")
@@ -210,11 +210,11 @@ def paradox_map(params: dict[str, Any]) -> dict[str, Any]:
     eps = check_positive("eps_check", params.get("eps_check", 1e-4))
     quantities = {}
     for i, pt in enumerate(params.get("check_points", [])):
-        _take(pt, {"c_ratio", "m1_over_m2", "d_over_l1"})
+        take(pt, {"c_ratio", "m1_over_m2", "d_over_l1"})
         p = p0.with_(m1=p0.m2 * pt["m1_over_m2"], d=pt["d_over_l1"] * p0.l1)
         pd = with_viscosity(p, eps, pt["c_ratio"])
         numeric = damped_flutter_load(pd, "routh") / follower_critical_loads(p)[0]
-        quantities[f"check_{i}"] = _quantity(
+        quantities[f"check_{i}"] = quantity(
             ratio(p, pt["c_ratio"]), numeric, "closed form, eps -> 0",
             f"Routh-Hurwitz at eps = {eps:g} over eigenvalue coalescence", "")
     return {"log10_c": lc.tolist(), "log10_mass_ratio": lm.tolist(), "d_ratio": yd.tolist(),
@@ -227,17 +227,17 @@ def paradox_map(params: dict[str, Any]) -> dict[str, Any]:
 # ---------------------------------------------------------------------- dead load + viscosity
 def damped_dead_load(params: dict[str, Any]) -> dict[str, Any]:
     """§2.2 after eq. (31): viscosity leaves the dead-load critical load at H_cr (eq. 22)."""
-    _take(params, {"pendulum", "eps_values"})
-    p0 = _pendulum(params)
+    take(params, {"pendulum", "eps_values"})
+    p0 = pendulum_of(params)
     u = p0.load_unit
     e_cr = cf.buckling_etas(p0.groups())[0]
     quantities = {}
     for eps in _eps_list(params):
         p = with_viscosity(p0, eps)
-        quantities[f"eta_cr_eps{eps:g}"] = _quantity(
+        quantities[f"eta_cr_eps{eps:g}"] = quantity(
             damped_dead_load_onset(p, "routh") / u, damped_dead_load_onset(p, "eigenvalues") / u,
             RH, EIG_CROSS, "K/L")
-        quantities[f"eta_cr_eps{eps:g}_vs_eq22"] = _quantity(
+        quantities[f"eta_cr_eps{eps:g}_vs_eq22"] = quantity(
             damped_dead_load_onset(p, "routh") / u, e_cr, RH, "closed form eq. (22), undamped",
             "K/L")
     return {"quantities": quantities}
@@ -249,8 +249,8 @@ def errata_damped(params: dict[str, Any]) -> dict[str, Any]:
     expanded numerically from the matrices; eq. (52) vs the derivation."""
     from flutterfriction.analysis.polynomial import characteristic_polynomial
 
-    _take(params, {"pendulum", "H", "eq52_eps", "eq52_gamma"})
-    p = _pendulum(params)
+    take(params, {"pendulum", "H", "eq52_eps", "eq52_gamma"})
+    p = pendulum_of(params)
     eps, c = cfd.viscosity_groups(p)
     H = float(params.get("H", 1.0))
     eta = H * p.l1 / p.k2
@@ -277,7 +277,7 @@ def errata_damped(params: dict[str, Any]) -> dict[str, Any]:
                                       sym.stiffness_matrix() + sym.geometric_matrix(g52))
     der52 = cfd.characteristic_coefficients(sym.groups(), e52, 1.0, gamma=g52)
     quantities = {
-        f"eq52_p{i}": _quantity(float(der52[i]), float(num52[i]), "sympy derivation",
+        f"eq52_p{i}": quantity(float(der52[i]), float(num52[i]), "sympy derivation",
                                 "coefficients from the matrices", "")
         for i in range(5)}
     return {"errata": errata, "quantities": quantities,

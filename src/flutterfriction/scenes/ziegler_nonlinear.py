@@ -18,13 +18,13 @@ from flutterfriction.analysis.ziegler import (
 from flutterfriction.closed_forms.ziegler_damped import eq54_flutter_gamma, viscosity_groups
 from flutterfriction.errors import ConvergenceError, check_positive, check_real
 from flutterfriction.models.ziegler import ZieglerPendulum
+from flutterfriction.scenes.common import pendulum_of, quantity, take
 from flutterfriction.scenes.sweep import Sweep
-from flutterfriction.scenes.ziegler import _pendulum, _quantity, _take
 
 
 def _section29(params: dict[str, Any]):
     """§2.9: P = (load factor) x P*_flu of eq. (54), initial rotations alpha0 (degrees)."""
-    p = _pendulum(params)
+    p = pendulum_of(params)
     eps, _ = viscosity_groups(p)
     P_star = eq54_flutter_gamma(eps) * p.load_unit
     P = check_positive("load_factor", params.get("load_factor", 1.5)) * P_star
@@ -43,15 +43,15 @@ def _cycle(params: dict[str, Any]) -> dict[str, Any]:
         "P": P, "P_star_flu": P_star, "limit_cycle": lc.as_dict(), "t": sol.t.tolist(),
         "alpha": sol.y[:2].tolist(), "alpha_dot": sol.y[2:].tolist(),
         "quantities": {
-            "period": _quantity(lc.period_s, shot.period_s, "Poincare section (DOP853)",
+            "period": quantity(lc.period_s, shot.period_s, "Poincare section (DOP853)",
                                 "periodic-orbit shooting (Newton)", "s"),
-            "alpha1_amplitude": _quantity(lc.alpha1_amplitude_rad, shot.alpha1_amplitude_rad,
+            "alpha1_amplitude": quantity(lc.alpha1_amplitude_rad, shot.alpha1_amplitude_rad,
                                           "Poincare section (DOP853)",
                                           "periodic-orbit shooting (Newton)", "rad"),
-            "alpha2_amplitude": _quantity(lc.alpha2_amplitude_rad, shot.alpha2_amplitude_rad,
+            "alpha2_amplitude": quantity(lc.alpha2_amplitude_rad, shot.alpha2_amplitude_rad,
                                           "Poincare section (DOP853)",
                                           "periodic-orbit shooting (Newton)", "rad"),
-            "reaches_limit_cycle": _quantity("stable limit cycle", "stable limit cycle",
+            "reaches_limit_cycle": quantity("stable limit cycle", "stable limit cycle",
                                              "transient converges on the section",
                                              "shooting finds the orbit", ""),
         }}
@@ -59,7 +59,7 @@ def _cycle(params: dict[str, Any]) -> dict[str, Any]:
 
 def fig13(params: dict[str, Any]) -> dict[str, Any]:
     """§2.9, Fig. 13: the alpha1-alpha2 trajectory reaching the limit cycle."""
-    _take(params, {"pendulum", "load_factor", "alpha0_deg", "tol", "n_samples"})
+    take(params, {"pendulum", "load_factor", "alpha0_deg", "tol", "n_samples"})
     d = _cycle(params)
     d.pop("alpha_dot")
     return d
@@ -67,7 +67,7 @@ def fig13(params: dict[str, Any]) -> dict[str, Any]:
 
 def fig14(params: dict[str, Any]) -> dict[str, Any]:
     """§2.9, Fig. 14: angular velocities against rotations."""
-    _take(params, {"pendulum", "load_factor", "alpha0_deg", "tol", "n_samples"})
+    take(params, {"pendulum", "load_factor", "alpha0_deg", "tol", "n_samples"})
     return _cycle(params)
 
 
@@ -79,8 +79,8 @@ def _mid_flutter_load(p) -> tuple[float, float, float]:
 def fig20(params: dict[str, Any]) -> dict[str, Any]:
     """§2.10, Fig. 20: transverse acceleration of the loaded end, nonlinear (6 s) and linear
     (cut at 1.5 s), at the middle of the damped flutter interval, from alpha = 0.5 deg."""
-    _take(params, {"pendulum", "alpha0_deg", "t_nonlinear", "t_linear", "n_samples"})
-    p = _pendulum(params)
+    take(params, {"pendulum", "alpha0_deg", "t_nonlinear", "t_linear", "n_samples"})
+    p = pendulum_of(params)
     P, P_flu, P_div = _mid_flutter_load(p)
     a0 = math.radians(check_real("alpha0_deg", params.get("alpha0_deg", 0.5)))
     x0 = np.array([a0, a0, 0.0, 0.0])
@@ -101,7 +101,7 @@ def fig20(params: dict[str, Any]) -> dict[str, Any]:
         "P": P, "P_flu": P_flu, "P_div": P_div, "t": t.tolist(), "acc_nonlinear": acc_nl[:, 1]
         .tolist(), "t_linear": t_li.tolist(), "acc_linear": acc_li.tolist(),
         "quantities": {
-            "nonlinear_saturates": _quantity(
+            "nonlinear_saturates": quantity(
                 "saturates" if np.max(np.abs(acc_nl[late, 1])) < 10 * np.max(
                     np.abs(acc_nl[(t > 1.0) & (t < 2.0), 1])) else "grows",
                 "blows up" if abs(acc_li[-1]) > 10 * abs(acc_li[len(acc_li) // 3]) or np.max(
@@ -113,8 +113,8 @@ def fig20(params: dict[str, Any]) -> dict[str, Any]:
 def fig21(params: dict[str, Any]) -> dict[str, Any]:
     """§2.10, Fig. 21: the path of the loaded end over 2.04 s from alpha = 0 with angular
     velocities 0.5 rad/s, and the scratch it leaves on the plate moving at ``plate_speed``."""
-    _take(params, {"pendulum", "duration", "omega0", "plate_speed", "n_samples"})
-    p = _pendulum(params)
+    take(params, {"pendulum", "duration", "omega0", "plate_speed", "n_samples"})
+    p = pendulum_of(params)
     P, P_flu, P_div = _mid_flutter_load(p)
     T = check_positive("duration", params.get("duration", 2.04), "s")
     w0 = check_real("omega0", params.get("omega0", 0.5))
@@ -132,14 +132,14 @@ def fig21(params: dict[str, Any]) -> dict[str, Any]:
 def _amplitude_points(params: dict[str, Any]) -> list[list[Any]]:
     """The bifurcation diagram's points: one cycle per load factor, and the decay test below
     the flutter load."""
-    _take(params, {"pendulum", "load_factors", "below_factor", "tol"})
+    take(params, {"pendulum", "load_factors", "below_factor", "tol"})
     factors = [check_positive("load_factors", f) for f in params["load_factors"]]
     below = check_positive("below_factor", params.get("below_factor", 0.98))
     return [["cycle", f] for f in factors] + [["below", below]]
 
 
 def _amplitude_compute(params: dict[str, Any], points: list[list[Any]]) -> list[dict[str, Any]]:
-    p = _pendulum(params)
+    p = pendulum_of(params)
     P_flu = damped_flutter_load(p, "routh")
     tol = float(params.get("tol", 1e-7))
     out = []
@@ -165,7 +165,7 @@ def _amplitude_compute(params: dict[str, Any], points: list[list[Any]]) -> list[
 
 def _amplitude_combine(params: dict[str, Any], results: list[dict[str, Any]]) -> dict[str, Any]:
     points = _amplitude_points(params)
-    p = _pendulum(params)
+    p = pendulum_of(params)
     P_flu = damped_flutter_load(p, "routh")
     cycles = [r for (kind, _), r in zip(points, results, strict=True) if kind == "cycle"]
     factors = [f for kind, f in points if kind == "cycle"]
@@ -183,12 +183,12 @@ def _amplitude_combine(params: dict[str, Any], results: list[dict[str, Any]]) ->
         "alpha1_amplitude": amps1, "alpha2_amplitude": [c["alpha2"] for c in cycles],
         "period": periods, "omega_flu": omega_flu, "below": decay,
         "quantities": {
-            "hopf_exponent": _quantity(slope, 0.5, "log-log slope of the amplitude near P_flu",
+            "hopf_exponent": quantity(slope, 0.5, "log-log slope of the amplitude near P_flu",
                                        "supercritical Hopf normal form: 1/2", ""),
-            "period_at_onset": _quantity(periods[0], 2 * math.pi / omega_flu,
+            "period_at_onset": quantity(periods[0], 2 * math.pi / omega_flu,
                                          f"limit cycle at {factors[0]:g} P_flu",
                                          "2 pi / Omega at the flutter load (eigenvalues)", "s"),
-            "hopf_type": _quantity(
+            "hopf_type": quantity(
                 "supercritical" if decays and slope > 0.4 else "subcritical?",
                 "no cycle below P_flu" if decays else "cycle below P_flu",
                 "amplitude ~ sqrt(P - P_flu)",
@@ -223,14 +223,16 @@ def pendulum_work_precision(params: dict[str, Any]) -> dict[str, Any]:
 
     from scipy.integrate import solve_ivp
 
-    from flutterfriction.analysis.ziegler import follower_critical_loads
+    from flutterfriction.analysis.ziegler import (
+        flutter_load_multiprecision,
+        follower_critical_loads,
+    )
     from flutterfriction.closed_forms.ziegler import critical_loads_closed_form
     from flutterfriction.closed_forms.ziegler_damped import damped_flutter_gamma
-    from flutterfriction.stress import _mp_flutter_load
 
-    _take(params, {"pendulum", "cycle_pendulum", "c_values", "methods", "rtols", "repeats",
+    take(params, {"pendulum", "cycle_pendulum", "c_values", "methods", "rtols", "repeats",
                    "load_factor"})
-    p = _pendulum(params)
+    p = pendulum_of(params)
     repeats = int(params.get("repeats", 5))
 
     def timed(fun):
@@ -241,8 +243,7 @@ def pendulum_work_precision(params: dict[str, Any]) -> dict[str, Any]:
             times.append(_time.perf_counter() - t0)
         return value, float(np.median(times))
 
-    P_mp = float(_mp_flutter_load({k: getattr(p, k) for k in
-                                   ("l1", "l2", "d", "h", "m1", "m2", "m3", "k1", "k2")}))
+    P_mp = float(flutter_load_multiprecision(p))
     runs = []
     for name, fun in (("closed form eq. (39)", lambda: critical_loads_closed_form(p).P_flu),
                       ("eigenvalue coalescence", lambda: follower_critical_loads(p)[0])):
