@@ -11,39 +11,111 @@ from matplotlib.figure import Figure
 from flutterfriction.plotting import REGIME_COLOURS
 
 
+def _mode_of_branch(im: np.ndarray) -> np.ndarray:
+    """For each branch (rows of ``im``), the mode it starts from at p = 0: 0 for the two
+    branches of smallest |Im omega~| (the first mode and its conjugate), 1 for the next two."""
+    rank = np.argsort(np.argsort(np.abs(im[:, 0]), kind="stable"), kind="stable")
+    return rank // 2
+
+
+def _critical_label(ax, value: float, sub: str, p: np.ndarray) -> None:
+    """``p_sub = value`` above the frame at ``value``, ending at its line (starting at it when
+    the line is near the left edge)."""
+    ha = "left" if value < p[0] + 0.2 * (p[-1] - p[0]) else "right"
+    ax.annotate(rf"$p_{sub}$ = {value:.2f}", (value, 1.0), xycoords=("data", "axes fraction"),
+                xytext=(0, 2), textcoords="offset points", ha=ha, va="bottom", fontsize=7)
+
+
+def _zoom_crossing(ax, p: np.ndarray, re: np.ndarray, p_flu: float) -> None:
+    """Inset of the largest Re omega~ around the damped flutter load: its sign change, which
+    is invisible at the scale of the panel."""
+    half = 0.12 * (p[-1] - p[0])
+    window = (p >= p_flu - half) & (p <= p_flu + half)
+    top = re.max(axis=0)[window]
+    ymax = np.abs(top).max()
+    exp = int(np.floor(np.log10(ymax)))
+    scale = 10.0 ** -exp
+    # Above the branches (which sit near Re = 0 before the flutter load), axis labels on top.
+    ins = ax.inset_axes([0.14, 0.6, 0.3, 0.25])
+    ins.xaxis.tick_top()
+    ins.xaxis.set_label_position("top")
+    ins.plot(p[window], scale * top, color="k", lw=1.0)
+    ins.axhline(0, color="0.4", lw=0.6)
+    ins.axvline(p_flu, color="k", ls="--", lw=0.7)
+    ins.plot(p_flu, 0.0, "o", color="C3", ms=3.5, zorder=5)
+    ins.annotate(f"{p_flu:.2f}", (p_flu, 0.0), xytext=(-3, 3), textcoords="offset points",
+                 ha="right", fontsize=6.5, color="C3")
+    ins.set_xlim(p[window][0], p[window][-1])
+    ins.set_ylim(-scale * ymax, scale * ymax)
+    ins.tick_params(labelsize=6, pad=1)
+    ins.xaxis.set_major_locator(plt.MaxNLocator(4))
+    ins.set_xlabel("p [-]", fontsize=6, labelpad=3)
+    ins.set_ylabel(rf"max Re $\tilde\omega$" "\n" rf"[$10^{{{exp}}}$]", fontsize=6,
+                   labelpad=2)
+    ins.set_facecolor("white")
+
+
+def _draw_branch_case(ax_re, ax_im, p: np.ndarray, case: dict[str, Any], title: str,
+                      zoom: bool) -> None:
+    """One damping case: Re and Im of omega~ against p, regimes shaded, critical loads."""
+    crit = case["critical"]
+    re, im = np.array(case["re"]), np.array(case["im"])
+    mode = _mode_of_branch(im)
+    edges = [crit["p_flu"]] + ([crit["p_div"]] if crit["p_div"] else [])
+    names = ["stable", "flutter", "divergence"][: len(edges) + 1]
+    bounds = [p[0], *[e for e in edges if e < p[-1]], p[-1]]
+    for ax, values, ylabel in ((ax_re, re, r"Re $\tilde\omega$ [-]"),
+                               (ax_im, im, r"Im $\tilde\omega$ [-]")):
+        for lo, hi, reg in zip(bounds[:-1], bounds[1:], names, strict=False):
+            ax.axvspan(lo, hi, color=REGIME_COLOURS[reg], alpha=0.7, lw=0, zorder=0)
+        for branch, m in zip(values, mode, strict=True):
+            ax.plot(p, branch, color=f"C{m}", lw=1.3)
+        ax.axhline(0, color="k", lw=0.6)
+        for e, sub in ((crit["p_flu"], "f"), (crit["p_div"], "d")):
+            if e is not None and e < p[-1]:
+                ax.axvline(e, color="k", ls="--", lw=0.8)
+                if ax is ax_re:
+                    _critical_label(ax, e, sub, p)
+        ax.set_ylabel(ylabel)
+        ax.set_xlim(p[0], p[-1])
+    ax_re.set_title(title, fontsize=8, loc="left", pad=13)
+    if zoom:
+        _zoom_crossing(ax_re, p, re, crit["p_flu"])
+
+
+def _branch_legend(fig: Figure, n_modes: int) -> None:
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+    ordinal = ["1st", "2nd", "3rd", "4th"]
+    handles = [Line2D([], [], color=f"C{m}", lw=1.3,
+                      label=f"branches from the {ordinal[m]} mode at p = 0 (± Im)")
+               for m in range(n_modes)]
+    handles += [Patch(color=REGIME_COLOURS[r], alpha=0.7, label=r)
+                for r in ("stable", "flutter", "divergence")]
+    handles.append(Line2D([], [], color="k", ls="--", lw=0.8,
+                          label=r"critical loads $p_f$ (flutter), $p_d$ (divergence)"))
+    fig.legend(handles=handles, loc="lower center", ncol=3, fontsize=7, frameon=False)
+
+
+def _damping_titles(eta: float) -> dict[str, str]:
+    return {"undamped": "damping absent 'from the beginning'",
+            "damped": rf"internal damping $\eta$ = {eta:.4g} (inset: the sign change of "
+                      r"Re $\tilde\omega$ at $p_f$)"}
+
+
 def plot_branches(data: dict[str, Any], title: str) -> Figure:
     """Re and Im of omega~ against p; upper row without damping, lower row with (Figs. 11, 12)."""
     p = np.array(data["p"])
-    fig, axes = plt.subplots(2, 2, figsize=(8.4, 5.8), sharex=True)
-    for row, (name, label) in enumerate((("undamped", "damping absent 'from the beginning'"),
-                                         ("damped", rf"internal damping $\eta$ = "
-                                                    rf"{data['eta']:.4g}"))):
-        case = data["cases"][name]
-        crit = case["critical"]
-        for col, key in enumerate(("re", "im")):
-            ax = axes[row, col]
-            edges = [crit["p_flu"]] + ([crit["p_div"]] if crit["p_div"] else [])
-            names = ["stable", "flutter", "divergence"][: len(edges) + 1]
-            bounds = [p[0], *[e for e in edges if e < p[-1]], p[-1]]
-            for lo, hi, reg in zip(bounds[:-1], bounds[1:], names, strict=False):
-                ax.axvspan(lo, hi, color=REGIME_COLOURS[reg], alpha=0.7, lw=0, zorder=0)
-            for i, branch in enumerate(np.array(case[key])):
-                ax.plot(p, branch, color=f"C{i // 2}", lw=1.3)
-            ax.axhline(0, color="k", lw=0.6)
-            for e, sub in ((crit["p_flu"], "f"), (crit["p_div"], "d")):
-                if e is not None and e < p[-1]:
-                    ax.axvline(e, color="k", ls="--", lw=0.8)
-                    if col == 0:
-                        ax.annotate(rf"$p_{sub}$ = {e:.2f}", (e, 0.97), rotation=90, va="top",
-                                    ha="right", xycoords=("data", "axes fraction"), fontsize=7)
-            ax.set_ylabel(r"Re $\tilde\omega$" if key == "re" else r"Im $\tilde\omega$")
-            if col == 0:
-                ax.set_title(label, fontsize=8, loc="left")
-            ax.set_xlim(p[0], p[-1])
+    fig, axes = plt.subplots(2, 2, figsize=(8.4, 6.4), sharex=True)
+    titles = _damping_titles(data["eta"])
+    for row, name in enumerate(("undamped", "damped")):
+        _draw_branch_case(axes[row, 0], axes[row, 1], p, data["cases"][name], titles[name],
+                          zoom=name == "damped")
     for ax in axes[1]:
-        ax.set_xlabel(r"$p = P l^2 / B$")
+        ax.set_xlabel(r"$p = P l^2 / B$ [-]")
     fig.suptitle(title, fontsize=9)
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0.07, 1, 1))
+    _branch_legend(fig, len(data["cases"]["undamped"]["re"]) // 2)
     return fig
 
 
@@ -239,6 +311,40 @@ def plot_fig11(data: dict[str, Any]) -> Figure:
 
 
 def plot_fig12(data: dict[str, Any]) -> Figure:
-    tan_alpha = data["cases"]["undamped"]["groups"]["tan_alpha"]
-    return plot_branches(data, f"Fig. 12: the Pflüger rod, list (119), tan α = {tan_alpha:.4g} "
-                               "(see errata)")
+    """Fig. 12 twice, side by side: at the caption's tan(alpha) = 1 (the figure as printed) and
+    at the tan(alpha) that reproduces the quoted loads, with the erratum stated."""
+    p = np.array(data["p"])
+    fitted = data["cases"]
+    t_fit = fitted["undamped"]["groups"]["tan_alpha"]
+    if "stated" not in data:  # data from before the stated case was added
+        return plot_branches(data, f"Fig. 12: the Pflüger rod, list (119), tan α = {t_fit:.4g} "
+                                   "(see errata)")
+    stated = data["stated"]["cases"]
+    t_st = data["stated"]["tan_alpha"]
+    fig, axes = plt.subplots(4, 2, figsize=(9.6, 11.0), sharex="col")
+    titles = _damping_titles(data["eta"])
+    p_st = np.array(data["stated"].get("p", data["p"]))
+    for col, (cases, pc, head) in enumerate((
+            (stated, p_st, f"as the caption states: tan α = {t_st:g}"),
+            (fitted, p, f"tan α = {t_fit:.4g}: reproduces the loads the chapter quotes"))):
+        axes[0, col].annotate(head, (0.5, 1.0), xycoords="axes fraction", xytext=(0, 26),
+                              textcoords="offset points", ha="center", fontsize=9,
+                              fontweight="bold")
+        for k, name in enumerate(("undamped", "damped")):
+            _draw_branch_case(axes[2 * k, col], axes[2 * k + 1, col], pc, cases[name],
+                              titles[name].split(" (inset")[0], zoom=name == "damped")
+    for ax in axes[-1]:
+        ax.set_xlabel(r"$p = P l^2 / B$ [-]")
+
+    def loads(cases):
+        u, d = cases["undamped"]["critical"], cases["damped"]["critical"]
+        return (f"{u['p_flu']:.2f} / {u['p_div']:.2f}, damped {d['p_flu']:.2f} / "
+                f"{d['p_div']:.2f}")
+    fig.suptitle("Fig. 12: the Pflüger rod, list (119), tip mass tan α = M/(ρl); "
+                 "flutter / divergence loads p\n"
+                 f"Erratum: the caption's tan α = {t_st:g} gives {loads(stated)}; the loads "
+                 f"the chapter quotes are those at tan α = {t_fit:.4g}: {loads(fitted)}",
+                 fontsize=8.5)
+    fig.tight_layout(rect=(0, 0.04, 1, 0.985), h_pad=1.6)
+    _branch_legend(fig, len(fitted["undamped"]["re"]) // 2)
+    return fig

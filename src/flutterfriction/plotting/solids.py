@@ -28,8 +28,14 @@ def plot_fig22(data: dict[str, Any]) -> Figure:
                 label=f"computed path: {b}" if b not in done else None)
         done.add(b)
     ax.plot(p[:, 0], p[:, 1], "o", color="k", ms=3)
+    # One label per distinct point ("2, 3" where the path stops at the same force twice),
+    # coincident ones below-right of the point, inside the cone, clear of the path.
+    groups: dict[tuple[float, float], list[int]] = {}
     for k, (x, y) in enumerate(p):
-        ax.annotate(str(k), (x, y), xytext=(4, 4), textcoords="offset points", fontsize=7)
+        groups.setdefault((round(float(x), 9), round(float(y), 9)), []).append(k)
+    for (x, y), ks in groups.items():
+        ax.annotate(", ".join(map(str, ks)), (x, y), xytext=(4, 4) if len(ks) == 1 else (5, -11),
+                    textcoords="offset points", fontsize=7)
     s = np.array(data["slip_point"])
     L = 0.35 * p[:, 0].max()
     for vec, name, col, ha in ((data["a"], r"$\mathbf{a}$ (normal)", "C2", "right"),
@@ -58,23 +64,25 @@ def plot_acoustic_eigenvalues(data: dict[str, Any]) -> Figure:
         ax.set_xscale("log")
     for i, (re, im) in enumerate(zip(data["re"], data["im"], strict=True)):
         ax1.plot(g, re, color=f"C{i}", lw=1.4)
-        ax2.plot(g, im, color=f"C{i}", lw=1.4)
+        ax2.plot(g, im, color=f"C{i}", lw=1.4, label=f"eigenvalue {i + 1} of A(n)")
     ax1.axhline(data["mu"], color="k", ls=":", lw=0.8)
-    ax1.annotate(r"$\mu$", (g[-1], data["mu"]), ha="right", va="bottom")
+    ax1.annotate(rf"$\mu$ = {data['mu']:g}", (g[0], data["mu"]), xytext=(0, 3),
+                 textcoords="offset points", ha="left", va="bottom", fontsize=7)
     ax1.axhline(0, color="k", lw=0.6)
-    for val, name in ((g1, "$g_1$"), (g2, "$g_2$")):
+    for val, name, ha in ((g1, "$g_1$", "right"), (g2, "$g_2$", "left")):
         ax1.axvline(val, color="k", ls="--", lw=0.8)
-        ax1.annotate(f"{name} = {val:.4g}", (val, 0.97), xycoords=("data", "axes fraction"),
-                     rotation=90, va="top", ha="right", fontsize=7)
+        ax1.annotate(f"{name} = {val:.4g}", (val, 1.0), xycoords=("data", "axes fraction"),
+                     xytext=(0, 2), textcoords="offset points", va="bottom", ha=ha, fontsize=7)
     gE = data["g_localization"]
     ax1.set_title(f"Eigenvalues of A(n) (eq. 179), nonassociative case; "
                   f"$g^E_{{cr}}(n)$ = {gE:.4g} < 0: localization not reached for g > 0",
-                  fontsize=8)
+                  fontsize=8, pad=14)
     ax1.set_yscale("symlog", linthresh=1.0)
     ax1.set_ylabel(r"Re $c^2$ [Pa]")
     ax2.set_ylabel(r"Im $c^2$ [Pa]")
     ax2.set_xlabel("plastic modulus g [Pa]")
-    ax1.legend(fontsize=7, loc="upper left")
+    # In the empty Re < 0 band (no eigenvalue goes there for g > 0).
+    ax1.legend(*ax2.get_legend_handles_labels(), fontsize=7, loc="lower right", ncol=2)
     return fig
 
 
@@ -97,14 +105,16 @@ def plot_localization_directions(data: dict[str, Any]) -> Figure:
 
 
 def plot_flutter_map(data: dict[str, Any]) -> Figure:
-    """(a) flutter region over directions and g; (b) flutter triggered by elastic anisotropy."""
+    """(a) flutter region over directions and g; (b) flutter triggered by elastic anisotropy,
+    zoomed on the directions that flutter; (c) their fraction against the anisotropy."""
     th = np.degrees(data["theta"])
-    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(9.0, 3.8))
+    fig, (ax1, ax2, ax3) = plt.subplots(1, 3, figsize=(12.6, 3.9),
+                                        gridspec_kw={"width_ratios": [1.25, 1, 0.8]})
     g1 = np.array([np.nan if v is None else v for v in data["g1"]], float)
     g2 = np.array([np.nan if v is None else v for v in data["g2"]], float)
     ax1.fill_between(th, g1, g2, color=REGIME_COLOURS["flutter"], label="flutter")
     ax1.plot(th, g1, color="C1", lw=1)
-    ax1.plot(th, g2, color="C1", lw=1)
+    ax1.plot(th, g2, color="C1", lw=1, label=r"its bounds $g_1$, $g_2$")
     ax1.plot(th, data["g_localization"], color="C0", label=r"$g^E_{cr}(n)$ (localization)")
     ax1.set_yscale("symlog", linthresh=1e-3)
     ax1.set_xlabel(r"angle of n in the $(e_1, e_3)$ plane [deg]")
@@ -113,21 +123,39 @@ def plot_flutter_map(data: dict[str, Any]) -> Figure:
     ax1.legend(fontsize=7)
     an = data["anisotropy"]
     off = np.array(an["offsets_deg"])
-    last = np.array(an["maps"][-1])
-    from matplotlib.colors import ListedColormap
-
-    ax2.imshow(last, origin="lower", extent=[off[0], off[-1], off[0], off[-1]],
-               cmap=ListedColormap(["white", "#d35400"]), vmin=0, vmax=1,
-               interpolation="nearest")
-    ax2.plot(0, 0, "k+", ms=10)
-    ax2.set_xlabel("direction offset from the coalescence direction [deg]")
-    ax2.set_ylabel("[deg]")
-    inset = ax2.inset_axes([0.6, 0.62, 0.37, 0.33])
-    inset.plot(an["eps"], np.array(an["fraction_flutter"]) * 100, "o-", ms=3, color="C3")
-    inset.set_xlabel("anisotropy ε", fontsize=6)
-    inset.set_ylabel("% flutter", fontsize=6)
-    inset.tick_params(labelsize=6)
-    ax2.set_title(f"(b) Drucker–Prager at coalescence + anisotropy ε = {an['eps'][-1]:g}: "
-                  "flutter appears", fontsize=8)
+    step = off[1] - off[0]
+    maps = [np.array(m, dtype=bool) for m in an["maps"]]
+    # Each direction (a cell of the tangent-plane grid around the coalescence direction n_C)
+    # coloured by the smallest anisotropy at which it flutters.
+    levels = [k for k, m in enumerate(maps) if m.any()]
+    cmap = plt.get_cmap("autumn_r")
+    shown = np.zeros_like(maps[0])
+    for n, k in enumerate(levels):
+        new_cells = maps[k] & ~shown
+        shown |= maps[k]
+        r, c = np.nonzero(new_cells)
+        colour = cmap(0.35 + 0.65 * n / max(len(levels) - 1, 1))
+        for rr, cc in zip(r, c, strict=True):
+            ax2.add_patch(plt.Rectangle((off[cc] - step / 2, off[rr] - step / 2), step, step,
+                                        color=colour, lw=0))
+        ax2.plot([], [], "s", color=colour, ms=6, label=f"first flutters at ε = {an['eps'][k]:g}")
+    ax2.plot(0, 0, "k+", ms=10, label=r"coalescence direction $n_C$")
+    if shown.any():
+        r, c = np.nonzero(shown)
+        half = max(np.abs(off[r]).max(), np.abs(off[c]).max()) + 2.0
+    else:
+        half = off[-1]
+    ax2.set_xlim(-half, half)
+    ax2.set_ylim(-half, half)
+    ax2.set_aspect("equal")
+    ax2.set_xlabel(r"tilt of n from $n_C$ towards $t_1 = n_C \times e_3$ [deg]")
+    ax2.set_ylabel(r"tilt towards $t_2 = n_C \times t_1$ [deg]")
+    ax2.legend(fontsize=6.5, loc="upper left", title=f"cells: directions on a {step:g}° grid",
+               title_fontsize=6.5)
+    ax2.set_title("(b) Drucker–Prager at coalescence + anisotropy ε", fontsize=8)
+    ax3.plot(an["eps"], np.array(an["fraction_flutter"]) * 100, "o-", ms=3.5, color="C3")
+    ax3.set_xlabel("elastic anisotropy ε [-]")
+    ax3.set_ylabel(f"directions that flutter [%] (of the ±{off[-1]:g}° patch)")
+    ax3.set_title("(c) flutter appears with anisotropy", fontsize=8)
     fig.tight_layout()
     return fig

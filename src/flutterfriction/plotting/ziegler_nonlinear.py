@@ -19,15 +19,46 @@ def _time_coloured(ax, x, y, t, lw=0.8):
     return lc
 
 
+#: The transient ends when the peaks of alpha1 first come within this fraction of the cycle's
+#: amplitude (the limit cycle's, from the data).
+TRANSIENT_TOL = 0.01
+
+
+def _transient_end(t: np.ndarray, a1: np.ndarray, amplitude: float) -> int:
+    """Index of the first peak of alpha1 within ``TRANSIENT_TOL`` of the cycle's amplitude."""
+    peaks = np.flatnonzero((a1[1:-1] > a1[:-2]) & (a1[1:-1] >= a1[2:])) + 1
+    close = peaks[a1[peaks] >= (1.0 - TRANSIENT_TOL) * amplitude]
+    return int(close[0]) if close.size else len(t) - 1
+
+
+def _transient_and_cycle(ax, x, y, t, k: int, t_end: float, cycle_label: bool):
+    """The transient (t < t_end) coloured by time, the motion on the cycle after it in black."""
+    norm = plt.Normalize(0.0, t_end)
+    pts = np.array([x[: k + 1], y[: k + 1]]).T.reshape(-1, 1, 2)
+    lc = LineCollection(np.concatenate([pts[:-1], pts[1:]], axis=1), cmap="viridis", lw=0.8,
+                        norm=norm)
+    lc.set_array(np.asarray(t)[:k])
+    ax.add_collection(lc)
+    ax.plot(x[k:], y[k:], color="k", lw=1.3,
+            label=(f"limit cycle, t ≥ {t_end:.1f} s (to {t[-1]:.0f} s)" if cycle_label
+                   else None))
+    ax.autoscale()
+    return lc
+
+
 def plot_fig13(data: dict[str, Any]) -> Figure:
     """Fig. 13: trajectory in the alpha1-alpha2 plane reaching a stable limit cycle."""
     a1, a2 = np.degrees(data["alpha"])
-    fig, ax = plt.subplots(figsize=(4.8, 4.4))
-    lc = _time_coloured(ax, a1, a2, data["t"])
-    fig.colorbar(lc, ax=ax, label="t [s]")
+    t = np.array(data["t"])
+    k = _transient_end(t, a1, np.degrees(data["limit_cycle"]["alpha1_amplitude_rad"]))
+    fig, ax = plt.subplots(figsize=(4.8, 4.6))
+    lc = _transient_and_cycle(ax, a1, a2, t, k, t[k], True)
+    fig.colorbar(lc, ax=ax, label=f"time t [s] along the transient (to {t[k]:.1f} s)")
     T = data["limit_cycle"]["period_s"]
     ax.set_xlabel(r"$\alpha_1$ [deg]")
     ax.set_ylabel(r"$\alpha_2$ [deg]")
+    ax.legend(loc="upper left", fontsize=7, title="transient: until the α1 peaks\nare within "
+              f"{100 * TRANSIENT_TOL:g} % of the cycle's", title_fontsize=6.5)
     ax.set_title(f"Fig. 13: P = {data['P']:.4g} N = 1.5 P*_flu (eq. 54); limit cycle, "
                  f"period {T:.4f} s", fontsize=8)
     return fig
@@ -37,13 +68,18 @@ def plot_fig14(data: dict[str, Any]) -> Figure:
     """Fig. 14: angular velocities against rotations."""
     a = np.degrees(data["alpha"])
     w = np.degrees(data["alpha_dot"])
-    fig, axes = plt.subplots(2, 1, figsize=(4.8, 6.0))
+    t = np.array(data["t"])
+    lcd = data["limit_cycle"]
+    k = _transient_end(t, a[0], np.degrees(lcd["alpha1_amplitude_rad"]))
+    fig, axes = plt.subplots(2, 1, figsize=(4.8, 6.4))
     for i, ax in enumerate(axes):
-        lc = _time_coloured(ax, a[i], w[i], data["t"])
+        lc = _transient_and_cycle(ax, a[i], w[i], t, k, t[k], i == 0)
         ax.set_xlabel(rf"$\alpha_{i + 1}$ [deg]")
         ax.set_ylabel(rf"$\dot\alpha_{i + 1}$ [deg/s]")
-    fig.colorbar(lc, ax=axes, label="t [s]")
-    lcd = data["limit_cycle"]
+    fig.colorbar(lc, ax=axes, label=f"time t [s] along the transient (to {t[k]:.1f} s)")
+    fig.legend(loc="lower center", bbox_to_anchor=(0.45, -0.04), fontsize=7, frameon=False,
+               title=f"transient: until the α1 peaks are within {100 * TRANSIENT_TOL:g} % of "
+                     "the cycle's", title_fontsize=6.5)
     axes[0].set_title(f"Fig. 14: amplitudes {np.degrees(lcd['alpha1_amplitude_rad']):.2f}°, "
                       f"{np.degrees(lcd['alpha2_amplitude_rad']):.2f}°", fontsize=8)
     return fig
