@@ -69,6 +69,7 @@ def test_paradox_inequality(p, c):
         cf.flutter_divergence_gammas(g)[0] * (1 + 1e-12)
 
 
+@pytest.mark.slow
 @settings(max_examples=40)
 @given(pendulums(three_masses=False))
 def test_paradox_free_damping_ratio(p):
@@ -146,6 +147,7 @@ def test_viscosity_keeps_dead_load_buckling(p, eps):
     assert abs(damped_dead_load_onset(pd, "eigenvalues") - H_cr) <= tol
 
 
+@pytest.mark.slow
 @settings(max_examples=40)
 @given(pendulums(), st.floats(0.05, 1.0), st.floats(0.3, 3.0))
 def test_damped_divergence_two_ways(p, eps, c):

@@ -12,6 +12,9 @@ from flutterfriction.config import load_config, scene_params
 from flutterfriction.reference import failed, load_reference, run_check, summary_markdown
 from flutterfriction.registry import build_scene
 
+# Builds every scene (~1-2 min): the workflow's check does the same on every run.
+pytestmark = pytest.mark.slow
+
 
 @pytest.fixture(scope="module")
 def reference():

@@ -5,8 +5,12 @@ import pytest
 from flutterfriction.errors import ConvergenceError
 from flutterfriction.stress import ALL_CASES, CORRECT, REFUSED, WRONG, _judge, stress_markdown
 
+# The rod's regime scan and vanishing-viscosity cases take ~40-120 s each: `slow`.
+SLOW_AREAS = {"rod: regimes along p", "rod: vanishing viscosity"}
 
-@pytest.mark.parametrize("area", sorted(ALL_CASES))
+
+@pytest.mark.parametrize("area", [pytest.param(a, marks=pytest.mark.slow) if a in SLOW_AREAS
+                                  else a for a in sorted(ALL_CASES)])
 def test_no_silent_wrong_answer(area):
     results = ALL_CASES[area]()
     assert results
