@@ -19,8 +19,8 @@ from flutterfriction.errors import (
 )
 from flutterfriction.models.rod import Rod, RodGroups
 from flutterfriction.models.rod_fe import assemble
-from flutterfriction.scenes.sweep import Sweep
 from flutterfriction.scenes.common import n_points, quantity, take
+from flutterfriction.scenes.sweep import Sweep
 
 EXACT = "Newton on the exact characteristic function, eq. (118)"
 
@@ -86,10 +86,39 @@ def fig11(params: dict[str, Any]) -> dict[str, Any]:
     return _branch_scene(params, 0.0)
 
 
+#: Fig. 12's caption: "with tan(alpha) = M/(rho l) = 1"; its quoted loads need tan(alpha) ~ 1.561.
+FIG12_STATED_TAN_ALPHA = 1.0
+
+
 def fig12(params: dict[str, Any]) -> dict[str, Any]:
-    """Pflüger rod, list (119) plus a tip mass ``tan(alpha) = M/(rho l)`` (see errata_rods)."""
-    take(params, {"rod", "tan_alpha", "p_max", "n_points", "n_modes", "fe_elements", "P_N"})
-    return _branch_scene(params, check_nonnegative("tan_alpha", params["tan_alpha"]))
+    """Pflüger rod, list (119) plus a tip mass ``tan(alpha) = M/(rho l)`` (see errata_rods).
+
+    The top-level keys are the figure at ``tan_alpha`` (the value that reproduces the quoted
+    loads); ``stated`` holds the same branches and exact critical loads at the caption's
+    ``tan(alpha) = 1`` (the figure as printed), drawn beside it.
+    """
+    take(params, {"rod", "tan_alpha", "p_max", "n_points", "n_modes", "fe_elements", "P_N",
+                   "stated_tan_alpha"})
+    out = _branch_scene(params, check_nonnegative("tan_alpha", params["tan_alpha"]))
+    stated = check_nonnegative("stated_tan_alpha",
+                               params.get("stated_tan_alpha", FIG12_STATED_TAN_ALPHA))
+    rod = _rod(params)
+    n_modes = int(params.get("n_modes", 2))
+    groups = {"undamped": RodGroups(tan_alpha=stated),
+              "damped": RodGroups(tan_alpha=stated, eta=rod.groups().eta,
+                                  gamma=rod.groups().gamma)}
+    critical = {name: ar.critical_loads(g) for name, g in groups.items()}
+    # Its own load range, so that its divergence (beyond the fitted case's) shows as well.
+    p_divs = [c.p_div for c in critical.values() if c.p_div is not None]
+    p_max = max(out["p"][-1], 5.0 * math.ceil(1.1 * max(p_divs, default=0.0) / 5.0))
+    p = np.linspace(0.0, p_max, len(out["p"]))
+    cases = {}
+    for name, g in groups.items():
+        w = ar.branches(g, p, n_modes=n_modes)
+        cases[name] = {"groups": vars(g), "re": w.real.T.tolist(), "im": w.imag.T.tolist(),
+                       "critical": critical[name].as_dict()}
+    out["stated"] = {"tan_alpha": stated, "p": p.tolist(), "cases": cases}
+    return out
 
 
 # ---------------------------------------------------------------------- Fig. 12 erratum

@@ -1,0 +1,61 @@
+"""The data the figures of issue 13 draw beyond the checked quantities: Fig. 12 at the caption's
+tan(alpha) = 1 beside the fitted value, Fig. 4's dense exact solution; and that the figures
+draw from it."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from flutterfriction.parameters import LIST_47, LIST_119
+
+
+@pytest.fixture(scope="module")
+def fig12_data():
+    from flutterfriction.scenes.rod import fig12
+
+    return fig12({"rod": dict(LIST_119), "tan_alpha": 1.5608, "p_max": 35.0, "n_modes": 2,
+                  "fe_elements": 8, "n_points": 41})
+
+
+def test_fig12_keeps_the_fitted_case_and_adds_the_stated_one(fig12_data):
+    d = fig12_data
+    # The keys workflow/reference.yaml reads stay where they were (the fitted tan alpha).
+    assert d["cases"]["undamped"]["critical"]["p_flu"] == pytest.approx(16.51, abs=0.005)
+    assert d["cases"]["damped"]["critical"]["p_div"] == pytest.approx(30.52, abs=0.005)
+    assert {"undamped_p_flu", "undamped_p_div", "damped_p_flu", "damped_p_div"} <= set(
+        d["quantities"])
+    st = d["stated"]
+    assert st["tan_alpha"] == 1.0
+    crit = {k: st["cases"][k]["critical"] for k in ("undamped", "damped")}
+    # The figure as printed (tan alpha = 1): 16.21 / 34.46, damped 7.91 / 34.86.
+    assert round(crit["undamped"]["p_flu"], 2) == 16.21
+    assert round(crit["undamped"]["p_div"], 2) == 34.46
+    assert round(crit["damped"]["p_flu"], 2) == 7.91
+    assert round(crit["damped"]["p_div"], 2) == 34.86
+    # Its load range reaches past both of its divergence loads.
+    assert st["p"][-1] > max(crit["undamped"]["p_div"], crit["damped"]["p_div"])
+    assert np.array(st["cases"]["damped"]["re"]).shape == (4, len(st["p"]))
+
+
+def test_fig12_draws_both_cases(fig12_data):
+    import matplotlib.pyplot as plt
+
+    from flutterfriction.plotting.rod import plot_fig12
+
+    fig = plot_fig12(fig12_data)
+    text = fig._suptitle.get_text()
+    assert "16.21 / 34.46" in text and "16.51 / 30.22" in text
+    assert len(fig.axes) >= 8
+    plt.close(fig)
+
+
+def test_fig04_dense_solution_passes_through_the_frames():
+    from flutterfriction.scenes.ziegler import fig04
+
+    d = fig04({"pendulum": dict(LIST_47), "dt": 0.04,
+               "cases": {"flutter": {"P": 6.8, "duration": 0.44, "alpha0_deg": 0.5}}})
+    c = d["cases"]["flutter"]
+    t, a = np.array(c["t_dense"]), np.array(c["alpha_dense"])
+    idx = [int(np.argmin(np.abs(t - ti))) for ti in c["times"]]
+    np.testing.assert_allclose(a[idx], np.array(c["alpha"]), rtol=1e-9, atol=1e-12)
