@@ -47,8 +47,11 @@ def plot_dead_load_spectrum(data: dict[str, Any], title: str) -> Figure:
         ax.annotate(f"{name} = {val:.4f}", (val, 1.0), xycoords=("data", "axes fraction"),
                     xytext=(0, 2), textcoords="offset points", ha="center", va="bottom",
                     fontsize=8)
-    for name, xpos in (("stable", e_cr / 2), ("divergence", (e_sup + eta[-1]) / 2)):
-        ax.annotate(name, (xpos, 0.55), xycoords=("data", "axes fraction"), ha="center",
+    # Region names where no branch passes (above the falling upper branch in the middle).
+    for name, xpos, ypos in (("stable", e_cr / 2, 0.55),
+                             ("divergence: one $\\omega^2 < 0$", 0.4 * e_cr + 0.6 * e_sup, 0.85),
+                             ("both $\\omega^2 < 0$", (e_sup + eta[-1]) / 2, 0.55)):
+        ax.annotate(name, (xpos, ypos), xycoords=("data", "axes fraction"), ha="center",
                     fontsize=8)
     ax.set_xlim(eta[0], eta[-1])
     ax.set_xlabel(r"dead load $\eta = H l_1/k_2$ [-]")

@@ -113,6 +113,7 @@ def plot_fig19_theory(data: dict[str, Any]) -> Figure:
         ax1.annotate(f"{d:.2f}\n(×{d / u:.3f})", (xi + w / 2, d), ha="center", va="bottom",
                      fontsize=7)
     ax1.set_xticks(x, ["flutter", "divergence"])
+    ax1.set_xlabel("instability")
     ax1.set_ylabel("critical follower load P [N]")
     ax1.set_ylim(0, 1.25 * max(b.values()))
     ax1.legend(loc="upper left", fontsize=7)
