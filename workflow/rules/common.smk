@@ -17,6 +17,21 @@ SWEEP_SCENES = [n for n, s in SCENES.items() if s.sweep is not None]
 # The slow solvers (~10-45 s each, the rest ~1 s) start first, so that the many short jobs
 # fill the other core around them instead of leaving a long tail.
 SLOW_SCENES = [n for n, s in SCENES.items() if s.slow]
+# The cheap scenes of each chapter part are solved by one job, and their figures drawn by one:
+# a job is a Python process whose start-up and imports (~1 s here) outweigh a cheap scene's
+# computation (~0.1-1 s), so 30 such jobs would spend most of their time starting. Slow scenes
+# and sweeps keep a job each (they start first, and scatter on a cluster).
+BATCHES = {
+    part: [s.name for s in scenes_of(part) if not s.slow and s.sweep is None] for part in PARTS
+}
+BATCHES = {part: names for part, names in BATCHES.items() if names}
+BATCHED = {name: part for part, names in BATCHES.items() for name in names}
+SINGLE_SCENES = [n for n in ALL_SCENES if n not in BATCHED]
+FIGURE_BATCHES = {
+    part: [f for n in names for f in SCENES[n].figures] for part, names in BATCHES.items()
+}
+FIGURE_BATCHES = {part: figs for part, figs in FIGURE_BATCHES.items() if figs}
+SINGLE_FIGURES = [f for f in ALL_FIGURES if FIGURE_DATA[f] not in BATCHED]
 
 
 def job_sources(*modules):
@@ -72,7 +87,8 @@ def sweep_parts(wildcards):
 
 def benchmark_files(wildcards=None):
     return (
-        expand("results/benchmarks/{scene}.solve.tsv", scene=ALL_SCENES)
+        expand("results/benchmarks/{scene}.solve.tsv", scene=SINGLE_SCENES)
+        + expand("results/benchmarks/solve_{part}.tsv", part=BATCHES)
         + [
             f
             for s in SWEEP_SCENES
@@ -129,3 +145,26 @@ def figure_caption(wildcards):
 
 def figure_part(wildcards):
     return FIGURES[wildcards.scene][0].part
+
+
+def batch_sources(part):
+    return sorted({f for n in BATCHES[part] for f in SCENE_SOURCES[n]})
+
+
+def figure_batch_sources(part):
+    return sorted({f for fig in FIGURE_BATCHES[part] for f in FIGURE_SOURCES[fig]})
+
+
+def batch_figure_outputs(part):
+    """The figures of one part's batch, each PNG in `snakemake --report` with its caption."""
+    out = []
+    for f in FIGURE_BATCHES[part]:
+        # (not at the start of a line: Snakemake's parser takes `report` there for its directive)
+        png = report(
+            f"results/figures/{f}.png",
+            caption="../report/batch_figure.rst",
+            category="Figures",
+            labels={"figure": f, "caption": FIGURES[f][1].caption},
+        )
+        out += [f"results/figures/{f}.pdf", png]
+    return out

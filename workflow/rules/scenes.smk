@@ -47,7 +47,7 @@ rule solve:
     benchmark:
         "results/benchmarks/{scene}.solve.tsv"
     wildcard_constraints:
-        scene="|".join(ALL_SCENES),
+        scene="|".join(SINGLE_SCENES),
     priority: scene_priority
     conda:
         "../envs/flutterfriction.yaml"
@@ -80,7 +80,7 @@ rule plot:
     log:
         "results/logs/plot/{scene}.log",
     wildcard_constraints:
-        scene="|".join(ALL_FIGURES),
+        scene="|".join(SINGLE_FIGURES),
     conda:
         "../envs/flutterfriction.yaml"
     resources:
@@ -94,6 +94,62 @@ rule plot:
         part=figure_part,
     script:
         "../scripts/plot_scene.py"
+
+
+# One job per chapter part for its cheap scenes, and one for their figures (see BATCHES).
+for _part in BATCHES:
+
+    rule:
+        name:
+            f"solve_{_part}"
+        input:
+            batch_sources(_part),
+        output:
+            data=expand("results/data/{scene}.json", scene=BATCHES[_part]),
+            timings=expand("results/benchmarks/{scene}.timings.json", scene=BATCHES[_part]),
+        log:
+            f"results/logs/solve/{_part}.log",
+        benchmark:
+            f"results/benchmarks/solve_{_part}.tsv"
+        conda:
+            "../envs/flutterfriction.yaml"
+        resources:
+            runtime=10,
+            mem_mb=1000,
+        params:
+            scenes=BATCHES[_part],
+            # The resolved parameters: editing a scene's config reruns its part's batch.
+            cfg={n: scene_params(config, n) for n in BATCHES[_part]},
+            compute={n: import_path(SCENES[n].compute) for n in BATCHES[_part]},
+        script:
+            "../scripts/solve_batch.py"
+
+
+for _part in FIGURE_BATCHES:
+
+    rule:
+        name:
+            f"plot_{_part}"
+        input:
+            figure_batch_sources(_part),
+            data=expand("results/data/{scene}.json", scene=BATCHES[_part]),
+            timings=expand("results/benchmarks/{scene}.timings.json", scene=BATCHES[_part]),
+        output:
+            batch_figure_outputs(_part),
+        log:
+            f"results/logs/plot/{_part}.log",
+        conda:
+            "../envs/flutterfriction.yaml"
+        resources:
+            runtime=10,
+            mem_mb=1000,
+        params:
+            figures={
+                f: (FIGURE_DATA[f], import_path(FIGURES[f][1].plot)) for f in FIGURE_BATCHES[_part]
+            },
+            draft=config.get("fidelity", "paper") == "quick",
+        script:
+            "../scripts/plot_batch.py"
 
 
 rule animate_pendulum_cycle:
