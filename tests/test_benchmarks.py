@@ -57,3 +57,31 @@ def test_benchmark_files_are_read_latest_line_and_sorted(tmp_path):
     assert jobs[0]["max_rss_mb"] is None  # '-' where the platform does not measure it
     md = work_precision_markdown([], jobs)
     assert "2 jobs, 5 s of job wall time" in md
+
+
+def test_the_readme_timing_table_is_generated_from_benchmark_files(tmp_path):
+    from flutterfriction.benchmarks import (
+        TIMING_END,
+        TIMING_START,
+        read_benchmarks,
+        replace_timing_block,
+        timing_markdown,
+    )
+
+    header = "s\th:m:s\tmax_rss\tmax_vms\tmax_uss\tmax_pss\tio_in\tio_out\tmean_load\tcpu_time\n"
+    for folder, rows in (("after", {"solve_ziegler": (3.0, 2.5), "beck_hopf.solve": (40.0, 39.0)}),
+                         ("before", {"eq25.solve": (1.5, 1.2), "beck_hopf.solve": (90.0, 88.0)})):
+        (tmp_path / folder).mkdir()
+        for name, (wall, cpu) in rows.items():
+            (tmp_path / folder / f"{name}.tsv").write_text(
+                header + f"{wall}\t0:00:01\t100\t0\t0\t0\t0\t0\t0\t{cpu}\n")
+    after = read_benchmarks(sorted((tmp_path / "after").glob("*.tsv")))
+    before = read_benchmarks(sorted((tmp_path / "before").glob("*.tsv")))
+    table = timing_markdown(after, before, {"paper from clean": {"before": 280.0, "after": 100.0}})
+    assert "| paper from clean | 280 | 100 | 2.80x faster |" in table
+    assert "| beck_hopf.solve | 40.0 | 39.0 | 100 | 90.0 | 88.0 |" in table
+    assert "| solve_ziegler | 3.0 | 2.5 | 100 | - | - |" in table  # a batch: new job
+    assert "CPU time of all jobs 42 s (previous main: 89 s)" in table
+    readme = f"intro\n{TIMING_START}\nold\n{TIMING_END}\nrest\n"
+    expected = f"intro\n{TIMING_START}\n{table}{TIMING_END}\nrest\n"
+    assert replace_timing_block(readme, table) == expected
