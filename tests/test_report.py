@@ -7,7 +7,20 @@ import pytest
 from flutterfriction.errors import ParameterError
 from flutterfriction.reference import CheckRow
 from flutterfriction.registry import PARTS, figures
-from flutterfriction.report import broken_links, build_index, layout_figures, load_layout
+from flutterfriction.report import (
+    CHAPTER_FIGURES,
+    broken_links,
+    build_index,
+    coverage_markdown,
+    coverage_problems,
+    layout_figures,
+    load_coverage,
+    load_layout,
+    parameter_list_rows,
+    parameter_lists_markdown,
+    registry_figure_scenes,
+    row_scenes,
+)
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -41,15 +54,107 @@ def _tree(tmp_path, figures=("figA", "figB")):
     return res, layout
 
 
+def _coverage():
+    return [{"number": 1, "title": "the A figure", "status": "reproduced", "figures": ["figA"],
+             "shows": "all of it"},
+            {"number": 2, "title": "a photograph", "status": "not reproduced", "figures": [],
+             "missing": "a photograph"}]
+
+
 def test_every_link_of_a_built_report_resolves(tmp_path):
     res, layout = _tree(tmp_path)
     errata = {"e1": {"printed": "a", "corrected": "b", "evidence": "sympy says so"}}
     page = res / "reports" / "index.html"
-    page.write_text(build_index(layout, _rows(), errata, figure_data={"figB": "shared"}))
+    page.write_text(build_index(
+        layout, _rows(), errata, figure_data={"figB": "shared"}, coverage=_coverage(),
+        row_scene={"q1": "figA", "e1": "shared"}, figure_params={"figA": {"n": 3}},
+        footer="built from commit abc"))
     assert broken_links(page) == []
     text = page.read_text()
     assert "caption &lt;B&gt; &amp; more" in text  # captions are escaped
     assert "sympy says so" in text and "1 of 1 quoted values" in text
+    assert 'id="coverage"' in text and 'id="lists"' in text and "built from commit abc" in text
+
+
+def _figure_block(text, name):
+    start = text.index(f'<figure class="big" id="fig-{name}"')
+    return text[start:text.index("</figure>", start)]
+
+
+def test_each_figure_is_shown_large_with_its_caption_links_and_checked_values(tmp_path):
+    res, layout = _tree(tmp_path)
+    page = res / "reports" / "index.html"
+    page.write_text(build_index(layout, _rows(), {}, figure_data={"figB": "shared"},
+                                row_scene={"q1": "figA", "e1": "shared"},
+                                figure_params={"figA": {"n": 3}}))
+    text = page.read_text()
+    a, b = _figure_block(text, "figA"), _figure_block(text, "figB")
+    assert "caption A" in a and 'href="../figures/figA.png"' in a
+    assert 'href="../figures/figA.pdf"' in a and 'href="../data/figA.json"' in a
+    assert 'href="#q1"' in a and "e1" not in a and "Drawn with: n = 3" in a
+    assert 'href="#e1"' in b and 'href="../data/shared.json"' in b
+    assert "height: 190px" not in text.split("figure.big img")[1].split("}")[0]
+    assert broken_links(page) == []
+
+
+def test_figures_drawing_the_same_data_show_its_checks_once(tmp_path):
+    res, layout = _tree(tmp_path)
+    page = res / "reports" / "index.html"
+    page.write_text(build_index(layout, _rows(), {}, figure_data={"figB": "figA"},
+                                row_scene={"q1": "figA"}))
+    text = page.read_text()
+    assert 'href="#q1"' in _figure_block(text, "figA")
+    b = _figure_block(text, "figB")
+    assert 'href="#q1"' not in b and 'href="#fig-figA"' in b
+    assert broken_links(page) == []
+
+
+def test_every_check_row_of_the_reference_names_a_scene():
+    import yaml
+
+    ref = yaml.safe_load((ROOT / "workflow" / "reference.yaml").read_text())
+    scenes = row_scenes(ref)
+    assert len(scenes) == len(ref["quantities"]) + len(ref["errata"])
+
+
+def test_the_coverage_table_lists_every_chapter_figure_and_only_drawn_figures():
+    entries = load_coverage(ROOT / "workflow" / "coverage.yaml")
+    assert [e["number"] for e in entries] == list(range(1, CHAPTER_FIGURES + 1))
+    scenes = registry_figure_scenes()
+    # a figure the table names must be one the registry draws; a chapter figure the registry
+    # draws (figNN) must be in the table under its number
+    assert coverage_problems(entries, scenes) == []
+    assert entries[23]["status"] == "not reproduced"  # Fig. 24 is a photograph
+    for n in (19, 20, 21):
+        assert entries[n - 1]["status"] == "reproduced in part"
+
+
+def test_coverage_problems_name_an_undrawn_figure_and_an_unlisted_one():
+    entries = _coverage()
+    assert coverage_problems(entries, {"figA": "figA"}) == []
+    missing = coverage_problems(entries, {})
+    assert len(missing) == 1 and "'figA'" in missing[0]
+    unlisted = coverage_problems(entries, {"figA": "figA", "fig02": "fig02"})
+    assert len(unlisted) == 1 and "Fig. 2 does not list" in unlisted[0]
+
+
+def test_an_invalid_coverage_file_is_refused(tmp_path):
+    p = tmp_path / "coverage.yaml"
+    p.write_text("figures:\n  - {number: 1, title: t, status: reproduced, figures: []}\n")
+    with pytest.raises(ParameterError, match="invalid coverage file"):
+        load_coverage(p)  # reproduced needs a figure and what it shows; and 24 figures
+
+
+def test_the_readme_tables_render_as_markdown():
+    md = coverage_markdown()
+    lines = md.splitlines()
+    assert lines[0].startswith("| Fig. |")
+    assert sum(line.startswith("| ") for line in lines) == CHAPTER_FIGURES + 1
+    assert "[fig02](results/figures/fig02.png)" in md and "Of the chapter's 24 figures" in md
+    rows = parameter_list_rows()
+    assert [r["ours"] for r in rows].count(True) == 1 and rows[-1]["name"] == "sec35"
+    lists = parameter_lists_markdown()
+    assert "**sec35**" in lists and "OUR CHOICE" in lists and "0.189 N m" in lists
 
 
 def test_a_missing_file_or_anchor_is_reported(tmp_path):

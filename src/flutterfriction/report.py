@@ -1,10 +1,14 @@
 """One HTML report for everything the workflow builds: ``results/reports/index.html``.
 
-It shows every figure (thumbnail, caption, links to the PDF and to the data it draws), every
+It opens with the coverage table (every chapter figure: reproduced, in part or not, by which
+of our figures, from which computation, and why not; ``workflow/coverage.yaml``) and the table of
+the chapter's parameter lists; then every figure at full width with its caption, links to its
+PNG, PDF and data, the checked values its data carry and the parameters it was drawn with; every
 executed notebook, the stress report and the tolerance check (quoted value, reproduced value,
 independent method, status), with the errata highlighted next to their evidence. All links are
 relative, so the ``results/`` folder can be moved or archived as a whole; :func:`broken_links`
-checks that every one of them resolves.
+checks that every one of them resolves. :func:`coverage_markdown` and
+:func:`parameter_lists_markdown` render the two tables for the README.
 """
 
 from __future__ import annotations
@@ -30,6 +34,18 @@ h1 { font-size: 1.6em; } h2 { border-bottom: 1px solid #ccc; padding-bottom: .2e
 figure { margin: 0; border: 1px solid #ddd; border-radius: 4px; padding: .5em; background: #fff; }
 figure img { width: 100%; height: 190px; object-fit: contain; }
 figcaption { font-size: .85em; } figcaption a { margin-right: .6em; }
+figure.big { margin: 1.5em 0; padding: .8em; }
+figure.big img { height: auto; max-height: none; display: block; }
+figure.big figcaption { font-size: .95em; }
+figure.big .links { font-size: .85em; }
+figure.big table { width: auto; margin-top: .4em; } figure.big th { position: static; }
+table.coverage td:first-child { min-width: 0; }
+table.coverage td:nth-child(3), table.coverage td:nth-child(4) { white-space: nowrap; }
+table.coverage td:nth-child(5) { overflow-wrap: normal; }
+table.coverage td.st-reproduced { background: #e6f4e6; }
+table.coverage td.st-part { background: #fff6d6; } table.coverage td.st-not { background: #f3f3f3; }
+.params { font-size: .8em; color: #444; }
+figure.anim img { height: auto; }
 table { border-collapse: collapse; font-size: .8em; width: 100%; }
 th, td { border: 1px solid #ddd; padding: .25em .4em; vertical-align: top; text-align: left; }
 th { background: #f3f3f3; position: sticky; top: 0; }
@@ -119,12 +135,266 @@ def _check_table(rows: Iterable[CheckRow], errata: Mapping[str, Mapping[str, Any
     return "\n".join(out)
 
 
+#: The chapter's figures (Figs. 1-24): ``workflow/coverage.yaml`` lists each once.
+CHAPTER_FIGURES = 24
+_WORKFLOW = Path(__file__).resolve().parents[2] / "workflow"
+COVERAGE = _WORKFLOW / "coverage.yaml"
+COVERAGE_SCHEMA = _WORKFLOW / "schemas" / "coverage.schema.yaml"
+_STATUS_CLASS = {"reproduced": "st-reproduced", "reproduced in part": "st-part",
+                 "not reproduced": "st-not"}
+
+
+def load_coverage(path: str | Path = COVERAGE,
+                  schema_path: str | Path = COVERAGE_SCHEMA) -> list[dict[str, Any]]:
+    """Read and validate ``workflow/coverage.yaml``: the schema, and Figs. 1 to
+    :data:`CHAPTER_FIGURES` each listed once, in order. Raises :class:`ParameterError` listing
+    every problem, one line each."""
+    import jsonschema
+
+    with open(path, encoding="utf-8") as fh:
+        cov = yaml.safe_load(fh)
+    with open(schema_path, encoding="utf-8") as fh:
+        schema = yaml.safe_load(fh)
+    problems = []
+    for err in jsonschema.Draft202012Validator(schema).iter_errors(cov):
+        where = ".".join(map(str, err.path)) or "(top level)"
+        problems.append(f"{where}: {err.message if len(err.message) < 200 else err.validator}")
+    if not problems:
+        numbers = [e["number"] for e in cov["figures"]]
+        if numbers != list(range(1, CHAPTER_FIGURES + 1)):
+            problems.append(f"figures must be numbered 1..{CHAPTER_FIGURES} in order, once each; "
+                            f"got {numbers}")
+    if problems:
+        raise ParameterError(f"{path}: invalid coverage file:\n  " + "\n  ".join(problems))
+    return cov["figures"]
+
+
+def registry_figure_scenes() -> dict[str, str]:
+    """Figure name -> the scene whose data it draws, from :mod:`flutterfriction.registry`."""
+    from flutterfriction.registry import figures
+
+    return {f: scene.name for f, (scene, _) in figures().items()}
+
+
+def coverage_problems(entries: list[Mapping[str, Any]],
+                      figure_scenes: Mapping[str, str]) -> list[str]:
+    """What the coverage table claims that the registry does not draw (a figure it names that
+    is not registered), and chapter figures the registry draws (``figNN``, ``figNN_...``) that
+    the table does not list under Fig. NN; empty when the table is true."""
+    import re
+
+    problems = []
+    listed = {f: e["number"] for e in entries for f in e["figures"]}
+    for f, n in listed.items():
+        if f not in figure_scenes:
+            problems.append(f"workflow/coverage.yaml: Fig. {n} names {f!r}, which the registry "
+                            "does not draw")
+    for f in figure_scenes:
+        m = re.fullmatch(r"fig(\d\d)(_.*)?", f)
+        if m and int(m.group(1)) <= CHAPTER_FIGURES and listed.get(f) != int(m.group(1)):
+            problems.append(f"workflow/coverage.yaml: the registry draws {f!r}, which Fig. "
+                            f"{int(m.group(1))} does not list")
+    return problems
+
+
+def beyond_the_chapter(entries: list[Mapping[str, Any]],
+                       figure_scenes: Mapping[str, str]) -> list[str]:
+    """Registered figures that reproduce no chapter figure (in the registry's order)."""
+    listed = {f for e in entries for f in e["figures"]}
+    return [f for f in figure_scenes if f not in listed]
+
+
+def coverage_counts(entries: list[Mapping[str, Any]]) -> dict[str, int]:
+    return {s: sum(e["status"] == s for e in entries) for s in _STATUS_CLASS}
+
+
+def coverage_markdown(path: str | Path = COVERAGE,
+                      figure_scenes: Mapping[str, str] | None = None,
+                      figure_dir: str = "results/figures") -> str:
+    """The coverage table as markdown (for the README): one row per chapter figure (status, our
+    figures linked to their PNG under ``figure_dir``, the computation each draws, what is
+    shown, what is missing and why), a count, and the figures beyond the chapter."""
+    entries = load_coverage(path)
+    scenes = registry_figure_scenes() if figure_scenes is None else dict(figure_scenes)
+
+    def esc(x: str) -> str:
+        return x.replace("|", "\\|")
+
+    def figs(names: Iterable[str]) -> str:
+        return ", ".join(f"[{f}]({figure_dir}/{f}.png)" for f in names)
+
+    lines = ["| Fig. | chapter figure | status | our figures | computation (scene) | shown | "
+             "not reproduced (why) |", "|---|---|---|---|---|---|---|"]
+    for e in entries:
+        comp = ", ".join(dict.fromkeys(f"`{scenes[f]}`" for f in e["figures"] if f in scenes))
+        lines.append(f"| {e['number']} | {esc(e['title'])} | {e['status']} | "
+                     f"{figs(e['figures'])} | {comp} | {esc(e.get('shows', ''))} | "
+                     f"{esc(e.get('missing', ''))} |")
+    c = coverage_counts(entries)
+    lines.append("")
+    lines.append(f"Of the chapter's {len(entries)} figures: {c['reproduced']} reproduced, "
+                 f"{c['reproduced in part']} reproduced in part, {c['not reproduced']} not "
+                 "reproduced.")
+    beyond = beyond_the_chapter(entries, scenes)
+    if beyond:
+        lines.append(f"Beyond the chapter ({len(beyond)} figures): {figs(beyond)}.")
+    return "\n".join(lines) + "\n"
+
+
+def coverage_html(entries: list[Mapping[str, Any]], figure_scenes: Mapping[str, str]) -> str:
+    """The coverage table for the report: our figures link to their place in the report."""
+    out = ['<div class="wide"><table class="coverage"><thead><tr><th>Fig.</th>'
+           "<th>chapter figure</th><th>status</th><th>our figures</th><th>computation "
+           "(scene)</th><th>shown</th><th>not reproduced (why)</th></tr></thead><tbody>"]
+    for e in entries:
+        figs = ", ".join(f'<a href="#fig-{html.escape(f)}">{html.escape(f)}</a>'
+                         if f in figure_scenes else f"{html.escape(f)} (not drawn)"
+                         for f in e["figures"])
+        comp = ", ".join(dict.fromkeys(f"<code>{html.escape(figure_scenes[f])}</code>"
+                                       for f in e["figures"] if f in figure_scenes))
+        out.append(
+            f'<tr id="chapter-fig{e["number"]}"><td>{e["number"]}</td>'
+            f"<td>{html.escape(e['title'])}</td>"
+            f'<td class="{_STATUS_CLASS[e["status"]]}">{html.escape(e["status"])}</td>'
+            f"<td>{figs}</td><td>{comp}</td><td>{html.escape(e.get('shows', ''))}</td>"
+            f"<td>{html.escape(e.get('missing', ''))}</td></tr>")
+    out.append("</tbody></table></div>")
+    c = coverage_counts(entries)
+    beyond = beyond_the_chapter(entries, figure_scenes)
+    out.append(f"<p>Of the chapter's {len(entries)} figures: <b>{c['reproduced']} reproduced"
+               f"</b>, {c['reproduced in part']} reproduced in part, {c['not reproduced']} not "
+               "reproduced." + (f" Beyond the chapter ({len(beyond)} figures): " + ", ".join(
+                   f'<a href="#fig-{html.escape(f)}">{html.escape(f)}</a>' for f in beyond)
+                   + "." if beyond else "") + "</p>")
+    return "\n".join(out)
+
+
+#: Units of the parameter-list keys (SI).
+PARAMETER_UNITS = {"l1": "m", "l2": "m", "d": "m", "h": "m", "length": "m", "m1": "kg",
+                   "m2": "kg", "m3": "kg", "k1": "N m", "k2": "N m", "c1": "N m s",
+                   "c2": "N m s", "B": "N m²", "rho": "kg/m", "D": "N m² s", "lam": "Pa",
+                   "mu": "Pa", "P": "(Voigt, dimensionless)", "Q": "(Voigt, dimensionless)"}
+
+
+def _value(v: Any, unit: str = "") -> str:
+    """A parameter value in a few significant digits (lists longer than 8 shortened)."""
+    if isinstance(v, Mapping):
+        text = "{" + ", ".join(f"{k}: {_value(x)}" for k, x in v.items()) + "}"
+    elif isinstance(v, (tuple, list)):
+        shown = [_value(x) for x in v[:8]]
+        text = "(" + ", ".join(shown) + (f", … {len(v)} values" if len(v) > 8 else "") + ")"
+    elif isinstance(v, float):
+        text = f"{v:.4g}"
+    else:
+        text = str(v)
+    return f"{text} {unit}".strip()
+
+
+def parameter_list_rows(lists: Mapping[str, Any] | None = None) -> list[dict[str, str]]:
+    """The chapter's parameter lists (:data:`flutterfriction.parameters.LISTS`) as rows: name,
+    source, values with units, note; a list the chapter does not give (our choice) says so."""
+    if lists is None:
+        from flutterfriction.parameters import LISTS as lists
+    rows = []
+    for p in lists.values():
+        ours = "our choice" in p.source
+        rows.append({"name": p.name, "source": p.source, "kind": p.kind,
+                     "values": ", ".join(f"{k} = {_value(v, PARAMETER_UNITS.get(k, ''))}"
+                                         for k, v in p.values.items()),
+                     "note": ("OUR CHOICE, not the chapter's: " if ours else "") + p.note,
+                     "ours": ours})
+    return rows
+
+
+def parameter_lists_markdown() -> str:
+    """The parameter lists as a markdown table (for the README)."""
+    lines = ["| list | source | values (SI) | note |", "|---|---|---|---|"]
+    for r in parameter_list_rows():
+        name = f"**{r['name']}**" if r["ours"] else r["name"]
+        lines.append(f"| {name} | {r['source']} | {r['values']} | {r['note']} |")
+    return "\n".join(lines) + "\n"
+
+
+def parameter_lists_html() -> str:
+    out = ['<div class="wide"><table><thead><tr><th>list</th><th>source</th><th>values (SI)'
+           "</th><th>note</th></tr></thead><tbody>"]
+    for r in parameter_list_rows():
+        cls = ' class="erratum"' if r["ours"] else ""
+        note = html.escape(r["note"])
+        if r["ours"]:
+            note = "<b>our choice</b>, not the chapter's: " + html.escape(
+                r["note"].removeprefix("OUR CHOICE, not the chapter's: "))
+        out.append(f'<tr{cls} id="list-{html.escape(r["name"])}"><td>{html.escape(r["name"])}'
+                   f"</td><td>{html.escape(r['source'])}</td><td>{html.escape(r['values'])}"
+                   f"</td><td>{note}</td></tr>")
+    out.append("</tbody></table></div>")
+    return "\n".join(out)
+
+
+def row_scenes(reference: Mapping[str, Any]) -> dict[str, str]:
+    """Check-row id -> the scene whose data it checks (from ``workflow/reference.yaml``)."""
+    return {e["id"]: e["scene"] for section in ("quantities", "errata")
+            for e in reference.get(section) or []}
+
+
+def _short(x: Any) -> str:
+    if isinstance(x, float):
+        return f"{x:.6g}"
+    return str(x)
+
+
+def _figure_checks(rows: list[CheckRow]) -> str:
+    """The check rows of one figure's data, as a small table linking to the full check."""
+    out = ["<table><thead><tr><th>checked value</th><th>source</th><th>quoted</th>"
+           "<th>reproduced</th><th>independent</th><th>status</th></tr></thead><tbody>"]
+    for r in rows:
+        cls = "erratum" if r.kind == "erratum" else ("pass" if r.status == "pass" else "fail")
+        if r.status not in ("pass", "verified erratum"):
+            cls = "fail"
+        unit = f" {r.unit}" if r.unit and r.kind == "quantity" else ""
+        out.append(f'<tr class="{cls}"><td><a href="#{html.escape(r.id)}">{html.escape(r.id)}'
+                   f"</a></td><td>{html.escape(r.source)}</td>"
+                   f'<td class="num">{html.escape(_short(r.quoted) + unit)}</td>'
+                   f'<td class="num">{html.escape(_short(r.reproduced))}</td>'
+                   f'<td class="num">{html.escape(_short(r.independent))}</td>'
+                   f'<td class="status">{html.escape(r.shown_status)}</td></tr>')
+    out.append("</tbody></table>")
+    return "\n".join(out)
+
+
+def _named_lists(params: Mapping[str, Any]) -> str:
+    """A scene's parameters, one line: sub-mappings equal to a chapter list are named."""
+    from flutterfriction.parameters import LISTS
+
+    def same(a: Mapping[str, Any], b: Mapping[str, Any]) -> bool:
+        def norm(v: Any) -> Any:
+            return list(v) if isinstance(v, (tuple, list)) else v
+
+        return set(a) == set(b) and all(norm(a[k]) == norm(b[k]) for k in a)
+
+    parts = []
+    for k, v in params.items():
+        if isinstance(v, Mapping):
+            name = next((p.name for p in LISTS.values() if same(v, p.values)), None)
+            if name:
+                parts.append(f'{k}: <a href="#list-{name}">{name}</a>')
+                continue
+            parts.append(f"{html.escape(k)}: {html.escape(_value(v))}")
+        else:
+            parts.append(f"{html.escape(k)} = {html.escape(_value(v))}")
+    return "; ".join(parts)
+
+
 def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
                 errata: Mapping[str, Mapping[str, Any]],
                 figure_data: Mapping[str, str] | None = None,
                 extra_links: Iterable[tuple[str, str]] = (),
                 stress: list[Mapping[str, str]] | None = None,
-                problems: Iterable[str] = ()) -> str:
+                problems: Iterable[str] = (),
+                coverage: list[Mapping[str, Any]] | None = None,
+                row_scene: Mapping[str, str] | None = None,
+                figure_params: Mapping[str, Mapping[str, Any]] | None = None,
+                footer: str = "") -> str:
     """The report's HTML (written even when the check fails: then it says so at the top).
     Paths are relative to ``results/reports/``.
 
@@ -146,8 +416,25 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
     problems
         What failed the workflow's check (failed entries, figures missing from the layout),
         shown in a banner at the top.
+    coverage
+        :func:`load_coverage`'s entries: the table of the chapter's figures near the top (and
+        the table of parameter lists after it).
+    row_scene
+        Check-row id -> the scene it checks (:func:`row_scenes`): each figure shows the rows
+        of the scene it draws.
+    figure_params
+        Scene -> the parameters its data were computed with, shown under its figures.
+    footer
+        Provenance (commit, versions, date), shown at the bottom.
     """
     figure_data = dict(figure_data or {})
+    row_scene = dict(row_scene or {})
+    figure_params = dict(figure_params or {})
+    rows_of: dict[str, list[CheckRow]] = {}
+    for r in rows:
+        if r.id in row_scene:
+            rows_of.setdefault(row_scene[r.id], []).append(r)
+    shown_checks: dict[str, str] = {}  # scene -> the first figure that shows its checks
     n_q = sum(r.kind == "quantity" for r in rows)
     n_pass = sum(r.kind == "quantity" and r.status == "pass" for r in rows)
     n_err = sum(r.kind == "erratum" for r in rows)
@@ -168,10 +455,24 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
     if extra_links:
         parts.append("<p>" + " · ".join(f'<a href="{html.escape(h)}">{html.escape(t)}</a>'
                                         for h, t in extra_links) + "</p>")
-    parts.append("<nav><ul>" + "".join(
+    parts.append("<nav><ul>" + ('<li><a href="#coverage">The chapter\'s figures: what is '
+                                "reproduced</a></li><li><a href=\"#lists\">The parameter "
+                                "lists</a></li>" if coverage is not None else "") + "".join(
         f'<li><a href="#s{k}">{html.escape(s["title"])}</a></li>'
         for k, s in enumerate(layout["sections"])) + '<li><a href="#check">The check</a></li>'
         + ('<li><a href="#stress">Stress tests</a></li>' if stress else "") + "</ul></nav>")
+    if coverage is not None:
+        scenes = {f: figure_data.get(f, f) for f in layout_figures(layout)}
+        parts.append('<h2 id="coverage">The chapter\'s figures: what is reproduced</h2>'
+                     "<p>Every figure of the chapter, which of our figures reproduces it and from "
+                     "which computation, and what is not reproduced and why "
+                     "(<code>workflow/coverage.yaml</code>).</p>")
+        parts.append(coverage_html(coverage, scenes))
+        parts.append('<h2 id="lists">The parameter lists</h2><p>The chapter\'s parameter '
+                     "lists as the computations use them (<code>flutterfriction.parameters"
+                     "</code>); the highlighted list is our choice: the chapter gives no "
+                     "numbers there.</p>")
+        parts.append(parameter_lists_html())
     for k, section in enumerate(layout["sections"]):
         parts.append(f'<h2 id="s{k}">{html.escape(section["title"])}</h2>')
         if section.get("intro"):
@@ -180,25 +481,38 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
             nb = section["notebook"]
             parts.append(f'<p>Executed notebook: <a href="{nb}.html">{nb}.html</a> '
                          f"(source <code>notebooks/{nb}.py</code>)</p>")
-        parts.append('<div class="grid">')
         for scene, caption in section.get("figures", {}).items():
             data = figure_data.get(scene, scene)
+            if data in shown_checks:
+                checks = (f'<p class="links">Checked values: with <a href="#fig-'
+                          f'{shown_checks[data]}">{shown_checks[data]}</a> (same data).</p>')
+            elif rows_of.get(data):
+                shown_checks[data] = scene
+                checks = _figure_checks(rows_of[data])
+            else:
+                checks = ""
+            params = (f'<p class="params">Drawn with: {_named_lists(figure_params[data])}</p>'
+                      if figure_params.get(data) else "")
             parts.append(
-                f'<figure id="fig-{scene}"><a href="../figures/{scene}.png">'
-                f'<img src="../figures/{scene}.png" alt="{scene}" loading="lazy"></a>'
-                f"<figcaption><b>{scene}</b>: {html.escape(caption)}<br>"
+                f'<figure class="big" id="fig-{scene}"><a href="../figures/{scene}.png" '
+                f'title="open the PNG"><img src="../figures/{scene}.png" alt="{scene}" '
+                f'loading="lazy"></a><figcaption><b>{scene}</b>: {html.escape(caption)}'
+                f'<div class="links"><a href="../figures/{scene}.png">PNG</a>'
                 f'<a href="../figures/{scene}.pdf">PDF</a>'
-                f'<a href="../data/{data}.json">data</a></figcaption></figure>')
+                f'<a href="../data/{data}.json">data ({html.escape(data)})</a></div>'
+                f"{checks}{params}</figcaption></figure>")
         for path, spec in section.get("images", {}).items():
             links = "".join(f'<a href="../{html.escape(h)}">{html.escape(t)}</a>'
                             for t, h in spec.get("links", {}).items())
             parts.append(
-                f'<figure><a href="../{path}"><img src="../{path}" alt="{path}" '
-                f'loading="lazy"></a><figcaption>{html.escape(spec["caption"])}<br>{links}'
-                "</figcaption></figure>")
+                f'<figure class="big"><a href="../{path}"><img src="../{path}" alt="{path}" '
+                f'loading="lazy"></a><figcaption>{html.escape(spec["caption"])}'
+                f'<div class="links">{links}</div></figcaption></figure>')
+        parts.append('<div class="grid">')
         for gif, caption in section.get("animations", {}).items():
             parts.append(
-                f'<figure><a href="../figures/{gif}"><img src="../figures/{gif}" alt="{gif}" '
+                f'<figure class="anim"><a href="../figures/{gif}"><img src="../figures/{gif}" '
+                f'alt="{gif}" '
                 f'loading="lazy"></a><figcaption><b>{gif}</b>: {html.escape(caption)}'
                 "</figcaption></figure>")
         parts.append("</div>")
@@ -210,6 +524,8 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
     parts.append(_check_table(rows, errata))
     if stress:
         parts.append(_stress_section(stress))
+    if footer:
+        parts.append(f'<hr><p class="params">{html.escape(footer)}</p>')
     parts.append("</body></html>")
     return "\n".join(parts)
 
@@ -266,3 +582,35 @@ def broken_links(page: str | Path) -> list[str]:
         if not (page.parent / unquote(parts.path)).exists():
             bad.append(link)
     return bad
+
+
+def provenance(root: str | Path | None = None) -> str:
+    """One line for the index page's footer (only there, so the data files stay byte-identical
+    between runs): the commit (``+changes`` when the work tree differs from it), the versions
+    of Python and the numerical packages, and the date."""
+    import datetime
+    import platform
+    import subprocess
+    from importlib.metadata import PackageNotFoundError, version
+
+    root = Path(root) if root is not None else Path(__file__).resolve().parents[2]
+
+    def git(*args: str) -> str:
+        try:
+            return subprocess.run(["git", *args], cwd=root, capture_output=True, text=True,
+                                  timeout=10, check=True).stdout.strip()
+        except (OSError, subprocess.SubprocessError):
+            return ""
+
+    commit = git("rev-parse", "--short=12", "HEAD") or "unknown"
+    if commit != "unknown" and git("status", "--porcelain", "--untracked-files=no"):
+        commit += "+changes"
+    versions = []
+    for pkg in ("flutterfriction", "numpy", "scipy", "matplotlib", "scikit-fem", "sympy"):
+        try:
+            versions.append(f"{pkg} {version(pkg)}")
+        except PackageNotFoundError:
+            pass
+    date = datetime.datetime.now(datetime.UTC).strftime("%Y-%m-%d %H:%M UTC")
+    return (f"Built from commit {commit} with Python {platform.python_version()}, "
+            f"{', '.join(versions)}, on {date}.")

@@ -40,6 +40,7 @@ rule report:
         code=job_sources("flutterfriction.reference", "flutterfriction.report"),
         reference="workflow/reference.yaml",
         layout="workflow/report.yaml",
+        coverage="workflow/coverage.yaml",
         stress="results/checks/stress.json",
         work_precision=rules.work_precision.output,
         data=expand("results/data/{scene}.json", scene=ALL_SCENES),

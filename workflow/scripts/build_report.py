@@ -12,12 +12,22 @@ from flutterfriction.reference import (
     run_check,
     write_summary,
 )
-from flutterfriction.report import broken_links, build_index, layout_figures, load_layout
+from flutterfriction.report import (
+    broken_links,
+    build_index,
+    coverage_problems,
+    layout_figures,
+    load_coverage,
+    load_layout,
+    provenance,
+    row_scenes,
+)
 
 log_job_output(snakemake.log[0])  # this job's output goes to its log file
 
 reference = load_reference(snakemake.input.reference)
-rows = run_check(reference, load_scene_data(snakemake.input.data), snakemake.params.fidelity)
+data = load_scene_data(snakemake.input.data)
+rows = run_check(reference, data, snakemake.params.fidelity)
 write_summary(rows, snakemake.output.json, snakemake.output.md)  # first: the report links it
 layout = load_layout(snakemake.input.layout)
 drawn = {Path(f).stem for f in snakemake.input.figures}
@@ -26,16 +36,23 @@ problems = []
 if drawn != shown:
     problems.append(f"workflow/report.yaml: figures not shown {sorted(drawn - shown)}, "
                     f"unknown figures {sorted(shown - drawn)}")
+coverage_file = snakemake.input.get("coverage", "workflow/coverage.yaml")
+coverage = load_coverage(coverage_file)
+problems += coverage_problems(coverage, {f: snakemake.params.figure_data.get(f, f)
+                                         for f in layout_figures(layout)})
 bad = failed(rows)
 if bad:
     problems.append(f"reference check failed for: {', '.join(r.id for r in bad)}")
 errata = {e["id"]: e for e in reference.get("errata", [])}
 stress = read_json(snakemake.input.stress)
+params = {name: d.get("params", {}) for name, d in data.items()}
 
 
 def index(problems):
     return build_index(layout, rows, errata, figure_data=snakemake.params.figure_data,
-                       stress=stress, problems=problems)
+                       stress=stress, problems=problems, coverage=coverage,
+                       row_scene=row_scenes(reference), figure_params=params,
+                       footer=provenance())
 
 
 write_text(snakemake.output.html, index(problems))
