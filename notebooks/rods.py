@@ -25,6 +25,7 @@ from IPython.display import Image, Markdown, display
 
 from flutterfriction.analysis.rod import critical_loads
 from flutterfriction.models.rod import Rod, RodGroups
+from flutterfriction.notebook_export import quantities_table
 from flutterfriction.parameters import LIST_119
 
 DATA, FIGS = Path("results/data"), Path("results/figures")
@@ -77,10 +78,7 @@ display(Markdown(f"List (119): $\\eta$ = {g.eta:.6g}, load unit $B/l^2$ = {rod11
 
 # %%
 show("fig11")
-q = scene("fig11")["quantities"]
-display(Markdown("\n".join(f"- {k}: {v['value']:.10g} ({v['method']}); {v['independent']:.10g} "
-                           f"({v['independent_method']})" for k, v in q.items()
-                           if isinstance(v["value"], float))))
+display(Markdown(quantities_table(scene("fig11")["quantities"], digits=8)))
 
 # %% [markdown]
 # ## Fig. 12: the Pflüger rod, and an erratum
@@ -117,9 +115,10 @@ show("fig12")
 
 # %%
 show("rod_fe_convergence")
-for name, c in scene("rod_fe_convergence")["cases"].items():
-    display(Markdown(f"- {name}: rate {c['rate']:.3f}, constant {c['constant']:.3g}; exact "
-                     f"p_flu = {c['exact']['p_flu']:.12g}"))
+display(Markdown("| case | convergence rate | constant | exact p_flu |\n|---|---|---|---|\n"
+                 + "\n".join(f"| {name} | {c['rate']:.3f} | {c['constant']:.3g} | "
+                              f"{c['exact']['p_flu']:.10g} |"
+                              for name, c in scene("rod_fe_convergence")["cases"].items())))
 
 # %% [markdown]
 # ## The whole family: from Beck to Pflüger

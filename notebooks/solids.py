@@ -24,6 +24,7 @@ import numpy as np
 from IPython.display import Image, Markdown, display
 
 from flutterfriction.models import solid as so
+from flutterfriction.notebook_export import quantities_table
 
 DATA, FIGS = Path("results/data"), Path("results/figures")
 
@@ -90,9 +91,7 @@ show("acoustic_eigenvalues")
 # The statements of §3.5, checked on 2000 random samples (seeded):
 
 # %%
-for k, v in scene("solids_statements")["quantities"].items():
-    display(Markdown(f"- **{k}**: {v['value']} ({v['method']}); {v['independent']} "
-                     f"({v['independent_method']})"))
+display(Markdown(quantities_table(scene("solids_statements")["quantities"], digits=4)))
 
 # %% [markdown]
 # ### Which directions flutter, and anisotropy

@@ -29,6 +29,7 @@ from flutterfriction.analysis.polynomial import characteristic_polynomial
 from flutterfriction.analysis.routh import robustly_stable, routh_hurwitz
 from flutterfriction.analysis.ziegler import critical_loads, spectrum
 from flutterfriction.closed_forms import ziegler_damped as cfd
+from flutterfriction.notebook_export import quantities_table
 
 DATA, FIGS = Path("results/data"), Path("results/figures")
 
@@ -74,10 +75,7 @@ display(Markdown("| coefficient | printed eq. (31) | sympy | from the matrices |
 # dead load at $H_{cr}$:
 
 # %%
-q = scene("damped_dead_load")["quantities"]
-for k, v in q.items():
-    display(Markdown(f"{k}: {v['value']:.15f} ({v['method']}) vs {v['independent']:.15f} "
-                     f"({v['independent_method']})"))
+display(Markdown(quantities_table(scene("damped_dead_load")["quantities"], digits=15)))
 
 # %% [markdown]
 # ## The Ziegler paradox (§2.4)
@@ -90,9 +88,7 @@ for k, v in q.items():
 
 # %%
 show("fig05")
-q = scene("fig05")["quantities"]
-display(Markdown("\n".join(f"- {k}: {v['value']:.12f} ({v['method']}); {v['independent']:.12f} "
-                           f"({v['independent_method']})" for k, v in q.items())))
+display(Markdown(quantities_table(scene("fig05")["quantities"], digits=10)))
 
 # %% [markdown]
 # As $\epsilon \to 0$ the flutter load tends to $4/3\,K/L$, not to the $2\,K/L$ of the pendulum
@@ -146,9 +142,7 @@ for rel in (-1e-12, 1e-12):
 
 # %%
 show("paradox_map", width=860)
-q = scene("paradox_map")["quantities"]
-display(Markdown("\n".join(f"- {k}: closed form {v['value']:.10f}, Routh–Hurwitz "
-                           f"{v['independent']:.10f}" for k, v in q.items())))
+display(Markdown(quantities_table(scene("paradox_map")["quantities"], digits=10)))
 
 # %% [markdown]
 # ## Fig. 19: the experiment's theoretical bars (§2.10)
@@ -163,9 +157,7 @@ display(Markdown("\n".join(f"- {k}: closed form {v['value']:.10f}, Routh–Hurwi
 
 # %%
 show("fig19_theory", width=860)
-q = scene("fig19_theory")["quantities"]
-display(Markdown("\n".join(f"- {k}: {v['value']:.6g} ({v['method']}); {v['independent']:.6g} "
-                           f"({v['independent_method']})" for k, v in q.items())))
+display(Markdown(quantities_table(scene("fig19_theory")["quantities"], digits=6)))
 
 # %% [markdown]
 # ## Your own pendulum
@@ -175,4 +167,5 @@ display(Markdown("\n".join(f"- {k}: {v['value']:.6g} ({v['method']}); {v['indepe
 # %%
 mine = ZieglerPendulum(l1=0.1, l2=0.1, d=0.05, h=0.0, m1=0.3, m2=0.1, m3=0.0, k1=0.4, k2=0.2,
                        c1=0.002, c2=0.004)
-display(Markdown("\n".join(f"- {k} = {v:.8g} N" for k, v in critical_loads(mine).as_dict().items())))
+display(Markdown("| load | value [N] |\n|---|---|\n" + "\n".join(
+    f"| {k} | {v:.6g} |" for k, v in critical_loads(mine).as_dict().items())))
