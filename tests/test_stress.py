@@ -3,12 +3,18 @@
 import pytest
 
 from flutterfriction.errors import ConvergenceError
-from flutterfriction.stress import ALL_CASES, CORRECT, REFUSED, WRONG, _judge, stress_markdown
+from flutterfriction.stress import (
+    ALL_CASES,
+    CORRECT,
+    REFUSED,
+    SLOW_AREAS,
+    WRONG,
+    _judge,
+    stress_markdown,
+)
 
-# The rod's regime scan and vanishing-viscosity cases take ~40-120 s each: `slow`.
-SLOW_AREAS = {"rod: regimes along p", "rod: vanishing viscosity"}
 
-
+# The slow areas (~40-120 s each) are marked slow.
 @pytest.mark.parametrize("area", [pytest.param(a, marks=pytest.mark.slow) if a in SLOW_AREAS
                                   else a for a in sorted(ALL_CASES)])
 def test_no_silent_wrong_answer(area):

@@ -18,6 +18,9 @@ rule stress:
     resources:
         runtime=20,
         mem_mb=1000,
+    params:
+        # the quick preset leaves out the slow areas (stress.SLOW_AREAS)
+        quick=config.get("fidelity", "paper") == "quick",
     script:
         "../scripts/stress.py"
 
