@@ -165,6 +165,8 @@ rule animate_pendulum_cycle:
     resources:
         runtime=10,
         mem_mb=1000,
+    params:
+        quick=config.get("fidelity", "paper") == "quick",
     script:
         "../scripts/animate_pendulum.py"
 
@@ -182,5 +184,7 @@ rule animate_rod_cycle:
     resources:
         runtime=10,
         mem_mb=1000,
+    params:
+        quick=config.get("fidelity", "paper") == "quick",
     script:
         "../scripts/animate_rod.py"

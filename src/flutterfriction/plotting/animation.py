@@ -56,9 +56,13 @@ def pendulum_cycle_gif(data: dict[str, Any], path: str | os.PathLike, n_periods:
     _write_gif(fig, frame, len(pick), path, fps)
 
 
-def rod_cycle_gif(data: dict[str, Any], path: str | os.PathLike, fps: int = 15) -> None:
-    """The nonlinear Beck rod on its limit cycle (one period), written atomically to ``path``."""
+def rod_cycle_gif(data: dict[str, Any], path: str | os.PathLike, fps: int = 15,
+                  frames: int | None = None) -> None:
+    """The nonlinear Beck rod on its limit cycle (one period), written atomically to ``path``;
+    ``frames``: at most that many of the stored shapes, evenly spaced (all by default)."""
     shapes = [np.array(s) for s in data["shapes"]]
+    if frames is not None and frames < len(shapes):
+        shapes = [shapes[int(k)] for k in np.linspace(0, len(shapes) - 1, frames).round()]
     L = float(data["params"]["rod"]["length"])
     fig, ax = plt.subplots(figsize=(3.6, 4.6))
 
