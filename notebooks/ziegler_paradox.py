@@ -75,7 +75,7 @@ display(Markdown("| coefficient | printed eq. (31) | sympy | from the matrices |
 # dead load at $H_{cr}$:
 
 # %%
-display(Markdown(quantities_table(scene("damped_dead_load")["quantities"], digits=15)))
+display(Markdown(quantities_table(scene("damped_dead_load")["quantities"], digits=10)))
 
 # %% [markdown]
 # ## The Ziegler paradox (§2.4)

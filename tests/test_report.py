@@ -179,3 +179,19 @@ def test_an_unknown_layout_key_is_refused(tmp_path):
     p.write_text("sections:\n  - title: S\n    figure: {}\n")
     with pytest.raises(ParameterError, match="unknown keys"):
         load_layout(p)
+
+
+def test_a_check_row_naming_a_chapter_figure_is_shown_under_it(tmp_path):
+    res, _ = _tree(tmp_path, figures=("fig02", "fig03"))
+    (res / "data" / "fig02.json").write_text("{}")
+    (res / "data" / "fig03.json").write_text("{}")
+    layout = {"title": "T", "sections": [{"title": "S", "figures": {
+        "fig02": "Fig. 2", "fig03": "Fig. 3"}}]}
+    rows = _rows()
+    rows[0].source = "§2 Figs. 1-2 caption"  # q1 checks other data but names Fig. 2
+    page = res / "reports" / "index.html"
+    page.write_text(build_index(layout, rows, {}, row_scene={"q1": "elsewhere"}))
+    text = page.read_text()
+    assert 'href="#q1"' in _figure_block(text, "fig02")
+    assert 'href="#q1"' not in _figure_block(text, "fig03")
+    assert broken_links(page) == []

@@ -95,7 +95,8 @@ details.code-fold > summary { cursor: pointer; color: #666; font-size: 12px; mar
   64px; font-family: monospace; }
 details.code-fold[open] > summary { color: #333; }
 main { max-width: 1100px; margin: 0 auto; }
-math { font-size: 1.08em; } math[display="block"] { margin: .6em 0; }
+math { font-size: 1.08em; } math[display="block"] { margin: .6em 0; overflow-x: auto; }
+.jp-RenderedMarkdown { overflow-x: auto; }
 .jp-RenderedHTMLCommon table { font-size: 13px; }
 </style>
 {% endblock extra_css %}

@@ -343,6 +343,25 @@ def _short(x: Any) -> str:
     return str(x)
 
 
+def _figures_named(source: str) -> set[int]:
+    """The chapter figures a check row's source names ("Fig. 12", "Figs. 15-17")."""
+    import re
+
+    out: set[int] = set()
+    for m in re.finditer(r"Figs?\.\s*(\d+)(?:\s*[-–]\s*(\d+))?", source):
+        first = int(m.group(1))
+        out.update(range(first, int(m.group(2) or first) + 1))
+    return out
+
+
+def _chapter_number(figure: str) -> int | None:
+    """The chapter figure our figure ``figNN`` (or ``figNN_...``) draws, else None."""
+    import re
+
+    m = re.fullmatch(r"fig(\d\d)(_.*)?", figure)
+    return int(m.group(1)) if m else None
+
+
 def _figure_checks(rows: list[CheckRow]) -> str:
     """The check rows of one figure's data, as a small table linking to the full check."""
     out = ["<table><thead><tr><th>checked value</th><th>source</th><th>quoted</th>"
@@ -483,14 +502,19 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
                          f"(source <code>notebooks/{nb}.py</code>)</p>")
         for scene, caption in section.get("figures", {}).items():
             data = figure_data.get(scene, scene)
+            named = [r for r in rows if _chapter_number(scene) in _figures_named(r.source)]
             if data in shown_checks:
-                checks = (f'<p class="links">Checked values: with <a href="#fig-'
-                          f'{shown_checks[data]}">{shown_checks[data]}</a> (same data).</p>')
-            elif rows_of.get(data):
-                shown_checks[data] = scene
-                checks = _figure_checks(rows_of[data])
+                mine = [r for r in named if row_scene.get(r.id) != data]
+                checks = (f'<p class="links">Checked values of these data: with <a href="#fig-'
+                          f'{shown_checks[data]}">{shown_checks[data]}</a>.</p>')
             else:
+                mine = rows_of.get(data, []) + [r for r in named
+                                                if r not in rows_of.get(data, [])]
                 checks = ""
+                if rows_of.get(data):
+                    shown_checks[data] = scene
+            if mine:
+                checks = _figure_checks(mine) + checks
             params = (f'<p class="params">Drawn with: {_named_lists(figure_params[data])}</p>'
                       if figure_params.get(data) else "")
             parts.append(
