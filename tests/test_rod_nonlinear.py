@@ -191,3 +191,123 @@ def test_monodromy_of_the_straight_rod_is_the_matrix_exponential():
     Phi = flow.Phi
     assert np.abs(flow.S).max() == 0.0  # f_P vanishes on the straight rod
     assert np.abs(Phi - expm(A * T)).max() <= 1e-8 * np.abs(Phi).max()
+
+
+def test_implicit_integrators_get_the_exact_jacobian():
+    from flutterfriction.analysis.rod_cycles import rhs_derivatives
+    from flutterfriction.analysis.rod_dynamics import exact_jacobian
+
+    m = NonlinearRod(ROD, 3)
+    y = np.random.default_rng(2).normal(scale=0.3, size=2 * m.n_dof)
+    assert exact_jacobian(m, 5.5, "DOP853") == {}
+    for method in ("BDF", "Radau", "LSODA"):
+        J = exact_jacobian(m, 5.5, method)["jac"](0.0, y)
+        assert np.array_equal(J, rhs_derivatives(m, y, 5.5)[1])
+
+
+def test_prolongation_is_exact_for_the_coarse_fields():
+    """Coarse P2 fields are P2 on the finer mesh too: interpolation loses nothing, and the
+    pseudo-inverse takes them back."""
+    from flutterfriction.analysis.rod_dynamics import prolongation
+
+    coarse, fine = NonlinearRod(ROD, 2), NonlinearRod(ROD, 3)
+    Pm = prolongation(coarse, fine)
+    y = np.random.default_rng(3).normal(size=2 * coarse.n_dof)
+    nodes = np.linspace(0, ROD.length, fine.n_dof + 1)[1:]
+    assert np.allclose((Pm @ y)[: fine.n_dof], coarse.nodal_values_at(y[: coarse.n_dof], nodes))
+    assert np.allclose(np.linalg.pinv(Pm) @ Pm, np.eye(Pm.shape[1]), atol=1e-12)
+
+
+@pytest.fixture(scope="module")
+def cycle_2():
+    """The 5.5 N cycle on 2 elements: flutter grown from a 1 mm flutter mode, then shooting
+    with the exact monodromy."""
+    from flutterfriction.analysis.rod_dynamics import grow_into_cycle, shoot_cycle
+
+    m = NonlinearRod(ROD, 2)
+    tr = grow_into_cycle(m, 5.5, amplitude=1e-3, rtol=1e-6, tol=3e-3)
+    T0 = tr.crossings_t[-1] - tr.crossings_t[-2]
+    return tr, shoot_cycle(m, tr.section_states[-1], T0, 5.5, None, "DOP853", rtol=1e-9,
+                           tol=1e-7)
+
+
+def test_transient_grows_from_the_straight_rod_into_the_shooting_cycle(cycle_2):
+    """Flutter grows at the linear rate from 1 mm, saturates, and the section points approach
+    the Newton cycle at the rate of its slow Floquet multiplier (all inside the unit
+    circle)."""
+    from flutterfriction.analysis.rod_cycles import tip_lateral
+    from flutterfriction.analysis.rod_dynamics import section_distance
+
+    tr, cyc = cycle_2
+    A = np.array(tr.crossings_A)
+    assert A[0] < 0.01 and A[-1] > 0.2
+    # early growth per period ~ exp(sigma T_linear)
+    M0, C, K, K1 = cyc.model.linear_matrices()
+    assert tr.growth_rate > 0
+    d = np.array([section_distance(cyc.model, s, cyc) for s in tr.section_states])
+    ratios = d[-6:] / d[-7:-1]
+    mu = cyc.floquet.nontrivial
+    slow = mu[np.argmin(np.abs(mu - 1))].real
+    assert cyc.floquet.max_modulus < 1
+    assert np.all(np.abs(ratios - slow) < 0.02), (ratios, slow)
+    assert abs(tip_lateral(cyc.model, cyc.y) / A[-1] - 1) < 0.05
+    # the monodromy maps the flow direction to itself (the trivial multiplier)
+    assert cyc.floquet.trivial_defect < 1e-5
+
+
+def test_fixed_load_shooting_is_periodic_orbit_newton(cycle_2):
+    """The scene's shooting at a fixed load and rod_cycles.PeriodicOrbitNewton (load fixed by
+    its parametrising condition) converge to the same cycle."""
+    from flutterfriction.analysis.rod_cycles import PeriodicOrbitNewton
+
+    _, cyc = cycle_2
+    pt = PeriodicOrbitNewton(cyc.model, 0.25, 5.5, rtol=1e-10, tol=1e-9).solve(
+        cyc.y, cyc.T, 5.5, (0.0, 1.0), 1.0)
+    assert pt.P == pytest.approx(5.5, rel=1e-12)
+    assert pt.T == pytest.approx(cyc.T, rel=1e-7)
+    assert np.abs(pt.y - cyc.y).max() <= 1e-6 * np.abs(cyc.y).max()
+
+
+def test_secant_shooting_on_a_finer_mesh_from_the_prolongated_monodromy(cycle_2):
+    """On 3 elements, the chord/secant iteration started from the 2-element cycle and its
+    monodromy converges to the cycle that exact Newton finds there."""
+    from flutterfriction.analysis.rod_dynamics import prolongation, shoot_cycle
+
+    _, c2 = cycle_2
+    m3 = NonlinearRod(ROD, 3)
+    Pm = prolongation(c2.model, m3)
+    chord = shoot_cycle(m3, Pm @ c2.y, c2.T, 5.5, Pm @ c2.monodromy @ np.linalg.pinv(Pm),
+                        "BDF", rtol=1e-9, tol=1e-7)
+    exact = shoot_cycle(m3, chord.y, chord.T, 5.5, None, "DOP853", rtol=1e-10, tol=1e-7)
+    assert chord.T == pytest.approx(exact.T, rel=1e-6)
+    assert np.abs(chord.y - exact.y).max() <= 1e-5 * np.abs(exact.y).max()
+    # and it contracted: every correction smaller than the one before
+    assert np.all(np.diff(np.log(chord.corrections)) < 0)
+
+
+@pytest.mark.slow
+def test_beck_limit_cycle_scene_quick_preset_shows_flutter_growing_into_the_cycle():
+    """The scene at the quick preset: the stored transient starts at the small flutter mode and
+    ends near the cycle, sampled at a fixed step; the cycle's evidence and the mesh chain."""
+    from flutterfriction.config import load_config, scene_params
+    from flutterfriction.scenes.rod import beck_limit_cycle
+
+    config = load_config("workflow/config.yaml")
+    config["fidelity"] = "quick"
+    params = scene_params(config, "beck_limit_cycle")
+    d = beck_limit_cycle(params)
+    h, tr = d["history"], d["transient"]
+    assert abs(h["u2"][0]) <= 1.01 * tr["initial_amplitude_m"]  # from a small perturbation
+    assert max(h["u2"]) > 0.2  # into the 0.25 m cycle
+    dt = np.diff(h["t"])
+    assert np.ptp(dt[:-1]) < 1e-3 * dt[0]  # a fixed step (the last one ends on the section)
+    assert d["quantities"]["reaches_limit_cycle"]["value"] == "limit cycle"
+    assert d["quantities"]["reaches_limit_cycle"]["independent"] == "limit cycle"
+    assert tr["section_distance"][-1] < tr["section_distance"][0]
+    assert set(d["cycles"]) == {str(n) for n in d["meshes"]}
+    for c in d["cycles"].values():
+        assert c["newton_corrections"][-1] <= params["tol"]
+    # the cycle drawn as one closed loop, four times finer than the transient's sampling
+    loop = np.array([d["cycle_loop"]["u1"], d["cycle_loop"]["u2"]])
+    assert loop.shape[1] == 4 * params["samples_per_period"] + 1
+    assert np.abs(loop[:, 0] - loop[:, -1]).max() < 1e-4

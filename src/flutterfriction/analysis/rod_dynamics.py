@@ -13,12 +13,21 @@ from __future__ import annotations
 import time
 from collections.abc import Callable
 from dataclasses import asdict, dataclass, field
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 from scipy.integrate import solve_ivp
 
-from flutterfriction.analysis.rod_cycles import section_value
+from flutterfriction.analysis.rod_cycles import (
+    Floquet,
+    _gradient,
+    floquet,
+    rhs_derivatives,
+    section_value,
+    tip_lateral,
+    variational_flow,
+)
 from flutterfriction.errors import ConvergenceError, ParameterError
 from flutterfriction.models.rod import Rod
 from flutterfriction.models.rod_nonlinear import NonlinearRod
@@ -56,6 +65,16 @@ def _tip_state(model: NonlinearRod, y: NDArray) -> NDArray:
     _, _, _, G_tip = model.kinematics(q)
     x_tip = model.tip_position(q)
     return np.array([x_tip[0] - model.rod.length, x_tip[1], *(G_tip @ v)])
+
+
+def exact_jacobian(model: NonlinearRod, P: float, method: str) -> dict:
+    """``solve_ivp`` options giving the implicit integrators (BDF, Radau, LSODA) the exact
+    Jacobian of the rod's right-hand side (batched complex step,
+    :func:`~flutterfriction.analysis.rod_cycles.rhs_derivatives`) instead of their finite
+    differences; none for the explicit ones."""
+    if method not in ("BDF", "Radau", "LSODA"):
+        return {}
+    return {"jac": lambda t, y: rhs_derivatives(model, y, P)[1]}
 
 
 def beck_limit_cycle(rod: Rod, P: float, n_elements: int = 8, method: str = "BDF",
@@ -99,12 +118,13 @@ def beck_limit_cycle(rod: Rod, P: float, n_elements: int = 8, method: str = "BDF
 
     section.direction = -1.0
     t_begin = time.perf_counter()
+    options = exact_jacobian(model, P, method)
     t0, crossings, chunks = 0.0, [], []
     chunk = 6 * rod.time_scale  # several first-mode periods, until the period is measured
     converged = False
     while t0 < t_max and not converged:
         sol = solve_ivp(rhs, (t0, min(t0 + chunk, t_max)), y, method=method, rtol=rtol,
-                        atol=atol, events=section, dense_output=True)
+                        atol=atol, events=section, dense_output=True, **options)
         if not sol.success:
             raise ConvergenceError(f"rod integration failed after t = {t0:.4g} s: "
                                    f"{sol.message}")
@@ -245,3 +265,402 @@ def generalized_alpha(model: NonlinearRod, P: float, y0: NDArray, t_end: float, 
             times.append(k * dt)
             states.append(np.concatenate([q, v]))
     return np.array(times), np.array(states), count["n"]
+
+
+# ------------------------------------------------------------------ the cycle by shooting
+@dataclass
+class ShootingCycle:
+    """A cycle converged by shooting on one mesh: section state ``y`` (lateral tip velocity 0,
+    the tip at its positive lateral extreme), period ``T``, the orbit over one period (dense
+    output of the last integration, from ``y``), the Newton corrections (relative, the largest
+    over state and period) and, where the exact monodromy was computed, its Floquet data."""
+
+    model: NonlinearRod
+    y: NDArray
+    T: float
+    orbit: Any
+    corrections: list
+    integrations: int
+    monodromy: NDArray | None = None  # exact, where computed
+    floquet: Floquet | None = None
+    secant: NDArray | None = None  # the secant-updated monodromy of the last iterate
+
+
+def _period(model: NonlinearRod, y: NDArray, T: float, P: float, method: str, rtol: float,
+            counter: dict | None = None):
+    """One period of the orbit from ``y`` (dense output; implicit methods get the exact
+    Jacobian)."""
+    def rhs(t, z):
+        if counter is not None:
+            counter["rhs"] += 1
+        return model.rhs(t, z, P)
+
+    sol = solve_ivp(rhs, (0.0, T), y, method=method, rtol=rtol, atol=rtol * 1e-2,
+                    dense_output=True, **exact_jacobian(model, P, method))
+    if not sol.success:
+        raise ConvergenceError(f"rod integration over one period failed: {sol.message}")
+    return sol
+
+
+def _relative_correction(model: NonlinearRod, y: NDArray, T: float, dz: NDArray) -> float:
+    """The Newton correction relative to the scale of each unknown (the rotations' size; the
+    velocities' size or ``2 pi / T`` times it; the period), as in
+    :class:`~flutterfriction.analysis.rod_cycles.PeriodicOrbitNewton`."""
+    n, N = model.n_dof, y.size
+    q_scale = max(np.abs(y[:n]).max(), 1e-12)
+    v_scale = max(np.abs(y[n:]).max(), 2 * np.pi / T * q_scale)
+    return float(max(np.abs(dz[:n]).max() / q_scale, np.abs(dz[n:N]).max() / v_scale,
+                     abs(dz[N]) / T))
+
+
+def _newton_step(Phi: NDArray, f_T: NDArray, section_gradient: NDArray, R: NDArray
+                 ) -> NDArray:
+    """The correction ``(dy, dT)`` of the periodic-orbit equations with the monodromy
+    ``Phi``."""
+    N = Phi.shape[0]
+    J = np.zeros((N + 1, N + 1))
+    J[:N, :N] = Phi - np.eye(N)
+    J[:N, N] = f_T
+    J[N, :N] = section_gradient
+    return np.linalg.solve(J, -R)
+
+
+def shoot_cycle(model: NonlinearRod, y: NDArray, T: float, P: float,
+                monodromy: NDArray | None = None, method: str = "BDF", rtol: float = 1e-8,
+                tol: float = 1e-6, max_iterations: int = 12, variational_rtol: float = 1e-6,
+                loose_rtol: float = 1e-6, counter: dict | None = None) -> ShootingCycle:
+    """Newton's method for the cycle at the load ``P``: ``phi_T(y) - y = 0`` and
+    ``section(y) = 0`` for the section state ``y`` and the period ``T``.
+
+    Every residual comes from the orbit integrated over ``T`` (``method`` at ``rtol``;
+    implicit methods get the exact Jacobian of the right-hand side). The Jacobian's block
+    ``d phi_T / d y`` is the expensive part. With ``monodromy=None`` it is exact: the
+    variational equations (:func:`~flutterfriction.analysis.rod_cycles.variational_flow`,
+    DOP853 at ``variational_rtol``: the monodromy to ~1e-7, measured at 4 elements) are
+    integrated at the start and again at the iterate whose correction passes the test, which
+    is then recomputed with it; so the accepted cycle has its exact monodromy and Floquet
+    multipliers. In between, Broyden's secant rule updates the monodromy. Explicit DOP853 is
+    limited by the Kelvin–Voigt modes' stability (their decay rate grows like ``N^4``), so
+    on fine meshes pass ``monodromy``: an approximation (the coarse mesh's, prolongated) that
+    starts the same secant iteration; the strongly damped modes the coarse mesh lacks have
+    multipliers ~0 and are iterated like a plain period map.
+
+    Accepted when the correction is below ``tol`` relative to each unknown's scale (the
+    iterate whose residual was computed, and its orbit, are returned)."""
+    N, n = y.size, model.n_dof
+    y = np.asarray(y, dtype=float).copy()
+    corrections: list[float] = []
+    exact = monodromy is None
+    Phi = None if exact else np.array(monodromy, dtype=float)
+    prev = None  # (y, T, y_T, f_T) of the previous iterate, for the secant update
+    for it in range(1, max_iterations + 1):
+        # Inexact Newton: far from the cycle (the first iterate, or a last correction above
+        # 1e-3, well above the loose integration's noise in the correction: ~1e-5 for BDF at
+        # 1e-6, measured) the residual is integrated at loose_rtol; an iterate is accepted
+        # only on a residual integrated at rtol.
+        loose = not corrections or corrections[-1] > 1e-3
+        orbit = _period(model, y, T, P, method, max(rtol, loose_rtol) if loose else rtol,
+                        counter)
+        y_T = orbit.y[:, -1]
+        f_T = model.rhs(0.0, y_T, P)
+        R = np.concatenate([y_T - y, [section_value(model, y)]])
+        section_gradient = _gradient(lambda z: section_value(model, z), y)
+        # The exact monodromy at the start, and again where the secant iteration stalls
+        # (a correction above 0.3 times the one before).
+        stalled = len(corrections) >= 2 and corrections[-1] > 0.3 * corrections[-2]
+        if Phi is None or (exact and stalled):
+            Phi = variational_flow(model, y, T, P, variational_rtol).Phi
+        elif prev is not None and corrections[-1] > 1e-4:
+            # Broyden: Phi dy ~ d(y_T) - f_T dT, in scaled states; only on steps well above
+            # the integration noise (smaller ones would write the noise into Phi).
+            dy, dT, dyT = y - prev[0], T - prev[1], y_T - prev[2]
+            q_scale = max(np.abs(y[:n]).max(), 1e-12)
+            v_scale = max(np.abs(y[n:]).max(), 2 * np.pi / T * q_scale)
+            w = np.concatenate([np.full(n, q_scale), np.full(N - n, v_scale)]) ** -2
+            Phi = Phi + np.outer(dyT - prev[3] * dT - Phi @ dy, w * dy) / (dy @ (w * dy))
+        dz = _newton_step(Phi, f_T, section_gradient, R)
+        corrections.append(_relative_correction(model, y, T, dz))
+        Phi_exact = None
+        if exact and corrections[-1] <= tol and not (loose and loose_rtol > rtol):
+            # verify with the exact monodromy here
+            Phi = Phi_exact = variational_flow(model, y, T, P, variational_rtol).Phi
+            dz = _newton_step(Phi, f_T, section_gradient, R)
+            corrections[-1] = _relative_correction(model, y, T, dz)
+        if corrections[-1] <= tol and loose and loose_rtol > rtol:
+            continue  # passed on a loose residual: integrate again at rtol, here
+        if corrections[-1] <= tol:
+            return ShootingCycle(model=model, y=y, T=float(T), orbit=orbit,
+                                 corrections=corrections, integrations=it,
+                                 monodromy=Phi_exact, secant=Phi,
+                                 floquet=None if Phi_exact is None
+                                 else floquet(model, y, P, Phi_exact))
+        prev = (y, T, y_T, f_T)
+        # Damp wild first steps: at most 5% in T.
+        scale = min(1.0, 0.05 * T / max(abs(dz[N]), 1e-300))
+        y, T = y + scale * dz[:N], T + scale * dz[N]
+    raise ConvergenceError(f"shooting did not converge in {max_iterations} iterations "
+                           f"({model.n_elements} elements, P = {P:g} N; corrections "
+                           f"{', '.join(f'{c:.1e}' for c in corrections)})")
+
+
+def prolongation(coarse: NonlinearRod, fine: NonlinearRod) -> NDArray:
+    """The linear map of states ``(q, v)`` of ``coarse`` to ``fine`` (the P2 fields evaluated
+    at the fine nodes)."""
+    nodes = np.linspace(0.0, fine.rod.length, fine.n_dof + 1)[1:]
+    Pq = np.column_stack([coarse.nodal_values_at(e, nodes) for e in np.eye(coarse.n_dof)])
+    Z = np.zeros_like(Pq)
+    return np.block([[Pq, Z], [Z, Pq]])
+
+
+def section_crossings(model: NonlinearRod, sol) -> tuple[NDArray, NDArray]:
+    """Times and states of the section crossings on the positive side (``sol`` integrated
+    with ``section_value`` as its first event, direction -1)."""
+    keep = [k for k, ye in enumerate(sol.y_events[0]) if tip_lateral(model, ye) > 0]
+    return sol.t_events[0][keep], sol.y_events[0][keep]
+
+
+def _tip_states(model: NonlinearRod, Y: NDArray, batch: int = 512) -> NDArray:
+    """``(u1, u2, u1_dot, u2_dot)`` of the tip for states ``Y`` of shape ``(2 n, m)``:
+    ``(m, 4)``, evaluated in batches."""
+    n, out = model.n_dof, []
+    for k in range(0, Y.shape[1], batch):
+        q, v = Y[:n, k:k + batch], Y[n:, k:k + batch]
+        x_tip = model.tip_position(q)
+        G_tip = model.kinematics(q)[3]
+        out.append(np.column_stack([x_tip[:, 0] - model.rod.length, x_tip[:, 1],
+                                    np.einsum("mcn,nm->mc", G_tip, v)]))
+    return np.vstack(out)
+
+
+def _peak(g: NDArray) -> float:
+    """The maximum of a smooth periodic function from uniform samples ``g`` (one period, the
+    end point excluded): the parabola through the largest sample and its neighbours."""
+    k = int(np.argmax(g))
+    a, b, c = g[k - 1], g[k], g[(k + 1) % g.size]
+    curv = a - 2 * b + c
+    return float(b - (a - c) ** 2 / (8 * curv)) if curv < 0 else float(b)
+
+
+@dataclass
+class CycleMeasures:
+    """What the scene reports of a converged cycle on one mesh."""
+
+    n_elements: int
+    tip_amplitude_m: float  # half the peak-to-peak lateral tip displacement
+    period_s: float
+    tip_rotation_amplitude_rad: float
+    work_follower_J: float  # per period
+    work_dissipated_J: float
+    energy_balance_error: float  # |W_P - W_D| / W_D
+    newton_corrections: list  # relative, per iteration
+    integrations: int  # periods integrated (with the variational equations or without)
+    n_rhs: int  # right-hand sides of the orbit-only integrations
+    wall_s: float
+    cpu_s: float
+    floquet_multipliers: list | None = None  # [re, im] by decreasing modulus (exact monodromy)
+    max_floquet_modulus: float | None = None
+
+    def as_dict(self) -> dict:
+        return asdict(self)
+
+
+def cycle_measures(cycle: ShootingCycle, P: float, samples: int = 512,
+                   wall_s: float = 0.0, cpu_s: float = 0.0, n_rhs: int = 0) -> CycleMeasures:
+    """Amplitudes, period and the energy balance over one period of a converged cycle: the
+    orbit's dense output at ``samples`` instants, the works by the periodic trapezoid rule
+    (spectrally accurate for a smooth periodic integrand), the extremes by parabolas."""
+    model, T = cycle.model, cycle.T
+    n = model.n_dof
+    tt = np.arange(samples) * (T / samples)
+    Y = cycle.orbit.sol(tt)
+    tips = _tip_states(model, Y)
+    powers = np.array([model.power_balance(Y[:n, k], Y[n:, k], P) for k in range(samples)])
+    W_P, W_D = (float(x) for x in powers.sum(axis=0) * (T / samples))
+    fl = cycle.floquet
+    mus = None if fl is None else sorted(fl.nontrivial, key=lambda z: -abs(z))
+    return CycleMeasures(
+        n_elements=int(model.n_elements),
+        tip_amplitude_m=0.5 * (_peak(tips[:, 1]) + _peak(-tips[:, 1])), period_s=T,
+        tip_rotation_amplitude_rad=max(_peak(Y[n - 1]), _peak(-Y[n - 1])),
+        work_follower_J=W_P, work_dissipated_J=W_D, energy_balance_error=abs(W_P - W_D) / W_D,
+        newton_corrections=[float(c) for c in cycle.corrections],
+        integrations=int(cycle.integrations), n_rhs=int(n_rhs), wall_s=wall_s, cpu_s=cpu_s,
+        floquet_multipliers=None if mus is None else [[float(z.real), float(z.imag)]
+                                                      for z in mus[:8]],
+        max_floquet_modulus=None if fl is None else fl.max_modulus)
+
+
+def rod_shapes(model: NonlinearRod, orbit, T: float, frames: int = 41) -> list:
+    """The rod's centre line at ``frames`` instants of one period (the animation)."""
+    shapes = []
+    for t in np.linspace(0.0, T, frames):
+        q = orbit.sol(t)[: model.n_dof]
+        theta = model.phi @ q
+        x_q, x_tip = model._cumint(np.stack([np.cos(theta), np.sin(theta)], axis=-1))
+        shapes.append(np.vstack([[0.0, 0.0], x_q, x_tip]).round(6).tolist())
+    return shapes
+
+
+def flutter_mode_start(model: NonlinearRod, P: float, amplitude: float) -> NDArray:
+    """The straight rod perturbed by its linear flutter mode (the eigenvector of the growing
+    eigenvalue at ``P``, real part), scaled to a lateral tip displacement ``amplitude``."""
+    from flutterfriction.analysis.stability import first_order_matrix
+
+    M0, C, K, K1 = model.linear_matrices()
+    ev, V = np.linalg.eig(first_order_matrix(M0, K + P * K1, C))
+    k = int(np.argmax(ev.real))
+    if not ev[k].real > 0:
+        raise ConvergenceError(f"the straight rod is stable at P = {P:g} N: no flutter to grow")
+    w = V[:, k].real
+    return w * amplitude / tip_lateral(model, w)
+
+
+@dataclass
+class RodTransient:
+    """Flutter growing from a small perturbation of the straight rod into the cycle."""
+
+    n_elements: int
+    initial_amplitude_m: float
+    growth_rate: float  # of the linear flutter mode [1/s]
+    t_end: float  # the transient's last section crossing
+    crossings_t: list  # section crossings (positive side): time, tip amplitude
+    crossings_A: list
+    section_states: list = field(repr=False, default_factory=list)
+    n_rhs: int = 0
+    wall_s: float = 0.0
+    cpu_s: float = 0.0
+    chunks: list = field(repr=False, default_factory=list)
+
+    def state_at(self, t: NDArray) -> NDArray:
+        t = np.atleast_1d(t)
+        out = np.empty((self.chunks[0].sol(0.0).size, t.size))
+        for c in self.chunks:
+            sel = (t >= c.t[0]) & (t <= c.t[-1])
+            if sel.any():
+                out[:, sel] = c.sol(t[sel])
+        return out
+
+
+def grow_into_cycle(model: NonlinearRod, P: float, amplitude: float = 1e-3,
+                    method: str = "LSODA", rtol: float = 1e-6, tol: float = 1e-3,
+                    t_max: float = 60.0) -> RodTransient:
+    """Integrate from the straight rod perturbed by the linear flutter mode (lateral tip
+    displacement ``amplitude``) until the tip amplitude on the section changes by less than
+    ``tol`` (relative) from one period to the next (with the slow Floquet multiplier ``mu``
+    the distance from the cycle is then about ``tol / (1 - mu)``). Deterministic: bounded by
+    ``t_max`` of simulated time, never by the clock."""
+    from flutterfriction.analysis.stability import first_order_matrix
+
+    y = flutter_mode_start(model, P, amplitude)
+    M0, C, K, K1 = model.linear_matrices()
+    sigma = float(np.linalg.eigvals(first_order_matrix(M0, K + P * K1, C)).real.max())
+    counter = {"rhs": 0}
+
+    def rhs(t, z):
+        counter["rhs"] += 1
+        return model.rhs(t, z, P)
+
+    def section(t, z):
+        return section_value(model, z)
+
+    section.direction = -1.0
+    options = exact_jacobian(model, P, method)
+    t_begin, c_begin = time.perf_counter(), time.process_time()
+    t0, chunks, ts, states = 0.0, [], [], []
+    chunk = 1.0  # simulated seconds per solve_ivp call (~7 periods); the test runs per crossing
+    while t0 < t_max:
+        sol = solve_ivp(rhs, (t0, min(t0 + chunk, t_max)), y, method=method, rtol=rtol,
+                        atol=rtol * 1e-2, events=section, dense_output=True, **options)
+        if not sol.success:
+            raise ConvergenceError(f"rod transient failed after t = {t0:.4g} s: {sol.message}")
+        chunks.append(sol)
+        for te, ye in zip(*section_crossings(model, sol), strict=True):
+            ts.append(float(te))
+            states.append(ye.copy())
+            if len(ts) >= 2:
+                A_now, A_before = tip_lateral(model, states[-1]), tip_lateral(model, states[-2])
+                if abs(A_now - A_before) <= tol * A_now:
+                    return RodTransient(
+                        n_elements=int(model.n_elements), initial_amplitude_m=amplitude,
+                        growth_rate=sigma, t_end=float(te), crossings_t=ts,
+                        crossings_A=[float(tip_lateral(model, s)) for s in states],
+                        section_states=states, n_rhs=counter["rhs"],
+                        wall_s=time.perf_counter() - t_begin,
+                        cpu_s=time.process_time() - c_begin, chunks=chunks)
+        y, t0 = sol.y[:, -1], sol.t[-1]
+    raise ConvergenceError(f"the transient did not settle to {tol:g} per period within "
+                           f"{t_max} s (P = {P} N)")
+
+
+@dataclass
+class CycleChain:
+    """The cycle on every mesh of the chain, and the transient that grows into it."""
+
+    meshes: list
+    cycles: list  # CycleMeasures per mesh
+    transient: RodTransient
+    transient_cycle: ShootingCycle  # the cycle on the transient's mesh (exact monodromy)
+    primary: ShootingCycle  # the cycle on the second-last mesh (shapes)
+    section_distance: list  # of the transient's crossings from the cycle (scaled max norm)
+
+
+def section_distance(model: NonlinearRod, y: NDArray, cycle: ShootingCycle) -> float:
+    """Distance of a section state from the cycle's, relative to each part's scale (the
+    rotations' size; the velocities' or ``2 pi / T`` times the rotations')."""
+    dz = np.concatenate([y - cycle.y, [0.0]])
+    return _relative_correction(model, cycle.y, cycle.T, dz)
+
+
+def beck_cycle_chain(rod: Rod, P: float, meshes: list[int], method: str = "LSODA",
+                     fine_method: str = "BDF", rtol: float = 1e-8, tol: float = 1e-5,
+                     transient_rtol: float = 1e-5, transient_tol: float = 1e-3,
+                     initial_amplitude: float = 1e-3, variational_rtol: float = 1e-6,
+                     progress: Callable[[str], None] | None = None) -> CycleChain:
+    """The limit cycle at ``P`` on each mesh of ``meshes`` by shooting (periodic-orbit
+    Newton), and the transient on the first mesh from a small perturbation of the straight
+    rod (the linear flutter mode, tip amplitude ``initial_amplitude``) into it.
+
+    First mesh: the transient (``method``, ``transient_rtol``) until the tip amplitude on the
+    section changes by less than ``transient_tol`` per period; from its last section state,
+    Newton with the exact monodromy (variational equations by DOP853 at ``variational_rtol``,
+    orbits by DOP853 at ``rtol``), which gives the Floquet multipliers too. Each finer mesh
+    starts from the previous cycle interpolated and iterates with the previous mesh's
+    (secant-updated) monodromy prolongated as the Jacobian (orbits by ``fine_method`` with
+    the exact right-hand-side Jacobian). Every mesh is converged to a Newton correction below
+    ``tol``."""
+    if not P > 0:
+        raise ParameterError(f"P must be > 0, got {P}")
+    say = progress or (lambda message: None)
+    models = [NonlinearRod(rod, int(n)) for n in meshes]
+    base = models[0]
+    transient = grow_into_cycle(base, P, initial_amplitude, method, transient_rtol,
+                                transient_tol)
+    say(f"transient on {meshes[0]} elements: {transient.t_end:.3f} s simulated, "
+        f"{len(transient.crossings_t)} section crossings, CPU {transient.cpu_s:.1f} s")
+    cycles, shot = [], []
+    prev = None
+    for k, model in enumerate(models):
+        t_begin, c_begin = time.perf_counter(), time.process_time()
+        counter = {"rhs": 0}
+        if k == 0:
+            y = transient.section_states[-1]
+            T = transient.crossings_t[-1] - transient.crossings_t[-2]
+            cyc = shoot_cycle(model, y, T, P, None, "DOP853", rtol, tol,
+                              variational_rtol=variational_rtol, counter=counter)
+        else:
+            Pm = prolongation(prev.model, model)
+            Phi = Pm @ prev.secant @ np.linalg.pinv(Pm)
+            cyc = shoot_cycle(model, Pm @ prev.y, prev.T, P, Phi, fine_method, rtol, tol,
+                              counter=counter)
+        shot.append(cyc)
+        cycles.append(cycle_measures(cyc, P, wall_s=time.perf_counter() - t_begin,
+                                     cpu_s=time.process_time() - c_begin,
+                                     n_rhs=counter["rhs"]))
+        say(f"cycle on {meshes[k]} elements: amplitude {cycles[-1].tip_amplitude_m:.6f} m, "
+            f"period {cyc.T:.7f} s, corrections "
+            f"{', '.join(f'{c:.1e}' for c in cyc.corrections)}, CPU {cycles[-1].cpu_s:.1f} s")
+        prev = cyc
+    return CycleChain(meshes=[int(n) for n in meshes], cycles=cycles, transient=transient,
+                      transient_cycle=shot[0], primary=shot[-2],
+                      section_distance=[section_distance(base, s, shot[0])
+                                        for s in transient.section_states])

@@ -175,53 +175,92 @@ def _tip(data):
             np.array(h["u1_dot"]), np.array(h["u2_dot"]))
 
 
-def _title(data, fig):
-    c = data["cycle"]
-    return (f"{fig}: nonlinear Beck rod, list (119), P = {data['P']:g} N ({data['history_mesh']}"
-            f" elements): cycle amplitude {c['tip_amplitude_m'] * 1000:.1f} mm, period "
-            f"{c['period_s'] * 1000:.2f} ms")
+def _loop(data):
+    c = data["cycle_loop"]
+    return (np.array(c["u1"]) * 1000, np.array(c["u2"]) * 1000, np.array(c["u1_dot"]),
+            np.array(c["u2_dot"]))
+
+
+def _title(data, fig: str, what: str) -> str:
+    """Figure number and content; the mesh and its measured error; the cycle's values."""
+    c, tr = data["cycle"], data["transient"]
+    n = data["history_mesh"]
+    err = data["mesh_error"][str(n)]
+    return (f"{fig}: nonlinear Beck rod, list (119), P = {data['P']:g} N: {what}\n"
+            f"flutter grows from the straight rod ({tr['initial_amplitude_m'] * 1000:g} mm "
+            f"flutter mode) and saturates into the limit cycle\n"
+            f"(transient on {n} P2 elements, whose cycle is within "
+            f"{100 * max(err.values()):.2f}% of {data['meshes'][-1]}; it ends "
+            f"{100 * tr['final_distance']:.1f}% from the cycle, at t = {tr['t_end']:.2f} s)\n"
+            f"cycle ({data['meshes'][-2]} elements): tip amplitude "
+            f"{c['tip_amplitude_m'] * 1000:.1f} mm, period {c['period_s'] * 1000:.2f} ms")
+
+
+def _growth(ax, x, y, t, cx, cy):
+    """The transient coloured by time, its start marked, the Newton cycle in black; returns
+    the colour mapping (for the colour bar)."""
+    from matplotlib.collections import LineCollection
+
+    ax.plot([x[0]], [y[0]], "o", color="C3", ms=5, mec="w", zorder=5,
+            label="start: straight rod + small flutter mode")
+    pts = np.array([x, y]).T.reshape(-1, 1, 2)
+    lc = LineCollection(np.concatenate([pts[:-1], pts[1:]], axis=1), cmap="viridis", lw=0.6,
+                        norm=plt.Normalize(t[0], t[-1]))
+    lc.set_array(t[:-1])
+    ax.add_collection(lc)
+    ax.plot([], [], color=plt.get_cmap("viridis")(0.5), lw=1.2,
+            label="transient: flutter grows (colour: time)")
+    ax.plot(cx, cy, color="k", lw=1.4, label="limit cycle (periodic-orbit Newton)")
+    ax.autoscale()
+    return lc
+
+
+def _figure_legend(fig, ax):
+    fig.legend(*ax.get_legend_handles_labels(), loc="outside lower center", ncol=3,
+               fontsize=7, frameon=False)
 
 
 def plot_fig15(data: dict[str, Any]) -> Figure:
-    """Fig. 15: the tip's trajectory u1-u2 reaching the (flat) limit cycle."""
-    from flutterfriction.plotting.ziegler_nonlinear import _time_coloured
-
+    """Fig. 15: the tip's trajectory u2-u1 as flutter grows into the (flat) limit cycle."""
     t, u1, u2, _, _ = _tip(data)
-    fig, ax = plt.subplots(figsize=(5.6, 4.0))
-    lc = _time_coloured(ax, u2, u1, t, lw=0.6)
-    fig.colorbar(lc, ax=ax, label="t [s]")
-    ax.set_xlabel(r"$u_2^{tip}$ [mm] (lateral)")
-    ax.set_ylabel(r"$u_1^{tip}$ [mm] (axial)")
-    ax.set_title(_title(data, "Fig. 15"), fontsize=8)
+    c1, c2, _, _ = _loop(data)
+    fig, ax = plt.subplots(figsize=(7.0, 5.4), layout="constrained")
+    lc = _growth(ax, u2, u1, t, c2, c1)
+    fig.colorbar(lc, ax=ax, label="time t [s]")
+    ax.set_xlabel(r"lateral tip displacement $u_2^{tip}$ [mm]")
+    ax.set_ylabel(r"axial tip displacement $u_1^{tip}$ [mm]")
+    _figure_legend(fig, ax)
+    fig.suptitle(_title(data, "Fig. 15", "trajectory of the loaded end"), fontsize=7)
     return fig
 
 
 def plot_fig16(data: dict[str, Any]) -> Figure:
     """Fig. 16: tip velocities against tip displacements."""
-    from flutterfriction.plotting.ziegler_nonlinear import _time_coloured
-
     t, u1, u2, v1, v2 = _tip(data)
-    fig, axes = plt.subplots(2, 1, figsize=(5.2, 6.0))
-    for ax, u, v, k in ((axes[0], u1, v1, 1), (axes[1], u2, v2, 2)):
-        lc = _time_coloured(ax, u, v, t, lw=0.6)
-        ax.set_xlabel(rf"$u_{k}^{{tip}}$ [mm]")
-        ax.set_ylabel(rf"$\dot u_{k}^{{tip}}$ [m/s]")
-    fig.colorbar(lc, ax=axes, label="t [s]")
-    axes[0].set_title(_title(data, "Fig. 16"), fontsize=7)
+    c1, c2, d1, d2 = _loop(data)
+    fig, axes = plt.subplots(2, 1, figsize=(7.0, 8.0), layout="constrained")
+    for ax, u, v, cu, cv, k, name in ((axes[0], u1, v1, c1, d1, 1, "axial"),
+                                      (axes[1], u2, v2, c2, d2, 2, "lateral")):
+        lc = _growth(ax, u, v, t, cu, cv)
+        ax.set_xlabel(rf"{name} tip displacement $u_{k}^{{tip}}$ [mm]")
+        ax.set_ylabel(rf"{name} tip velocity $\dot u_{k}^{{tip}}$ [m/s]")
+    fig.colorbar(lc, ax=axes, label="time t [s]", shrink=0.6)
+    _figure_legend(fig, axes[0])
+    fig.suptitle(_title(data, "Fig. 16", "tip velocities against displacements"), fontsize=7)
     return fig
 
 
 def plot_fig17(data: dict[str, Any]) -> Figure:
     """Fig. 17: lateral against axial tip velocity."""
-    from flutterfriction.plotting.ziegler_nonlinear import _time_coloured
-
     t, _, _, v1, v2 = _tip(data)
-    fig, ax = plt.subplots(figsize=(5.2, 4.2))
-    lc = _time_coloured(ax, v1, v2, t, lw=0.6)
-    fig.colorbar(lc, ax=ax, label="t [s]")
-    ax.set_xlabel(r"$\dot u_1^{tip}$ [m/s]")
-    ax.set_ylabel(r"$\dot u_2^{tip}$ [m/s]")
-    ax.set_title(_title(data, "Fig. 17"), fontsize=8)
+    _, _, d1, d2 = _loop(data)
+    fig, ax = plt.subplots(figsize=(7.0, 5.4), layout="constrained")
+    lc = _growth(ax, v1, v2, t, d1, d2)
+    fig.colorbar(lc, ax=ax, label="time t [s]")
+    ax.set_xlabel(r"axial tip velocity $\dot u_1^{tip}$ [m/s]")
+    ax.set_ylabel(r"lateral tip velocity $\dot u_2^{tip}$ [m/s]")
+    _figure_legend(fig, ax)
+    fig.suptitle(_title(data, "Fig. 17", "lateral against axial tip velocity"), fontsize=7)
     return fig
 
 
