@@ -1,0 +1,57 @@
+"""Figure of the Beck rod's branch of limit cycles (scene ``beck_branch``)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.figure import Figure
+
+
+def plot_beck_branch(data: dict[str, Any]) -> Figure:
+    """Tip amplitude and period of the limit cycles against the follower load, from the Hopf
+    point; stability from the Floquet multipliers; the onset normal form; the chapter's cycle
+    (Figs. 15–17) marked."""
+    P, A = np.array(data["P_N"]), np.array(data["tip_amplitude_m"])
+    T = np.array(data["period_s"])
+    mu = np.array(data["max_floquet_modulus"])
+    stable = mu < 1.0
+    P_flu = data["P_flu_model"]
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(9.5, 4.0), layout="constrained")
+    for ax, Y, scale in ((ax1, A, 1e3), (ax2, T, 1e3)):
+        ax.plot(P, Y * scale, "-", color="0.6", lw=1, zorder=1)
+        ax.plot(P[stable], Y[stable] * scale, "o", ms=3.5, color="C0", zorder=2,
+                label=r"stable cycle (all non-trivial $|\mu| < 1$)")
+        if (~stable).any():
+            ax.plot(P[~stable], Y[~stable] * scale, "o", ms=4, mfc="none", color="C3",
+                    zorder=2, label=r"unstable cycle ($|\mu| > 1$)")
+        ax.axvline(P_flu, color="k", ls=":", lw=1,
+                   label=f"damped flutter load (Hopf point), {P_flu:.3f} N")
+        ax.set_xlabel("follower load P [N]")
+    # Onset normal form through the second cycle, drawn up to where it leaves the branch.
+    k = 1 if len(P) > 1 else 0
+    c = A[k] / np.sqrt(P[k] - P_flu)
+    dP = np.linspace(0.0, min(0.12, P.max() - P_flu), 100)
+    ax1.plot(P_flu + dP, c * np.sqrt(dP) * 1e3, "C1--", lw=1.2,
+             label=r"normal form $A = c\,\sqrt{P - P_{flu}}$")
+    k_cycle = data.get("cycle_index")
+    if k_cycle is not None:
+        for ax, Y in ((ax1, A), (ax2, T)):
+            ax.plot(P[k_cycle], Y[k_cycle] * 1e3, "*", ms=13, color="C2", mec="k", mew=0.6,
+                    zorder=3, label=f"Figs. 15–17: P = {P[k_cycle]:g} N")
+        ax1.annotate(f"{A[k_cycle] * 1e3:.1f} mm", (P[k_cycle], A[k_cycle] * 1e3),
+                     xytext=(0, -16), textcoords="offset points", ha="center", fontsize=7)
+        ax2.annotate(f"{T[k_cycle] * 1e3:.2f} ms", (P[k_cycle], T[k_cycle] * 1e3),
+                     xytext=(4, -14), textcoords="offset points", ha="left", fontsize=7)
+    ax1.set_ylabel("tip amplitude A [mm]")
+    ax2.set_ylabel("period [ms]")
+    ax1.legend(fontsize=7, loc="lower right")
+    ax2.legend(fontsize=7, loc="upper right")
+    fig.suptitle(f"Beck rod, list (119), {data['n_elements']} P2 elements: the branch of limit "
+                 "cycles from the Hopf point (periodic-orbit continuation, Floquet "
+                 "multipliers)", fontsize=9)
+    return fig
+
+
+PLOTS = {"beck_branch": plot_beck_branch}
