@@ -21,11 +21,13 @@ from typing import Any
 
 from flutterfriction import scenes as _scenes
 from flutterfriction.errors import ParameterError
+from flutterfriction.plotting import beck_branch as branch_plots
 from flutterfriction.plotting import rod as rod_plots
 from flutterfriction.plotting import solids as solid_plots
 from flutterfriction.plotting import ziegler as ziegler_plots
 from flutterfriction.plotting import ziegler_damped as damped_plots
 from flutterfriction.plotting import ziegler_nonlinear as nonlinear_plots
+from flutterfriction.scenes import beck_branch as branch
 from flutterfriction.scenes import rod, solids, ziegler, ziegler_damped, ziegler_nonlinear
 from flutterfriction.scenes.sweep import Sweep
 from flutterfriction.sources import import_path  # noqa: F401  (re-exported for the workflow)
@@ -186,6 +188,11 @@ _ENTRIES = [
         "Beyond the chapter: the rod's limit cycles from the damped flutter load by "
         "periodic-orbit continuation, and their Floquet multipliers against the normal form: "
         "a supercritical Hopf bifurcation.")}, slow=True),
+    Scene("beck_branch", branch.beck_branch, "limit_cycles", {"beck_branch": _fig(
+        branch_plots.plot_beck_branch,
+        "Beyond the chapter: the rod's whole branch of limit cycles, from the Hopf point "
+        "through the 5.5 N cycle of Figs. 15–17 to 7 N: tip amplitude and period against the "
+        "load, stability from the Floquet multipliers, the onset normal form.")}, slow=True),
     Scene("beck_work_precision", rod.beck_work_precision, "limit_cycles", {
         "beck_work_precision": _fig(
             rod_plots.plot_beck_work_precision,
