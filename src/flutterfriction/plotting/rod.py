@@ -229,6 +229,18 @@ def plot_fig15(data: dict[str, Any]) -> Figure:
     fig.colorbar(lc, ax=ax, label="time t [s]")
     ax.set_xlabel(r"lateral tip displacement $u_2^{tip}$ [mm]")
     ax.set_ylabel(r"axial tip displacement $u_1^{tip}$ [mm]")
+    # The loop is flat (the chapter: "hardly visible"), so the growth is shown in time too,
+    # inside the arc where the trajectory never goes.
+    ins = ax.inset_axes([0.32, 0.08, 0.36, 0.34])
+    ins.plot(t, u2, color=plt.get_cmap("viridis")(0.5), lw=0.4)
+    A = data["cycle"]["tip_amplitude_m"] * 1000
+    ins.axhline(A, color="k", lw=0.8, ls="--")
+    ins.axhline(-A, color="k", lw=0.8, ls="--")
+    ins.set_xlabel("time t [s]", fontsize=6, labelpad=1)
+    ins.set_ylabel(r"$u_2^{tip}$ [mm]", fontsize=6, labelpad=1)
+    ins.tick_params(labelsize=5.5, pad=1)
+    ins.set_title("flutter grows and saturates (dashed: the cycle's amplitude)", fontsize=5.5,
+                  pad=2)
     _figure_legend(fig, ax)
     fig.suptitle(_title(data, "Fig. 15", "trajectory of the loaded end"), fontsize=7)
     return fig
