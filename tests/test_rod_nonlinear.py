@@ -311,3 +311,20 @@ def test_beck_limit_cycle_scene_quick_preset_shows_flutter_growing_into_the_cycl
     loop = np.array([d["cycle_loop"]["u1"], d["cycle_loop"]["u2"]])
     assert loop.shape[1] == 4 * params["samples_per_period"] + 1
     assert np.abs(loop[:, 0] - loop[:, -1]).max() < 1e-4
+    # Figs. 15-17 draw it: start, transient and cycle in the legend, units on every axis.
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from flutterfriction.plotting.rod import plot_fig15, plot_fig16, plot_fig17
+
+    for plot in (plot_fig15, plot_fig16, plot_fig17):
+        fig = plot(d)
+        labels = [t.get_text() for leg in fig.legends for t in leg.get_texts()]
+        assert [s.split(":")[0] for s in labels] == [
+            "start", "transient", "limit cycle (periodic-orbit Newton)"]
+        for ax in fig.axes:
+            if ax.get_label() != "<colorbar>":
+                assert "[" in ax.get_xlabel() and "[" in ax.get_ylabel()
+        plt.close(fig)
