@@ -398,7 +398,9 @@ def beck_limit_cycle(params: dict[str, Any]) -> dict[str, Any]:
                                       for k, v in keys.items()}
                   for c in chain.cycles[:-1]}
     # Reached: the distance shrinks monotonically over the last ten periods, at the rate of
-    # the cycle's slow Floquet multiplier (the linear approach to this cycle, in its basin).
+    # the cycle's slow Floquet multiplier (the linear approach to this cycle, in its basin);
+    # measured 0.910 against 0.909 (paper: the transient ends 0.7% from the cycle) and 0.929
+    # against 0.910 (quick: it ends 12% away, where the approach is still mildly nonlinear).
     reached = shrinking and abs(ratio - slow) < 0.03
     stable = first.max_floquet_modulus < 1
     prim = f"{meshes[-2]} P2 elements (shooting, continued from {meshes[-3]})"
