@@ -203,10 +203,10 @@ display(Markdown(quantities_table(scene("beck_hopf")["quantities"], digits=5)))
 #
 # The same continuation, followed in the load up to 7 N (scene `beck_branch`, 4 P2 elements):
 # a quadratic predictor through the last three cycles, a step sized by the predictor's measured
-# error, and a corrector that holds fixed whichever of the scaled amplitude and load changes
-# most along the branch (the amplitude at the onset, where the load hardly moves; the load
-# everywhere else, so the amplitude's turning points cost nothing). The chapter's 5.5 N is
-# landed on exactly. Every cycle's Floquet multipliers come from the monodromy of the Newton
+# error, chord corrections with the orbit alone before Newton's exact-Jacobian iterations, and
+# pseudo-arclength in the scaled (A/0.3 m, P/P_flu) plane (measured: as robust as holding the
+# load fixed, which the branch also allows since the load increases at every step, and 5–12%
+# fewer variational integrations). The chapter's 5.5 N is landed on exactly. Every cycle's Floquet multipliers come from the monodromy of the Newton
 # solve that accepted it.
 
 # %%
@@ -244,15 +244,16 @@ for k, v in bb["quantities"].items():
 # The amplitude is not monotone: it grows like $\sqrt{P - P_{flu}}$, peaks near 3.2 N, falls
 # to a minimum near 3.43 N and then grows again, while the load increases at every step and
 # the period falls smoothly. The rod over one period at those loads (below) shows what
-# changes and what does not: at the amplitude's peak and at its minimum the swing has the same
-# shape (the tip rotation amplitude is 1.69 times A/l at both), only smaller; the multipliers
-# stay inside the unit circle (the largest falls from 0.993 to 0.978 across the dip). Past the
-# dip the swing grows and the rod curls: at 5.5 N the tip turns through ±1.42 rad and sweeps
-# backwards (tip rotation 1.99 A/l), at 7 N through ±1.71 rad (2.25 A/l), with the amplitude
-# nearly saturated. The dip is where the mesh matters most: 4 against 8 elements differ by
-# 1.7% in amplitude at 3.5 N, against 0.04–0.08% at 5.5 and 7 N; the 2-element branch (quick
-# preset's mesh, explored separately) has its peak and minimum at nearly the same loads
-# (3.21 N, 3.45 N), so the dip is the model's, its depth a mesh-dependent detail.
+# changes and what does not: at the amplitude's peak and at its minimum the swing has the
+# same shape (the tip rotation amplitude is 1.69-1.70 times A/l at both), only smaller; the
+# multipliers stay inside the unit circle (the largest falls from 0.993 to 0.977 across the
+# dip). Past the dip the swing grows and the rod curls: at 5.5 N the tip turns through
+# ±1.42 rad and sweeps backwards (tip rotation 1.99 A/l), at 7 N through ±1.71 rad
+# (2.25 A/l), with the amplitude nearly saturated. The dip is where the mesh matters most:
+# 4 against 8 elements differ by 1.7% in amplitude at 3.5 N, against at most 0.08%
+# (amplitude and period) at 5.5 and 7 N; the 2-element branch (the quick preset's mesh) has
+# its peak and minimum at nearly the same loads (3.21 N, 3.45 N), so the dip is the
+# model's, its depth a mesh-dependent detail.
 
 # %%
 import matplotlib.pyplot as plt  # noqa: E402

@@ -513,6 +513,22 @@ class CycleContinuation:
                       f"({exc}): halved", log)
             self.ds /= 2
             return None
+        passed = sorted(L for L in land_at if a.P < L * (1 - 1e-9) and point.P > L * (1 + 1e-9))
+        if landing is None and passed:
+            # The corrector held the amplitude and the cycle overshot a requested load: land on
+            # it from the two converged cycles around it (interpolated in P: a close guess).
+            landing = passed[0]
+            r = (landing - a.P) / (point.P - a.P)
+            y_g, T_g = a.y + r * (point.y - a.y), a.T + r * (point.T - a.T)
+            try:
+                point = self.newton.solve(y_g, T_g, landing, (0.0, 1.0), landing / self.P_flu,
+                                          flow_jacobian=a.flow_jacobian if chord else None)
+            except ConvergenceError as exc:
+                self.rejected += 1
+                self._say(f"landing on {landing:g} N between P = {a.P:.5f} N and the step's "
+                          f"cycle rejected ({exc}): step halved", log)
+                self.ds /= 2
+                return None
         self.points.append(point)
         if landing is not None:
             self.landed.append(len(self.points) - 1)
@@ -548,7 +564,7 @@ class CycleContinuation:
 def cycle_branch(rod: Rod, n_elements: int = 4, A_first: float = 0.01, A_max: float = 0.26,
                  ds_max: float = 0.08, rtol: float = 1e-10, max_points: int = 60,
                  log: Callable[[str], None] | None = None, *, P_max: float | None = None,
-                 land_at: tuple[float, ...] = (), parametrisation: str = "local",
+                 land_at: tuple[float, ...] = (), parametrisation: str = "arclength",
                  newton_tol: float = 1e-8, ds_first: float = 0.02,
                  error_target: float = 1e-3, max_contraction: float = 0.5,
                  chord: bool = False) -> CycleBranch:
@@ -567,18 +583,21 @@ def cycle_branch(rod: Rod, n_elements: int = 4, A_first: float = 0.01, A_max: fl
 
     Choices, measured (list 119; CPU seconds on a shared, loaded 2-core machine):
 
-    - parametrisation ``"local"`` (the default): along the whole branch to 7 N the load
-      increases at every step (smallest step 0.004 N, 4 elements) while the amplitude turns
-      twice (3.2 N, 3.43 N), so holding the load fixed is never singular there, and near the
-      onset (where the load hardly moves) the amplitude is held instead. ``"arclength"`` is
-      kept for comparison.
+    - parametrisation: along the whole branch to 7 N the load increases at every step
+      (smallest step 0.004 N, 4 elements) while the amplitude turns twice (3.2 N, 3.43 N), so
+      both ``"local"`` (natural continuation in P there, in A at the onset) and
+      ``"arclength"`` (the default) pass the turns. Measured with chord corrections, Newton tol
+      1e-5, error target 5e-3: 4 elements to 7 N, arclength 82 variational + 151 orbit
+      integrations, 7 rejected steps, 240 CPU-s; local 86 + 149, 7 rejected, 297 CPU-s
+      (load-dependent timing; the counts are deterministic); 2 elements to 3.6 N: arclength
+      51 + 106, 6 rejected; local 58 + 113, 7 rejected. Arclength is the slightly cheaper.
     - ``newton_tol`` 1e-5 on the scaled correction (``beck_hopf``: 1e-8): the cycle at 5.5 N
       moves by 2e-7 (amplitude) and 1e-7 (period) when re-solved at rtol 1e-10, tol 1e-9; the
       first cycle's load by 2.6e-6. DOP853's cost hardly depends on rtol here (its steps are
       limited by the Kelvin–Voigt modes' stiffness: 1.26 s at rtol 1e-7, 1.7 s at 1e-9 for one
       variational period, 4 elements), so rtol stays 1e-9.
-    - ``chord``: at 4 elements to 7 N, 42 cycles, 86 variational and 149 orbit-only
-      integrations, 7 rejected steps, 297 CPU-s (without chord corrections: ~3 variational
+    - ``chord``: at 4 elements to 7 N, 42 cycles, 82-86 variational and ~150 orbit-only
+      integrations, 7 rejected steps, 240-300 CPU-s (without chord corrections: ~3 variational
       integrations per cycle, 1.7 s each; on 2 elements to 4 N without them: 135 variational
       integrations for 49 cycles, 164 CPU-s).
     - ``error_target`` 5e-3: larger first corrections leave Newton's basin in the amplitude's

@@ -75,7 +75,7 @@ def beck_branch(params: dict[str, Any]) -> dict[str, Any]:
     b = cycle_branch(rod, n_elements=n_el, A_first=float(params.get("A_first", 0.01)),
                      A_max=A_scale, rtol=rtol, max_points=int(params.get("max_points", 80)),
                      P_max=P_max, land_at=land,
-                     parametrisation=str(params.get("parametrisation", "local")),
+                     parametrisation=str(params.get("parametrisation", "arclength")),
                      newton_tol=float(params.get("newton_tol", 1e-5)),
                      ds_first=float(params.get("ds_first", 0.05)),
                      ds_max=float(params.get("ds_max", 0.3)),
