@@ -137,8 +137,9 @@ _ENTRIES = [
         "damping (list 119): flutter at p = 20.05 and 10.94.")}),
     Scene("fig12", rod.fig12, "rods", {"fig12": _fig(
         rod_plots.plot_fig12,
-        "Fig. 12: the Pflüger rod: flutter 16.51 / 7.78, divergence 30.22 / 30.52, at the "
-        "tip-mass ratio that reproduces them (see the errata).")}),
+        "Fig. 12: the Pflüger rod, side by side as printed (tan α = 1: flutter 16.21 / 7.91, "
+        "divergence 34.46 / 34.86) and at the tip-mass ratio tan α = 1.561 that reproduces the "
+        "quoted 16.51 / 7.78 and 30.22 / 30.52 (the erratum).")}),
     Scene("rod_fe_convergence", rod.rod_fe_convergence, "rods", {"rod_fe_convergence": _fig(
         rod_plots.plot_fe_convergence,
         "The finite-element twin: error of the flutter load and pulsation against elements "
@@ -168,7 +169,8 @@ _ENTRIES = [
     Scene("beck_limit_cycle", rod.beck_limit_cycle, "limit_cycles", {
         "fig15": _fig(rod_plots.plot_fig15,
                       "Fig. 15: the nonlinear Beck rod of list (119) at P = 5.5 N: the tip's "
-                      "trajectory to the limit cycle."),
+                      "trajectory as flutter grows from the straight rod (a 1 mm flutter mode) "
+                      "into the limit cycle (periodic-orbit Newton)."),
         "fig16": _fig(rod_plots.plot_fig16, "Fig. 16: tip velocities against tip displacements."),
         "fig17": _fig(rod_plots.plot_fig17,
                       "Fig. 17: the tip's lateral against axial velocity.")}, slow=True),
