@@ -23,12 +23,20 @@ from flutterfriction import scenes as _scenes
 from flutterfriction.errors import ParameterError
 from flutterfriction.plotting import beck_branch as branch_plots
 from flutterfriction.plotting import rod as rod_plots
+from flutterfriction.plotting import sketches as sketch_plots
 from flutterfriction.plotting import solids as solid_plots
 from flutterfriction.plotting import ziegler as ziegler_plots
 from flutterfriction.plotting import ziegler_damped as damped_plots
 from flutterfriction.plotting import ziegler_nonlinear as nonlinear_plots
 from flutterfriction.scenes import beck_branch as branch
-from flutterfriction.scenes import rod, solids, ziegler, ziegler_damped, ziegler_nonlinear
+from flutterfriction.scenes import (
+    rod,
+    sketches,
+    solids,
+    ziegler,
+    ziegler_damped,
+    ziegler_nonlinear,
+)
 from flutterfriction.scenes.sweep import Sweep
 from flutterfriction.sources import import_path  # noqa: F401  (re-exported for the workflow)
 
@@ -84,6 +92,12 @@ def _fig(plot: Callable[[dict[str, Any]], Any], caption: str) -> FigureSpec:
 
 _ENTRIES = [
     # §2.1–2.3 The Ziegler double pendulum
+    Scene("fig01", sketches.fig01, "ziegler", {"fig01": _fig(
+        sketch_plots.plot_fig01,
+        "Fig. 1: a follower load on two rigid bars (exact kinematics) and on a clamped rod "
+        "(small displacements), the states of their closed loops 1→2→3 and 1→2→3→4→1, and the "
+        "work on each leg by quadrature: positive net work, zero on the rigid rotation and on "
+        "the legs the caption names.")}),
     Scene("fig02", ziegler.fig02, "ziegler", {"fig02": _fig(
         ziegler_plots.plot_fig02,
         "Fig. 2: the Ziegler double pendulum (drawn by the same code as Fig. 4).")}),
@@ -131,6 +145,11 @@ _ENTRIES = [
     Scene("damped_dead_load", ziegler_damped.damped_dead_load, "ziegler_paradox"),
     Scene("errata_damped", ziegler_damped.errata_damped, "ziegler_paradox"),
     # §2.5–2.8 The Beck and Pflüger rods
+    Scene("fig10", sketches.fig10, "rods", {"fig10": _fig(
+        sketch_plots.plot_fig10,
+        "Fig. 10: the Beck and the Pflüger (tan α = 1) rods with their modes at the exact "
+        "critical loads of eq. (118) (Beck flutter p = 20.05; Pflüger flutter 16.21, divergence "
+        "34.46), from the null vector of the boundary matrix; markers: the 32-element twin.")}),
     Scene("fig11", rod.fig11, "rods", {"fig11": _fig(
         rod_plots.plot_fig11,
         "Fig. 11: Re and Im of ω̃ against p for the Beck rod, without and with internal "
@@ -222,6 +241,11 @@ _ENTRIES = [
         solid_plots.plot_flutter_map,
         "Which directions flutter against g; and flutter triggered by a small elastic "
         "anisotropy at the coalescence of three eigenvalues.")}),
+    Scene("fig23", sketches.fig23, "solids", {"fig23": _fig(
+        sketch_plots.plot_fig23,
+        "Fig. 23: twinning shear u = |x·f2| f1 (eq. 169) drawn on a lattice: the displacement "
+        "is continuous across the plane f1, its gradient jumps by the rank-one 2 f1⊗f2 "
+        "(eq. 171).")}),
     Scene("solids_statements", solids.solids_statements, "solids"),
     Scene("errata_solids", solids.errata_solids, "solids"),
 ]
