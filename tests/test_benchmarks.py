@@ -81,7 +81,9 @@ def test_the_readme_timing_table_is_generated_from_benchmark_files(tmp_path):
     assert "| paper from clean | 280 | 100 | 2.80x faster |" in table
     assert "| beck_hopf.solve | 40.0 | 39.0 | 100 | 90.0 | 88.0 |" in table
     assert "| solve_ziegler | 3.0 | 2.5 | 100 | - | - |" in table  # a batch: new job
-    assert "CPU time of all jobs 42 s (previous main: 89 s)" in table
+    assert "CPU time of those jobs 42 s (previous main: 89 s)" in table
+    slower = timing_markdown(after, before, {"x": {"before": 100.0, "after": 125.0}})
+    assert "| x | 100 | 125 | 1.25x slower |" in slower
     readme = f"intro\n{TIMING_START}\nold\n{TIMING_END}\nrest\n"
     expected = f"intro\n{TIMING_START}\n{table}{TIMING_END}\nrest\n"
     assert replace_timing_block(readme, table) == expected

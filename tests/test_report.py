@@ -195,3 +195,12 @@ def test_a_check_row_naming_a_chapter_figure_is_shown_under_it(tmp_path):
     assert 'href="#q1"' in _figure_block(text, "fig02")
     assert 'href="#q1"' not in _figure_block(text, "fig03")
     assert broken_links(page) == []
+
+
+def test_the_readme_shows_the_current_coverage_and_parameter_lists():
+    """The README claims no more than the coverage table shows: its copy is the generated one."""
+    from flutterfriction.report import coverage_markdown, parameter_lists_markdown
+
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    assert coverage_markdown().rstrip() in readme
+    assert parameter_lists_markdown().rstrip() in readme

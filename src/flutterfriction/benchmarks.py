@@ -138,17 +138,18 @@ def timing_markdown(after: list[dict[str, Any]], before: list[dict[str, Any]] | 
     lines: list[str] = []
     if totals:
         lines += markdown_table(
-            ["command (median wall time)", "previous main [s]", "this main [s]", "ratio"],
+            ["command (wall time; the median where several runs)", "previous main [s]",
+             "this main [s]", "ratio"],
             [[what, _fmt(t.get("before"), ".0f"), _fmt(t.get("after"), ".0f"),
-              "" if not t.get("before") or not t.get("after")
-              else f"{t['before'] / t['after']:.2f}x faster"] for what, t in totals.items()])
+              _speedup(t.get("before"), t.get("after"))] for what, t in totals.items()])
         lines.append("")
     by_name = {j["job"]: j for j in before or []}
 
     def total(jobs, key):
         return sum(j[key] or 0.0 for j in jobs)
 
-    lines.append(f"Jobs: {len(after)} (previous main: {len(before or [])}); CPU time of all jobs "
+    lines.append(f"Jobs with a `benchmark:` file: {len(after)} (previous main: "
+                 f"{len(before or [])}); CPU time of those jobs "
                  f"{total(after, 'cpu_s'):.0f} s (previous main: "
                  f"{total(before or [], 'cpu_s'):.0f} s). The slowest {n_slowest}:")
     lines.append("")
@@ -161,6 +162,13 @@ def timing_markdown(after: list[dict[str, Any]], before: list[dict[str, Any]] | 
     lines += markdown_table(["job", "wall [s]", "CPU [s]", "peak RSS [MB]",
                              "previous wall [s]", "previous CPU [s]"], rows)
     return "\n".join(lines) + "\n"
+
+
+def _speedup(before: float | None, after: float | None) -> str:
+    if not before or not after:
+        return ""
+    r = before / after
+    return f"{r:.2f}x faster" if r >= 1 else f"{1 / r:.2f}x slower"
 
 
 def replace_timing_block(readme: str, table: str) -> str:
