@@ -8,7 +8,7 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from flutterfriction.analysis import rod as ar
-from flutterfriction.analysis.stability import _refine_roots, discriminant, pencil_eigenvalues
+from flutterfriction.analysis.stability import discriminant, pencil_eigenvalues, refine_roots
 from flutterfriction.models.rod import Rod, RodGroups
 from flutterfriction.models.rod_nonlinear import NonlinearRod
 
@@ -47,7 +47,7 @@ def _flutter(m):
         return np.take_along_axis(mu, idx, axis=-1)
 
     grid = np.linspace(0, 20, 201)
-    return _refine_roots(lambda P: float(discriminant(low(np.array([P])))[0]), grid,
+    return refine_roots(lambda P: float(discriminant(low(np.array([P])))[0]), grid,
                          discriminant(low(grid)))[0]
 
 

@@ -59,7 +59,7 @@ class RodLimitCycle:
         return d
 
 
-def _tip_state(model: NonlinearRod, y: NDArray) -> NDArray:
+def tip_state(model: NonlinearRod, y: NDArray) -> NDArray:
     n = model.n_dof
     q, v = y[:n], y[n:]
     _, _, _, G_tip = model.kinematics(q)
@@ -130,9 +130,9 @@ def beck_limit_cycle(rod: Rod, P: float, n_elements: int = 8, method: str = "BDF
                                    f"{sol.message}")
         chunks.append(sol)
         for te, ye in zip(sol.t_events[0], sol.y_events[0], strict=True):
-            if _tip_state(model, ye)[1] <= 0:
+            if tip_state(model, ye)[1] <= 0:
                 continue
-            crossings.append((float(te), float(_tip_state(model, ye)[1]), ye.copy()))
+            crossings.append((float(te), float(tip_state(model, ye)[1]), ye.copy()))
             if len(crossings) < 4:
                 continue
             # Four crossings: three periods and four amplitudes agree to tol (after a mesh
@@ -172,7 +172,7 @@ def beck_limit_cycle(rod: Rod, P: float, n_elements: int = 8, method: str = "BDF
     # Measures on the last period, and the energy balance (trapezoid, fine sampling).
     tt = np.linspace(t_end - T, t_end, samples_per_period + 1)
     states = np.array([state_at(t) for t in tt])
-    tips = np.array([_tip_state(model, s) for s in states])
+    tips = np.array([tip_state(model, s) for s in states])
     powers = np.array([model.power_balance(s[:n], s[n:], P) for s in states])
     W_P = float(np.trapezoid(powers[:, 0], tt))
     W_D = float(np.trapezoid(powers[:, 1], tt))
@@ -185,7 +185,7 @@ def beck_limit_cycle(rod: Rod, P: float, n_elements: int = 8, method: str = "BDF
         shapes.append(shape.round(6).tolist())
     # History of the tip for the figures: the whole transient, 100 points per period.
     th = np.linspace(0.0, t_end, max(200, int(100 * t_end / T)))
-    hist = np.array([_tip_state(model, state_at(t)) for t in th])
+    hist = np.array([tip_state(model, state_at(t)) for t in th])
     return RodLimitCycle(
         tip_amplitude_m=float(0.5 * (tips[:, 1].max() - tips[:, 1].min())), period_s=float(T),
         tip_rotation_amplitude_rad=float(np.max(np.abs(states[:, n - 1]))),
@@ -419,7 +419,7 @@ def section_crossings(model: NonlinearRod, sol) -> tuple[NDArray, NDArray]:
     return sol.t_events[0][keep], sol.y_events[0][keep]
 
 
-def _tip_states(model: NonlinearRod, Y: NDArray, batch: int = 512) -> NDArray:
+def tip_states(model: NonlinearRod, Y: NDArray, batch: int = 512) -> NDArray:
     """``(u1, u2, u1_dot, u2_dot)`` of the tip for states ``Y`` of shape ``(2 n, m)``:
     ``(m, 4)``, evaluated in batches."""
     n, out = model.n_dof, []
@@ -473,7 +473,7 @@ def cycle_measures(cycle: ShootingCycle, P: float, samples: int = 512,
     n = model.n_dof
     tt = np.arange(samples) * (T / samples)
     Y = cycle.orbit.sol(tt)
-    tips = _tip_states(model, Y)
+    tips = tip_states(model, Y)
     powers = np.array([model.power_balance(Y[:n, k], Y[n:, k], P) for k in range(samples)])
     W_P, W_D = (float(x) for x in powers.sum(axis=0) * (T / samples))
     fl = cycle.floquet

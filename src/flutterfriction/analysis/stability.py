@@ -168,7 +168,7 @@ def discriminant_noise_floor(Linv: ArrayLike, K0: ArrayLike, K1: ArrayLike, load
     return NOISE_FLOOR_FACTOR * np.finfo(float).eps * (norms / scale) ** 2 * 4.0 ** (pairs - 1)
 
 
-def _refine_roots(f: Callable[[float], float], grid: NDArray, values: NDArray,
+def refine_roots(f: Callable[[float], float], grid: NDArray, values: NDArray,
                   floor: NDArray | None = None,
                   floor_at: Callable[[float], float] | None = None) -> list[float]:
     """Roots of ``f`` from samples: every sign change is refined with Brent's method, and every
@@ -259,7 +259,7 @@ def coalescence_loads(K0: ArrayLike, K1: ArrayLike, M: ArrayLike, load_max: floa
         mu_p = _reduced_eigenvalues(*reduced, [p])
         return float(discriminant_noise_floor(reduced[0], K0, K1, [p], mu_p)[0])
 
-    return _refine_roots(f, grid, values, floor, floor_at if noise_floor else None)
+    return refine_roots(f, grid, values, floor, floor_at if noise_floor else None)
 
 
 def static_bifurcation_loads(K0: ArrayLike, K1: ArrayLike) -> NDArray:

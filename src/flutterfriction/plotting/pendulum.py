@@ -13,7 +13,7 @@ MASS = "#1f5fa8"
 SPRING = "#b23b3b"
 
 
-def _ground(ax: Axes, at: np.ndarray, size: float, angle: float) -> None:
+def draw_ground(ax: Axes, at: np.ndarray, size: float, angle: float) -> None:
     """Hatched support under the fixed hinge A, perpendicular to ``angle`` (rad)."""
     t = np.array([np.cos(angle), np.sin(angle)])
     n = np.array([-t[1], t[0]])
@@ -55,7 +55,7 @@ def draw_pendulum(ax: Axes, points: dict[str, Any], masses: dict[str, float],
     tf = (lambda x: np.asarray(x, dtype=float)) if transform is None else transform
     pts = {k: tf(np.asarray(v, dtype=float)) + np.asarray(offset) for k, v in points.items()}
     A, B, C, D, E = (pts[k] for k in "ABCDE")
-    _ground(ax, A, 0.12 * scale, np.arctan2(*(B - A)[::-1]))
+    draw_ground(ax, A, 0.12 * scale, np.arctan2(*(B - A)[::-1]))
     ax.plot(*np.array([A, B, C]).T, color=ROD, lw=2.0, solid_capstyle="round", zorder=4)
     for hinge in (A, B):
         ax.add_patch(Circle(hinge, 0.035 * scale, fc="white", ec=ROD, lw=1.0, zorder=6))

@@ -12,7 +12,7 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 from matplotlib.patches import Circle, Polygon
 
-from flutterfriction.plotting.pendulum import ROD, _ground
+from flutterfriction.plotting.pendulum import ROD, draw_ground
 
 STATES = ("C0", "C1", "C2", "C3")
 
@@ -55,7 +55,7 @@ def plot_fig01(data: dict[str, Any]) -> Figure:
         u = (C - B) / np.linalg.norm(C - B)
         _arrow(ax, C + 0.22 * L * u, C, colour)  # the follower load, coaxial with BC
     ax.add_patch(Circle((0, 0), 0.018 * L, fc="white", ec=ROD, lw=1.0, zorder=6))
-    _ground(ax, np.zeros(2), 0.06 * L, 0.0)
+    draw_ground(ax, np.zeros(2), 0.06 * L, 0.0)
     ax.annotate("A", (0.0, 0.04 * L), ha="center", va="bottom")
     ax.annotate("P (coaxial with BC)", (1.02 * L, -0.06 * L), ha="center", va="top",
                 fontsize=8)

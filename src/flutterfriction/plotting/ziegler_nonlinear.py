@@ -10,7 +10,7 @@ from matplotlib.collections import LineCollection
 from matplotlib.figure import Figure
 
 
-def _time_coloured(ax, x, y, t, lw=0.8):
+def time_coloured(ax, x, y, t, lw=0.8):
     pts = np.array([x, y]).T.reshape(-1, 1, 2)
     lc = LineCollection(np.concatenate([pts[:-1], pts[1:]], axis=1), cmap="viridis", lw=lw)
     lc.set_array(np.asarray(t)[:-1])
@@ -115,7 +115,7 @@ def plot_fig21(data: dict[str, Any]) -> Figure:
     S = np.array(data["scratch"]) * 1000
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(9.6, 4.4),
                                    gridspec_kw={"width_ratios": [1, 1.6]})
-    _time_coloured(ax1, C[:, 0], C[:, 1], data["t"], lw=1.2)
+    time_coloured(ax1, C[:, 0], C[:, 1], data["t"], lw=1.2)
     ax1.set_aspect("equal")
     ax1.set_title("path of the loaded end C in the fixed frame [mm]", fontsize=8)
     ax2.set_facecolor("0.15")

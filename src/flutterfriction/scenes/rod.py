@@ -338,7 +338,7 @@ def beck_limit_cycle(params: dict[str, Any]) -> dict[str, Any]:
     history sampled at a fixed step (``samples_per_period`` per period of the cycle), the
     transient mesh's cycle as one closed loop, and the rod's shape over a period of the
     primary cycle."""
-    from flutterfriction.analysis.rod_dynamics import _tip_states, beck_cycle_chain, rod_shapes
+    from flutterfriction.analysis.rod_dynamics import beck_cycle_chain, rod_shapes, tip_states
 
     take(params, {"rod", "P_N", "meshes", "method", "fine_method", "rtol", "tol",
                    "transient_rtol", "transient_tol", "initial_amplitude", "variational_rtol",
@@ -370,8 +370,8 @@ def beck_limit_cycle(params: dict[str, Any]) -> dict[str, Any]:
     dt = cyc0.T / per_period
     th = np.arange(0.0, tr.t_end + 0.5 * dt, dt)
     th[-1] = min(th[-1], tr.t_end)
-    tips = _tip_states(base, tr.state_at(th))
-    loop = _tip_states(base, cyc0.orbit.sol(np.linspace(0.0, cyc0.T, 4 * per_period + 1)))
+    tips = tip_states(base, tr.state_at(th))
+    loop = tip_states(base, cyc0.orbit.sol(np.linspace(0.0, cyc0.T, 4 * per_period + 1)))
     names = ("u1", "u2", "u1_dot", "u2_dot")
     history = {"t": [round(float(t), 7) for t in th],
                **{k: rounded(tips[:, i]) for i, k in enumerate(names)}}
@@ -454,9 +454,9 @@ def beck_work_precision(params: dict[str, Any]) -> dict[str, Any]:
     from scipy.integrate import solve_ivp
 
     from flutterfriction.analysis.rod_dynamics import (
-        _tip_state,
         exact_jacobian,
         generalized_alpha,
+        tip_state,
     )
     from flutterfriction.models.rod_nonlinear import NonlinearRod
 
@@ -482,8 +482,8 @@ def beck_work_precision(params: dict[str, Any]) -> dict[str, Any]:
                           method=method, rtol=rtol, atol=rtol * 1e-2, events=section,
                           **exact_jacobian(m, P, method))
             for te, ye in zip(s.t_events[0], s.y_events[0], strict=True):
-                if te > 0.05 * rod.time_scale and _tip_state(m, ye)[1] > 0:
-                    return float(te), float(_tip_state(m, ye)[1]), int(s.nfev)
+                if te > 0.05 * rod.time_scale and tip_state(m, ye)[1] > 0:
+                    return float(te), float(tip_state(m, ye)[1]), int(s.nfev)
             raise ConvergenceError(f"{method}: no return to the section")
 
         y0 = np.zeros(2 * n)
@@ -494,7 +494,7 @@ def beck_work_precision(params: dict[str, Any]) -> dict[str, Any]:
                         rtol=1e-7, atol=1e-9, **jac).y[:, -1]
         first = solve_ivp(lambda t, y, m=m: m.rhs(t, y, P), (0, 4 * rod.time_scale), y_T,
                           method="LSODA", rtol=1e-7, atol=1e-9, events=section, **jac)
-        y_s = next(ye for ye in first.y_events[0] if _tip_state(m, ye)[1] > 0)
+        y_s = next(ye for ye in first.y_events[0] if tip_state(m, ye)[1] > 0)
         t_ref = _time.perf_counter()
         ref_method = "DOP853" if int(n_el) in explicit else "LSODA"
         T_ref, u_ref, _ = one_period(y_s, ref_method, 1e-11)
@@ -549,9 +549,9 @@ def _hermite_return(m, ts, ys, P, t_min):
     interpolation (velocity and its centred-difference derivative at both ends of the step)."""
     from scipy.interpolate import CubicHermiteSpline
 
-    from flutterfriction.analysis.rod_dynamics import _tip_state
+    from flutterfriction.analysis.rod_dynamics import tip_state
 
-    tips = np.array([_tip_state(m, y) for y in ys])
+    tips = np.array([tip_state(m, y) for y in ys])
     u, vel = tips[:, 1], tips[:, 3]
     acc = np.gradient(vel, ts)
     for k in range(len(ts) - 1):
@@ -569,7 +569,7 @@ def beck_linearisation(params: dict[str, Any]) -> dict[str, Any]:
     theory: flutter loads (undamped and with internal damping) and the growth rate and
     frequency at ``P_N`` against the number of P2 elements, with the measured rates."""
     from flutterfriction.analysis.damped import flutter_onset
-    from flutterfriction.analysis.stability import _refine_roots, discriminant, pencil_eigenvalues
+    from flutterfriction.analysis.stability import discriminant, pencil_eigenvalues, refine_roots
     from flutterfriction.models.rod_nonlinear import NonlinearRod
 
     take(params, {"rod", "P_N", "meshes"})
@@ -592,7 +592,7 @@ def beck_linearisation(params: dict[str, Any]) -> dict[str, Any]:
             return np.take_along_axis(mu, idx, axis=-1)
 
         grid = np.linspace(0.0, 3 * exact_flu, 301)
-        p_u = _refine_roots(lambda x, low=low: float(discriminant(low(np.array([x])))[0]),
+        p_u = refine_roots(lambda x, low=low: float(discriminant(low(np.array([x])))[0]),
                             grid, discriminant(low(grid)))[0]
         p_d = flutter_onset(M0, C, K, K1, load_max=3 * exact_flu_d, n_scan=64)
         k = m.n_dof
