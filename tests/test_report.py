@@ -181,6 +181,23 @@ def test_an_unknown_layout_key_is_refused(tmp_path):
         load_layout(p)
 
 
+def test_a_layout_section_naming_no_chapter_part_is_refused(tmp_path):
+    p = tmp_path / "layout.yaml"
+    p.write_text("title: T\nsections:\n  - title: S\n    notebook: rodz\n")
+    with pytest.raises(ParameterError, match="sections.0.notebook"):
+        load_layout(p)
+
+
+def test_the_layout_schema_lists_the_registry_parts():
+    import yaml
+
+    schema = yaml.safe_load((ROOT / "workflow" / "schemas" / "report.schema.yaml").read_text())
+    from flutterfriction.registry import PARTS
+
+    parts = schema["properties"]["sections"]["items"]["properties"]["notebook"]["enum"]
+    assert parts == list(PARTS)
+
+
 def test_a_check_row_naming_a_chapter_figure_is_shown_under_it(tmp_path):
     res, _ = _tree(tmp_path, figures=("fig02", "fig03"))
     (res / "data" / "fig02.json").write_text("{}")

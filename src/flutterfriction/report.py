@@ -76,18 +76,24 @@ def load_layout(path: str | Path,
     figures
         Part -> {figure: caption}; by default from :mod:`flutterfriction.registry`.
     """
+    import jsonschema
+
     with open(path, encoding="utf-8") as fh:
         layout = yaml.safe_load(fh)
+    with open(REPORT_SCHEMA, encoding="utf-8") as fh:
+        schema = yaml.safe_load(fh)
+    problems = [f"{'.'.join(map(str, e.path)) or '(top level)'}: "
+                f"{e.message if len(e.message) < 200 else e.validator}"
+                for e in jsonschema.Draft202012Validator(schema).iter_errors(layout)]
+    if problems:
+        raise ParameterError(f"report layout {path}: unknown keys or invalid values:\n  "
+                             + "\n  ".join(problems))
     if figures is None:
         from flutterfriction.registry import PARTS, scenes_of
 
         figures = {part: {f: spec.caption for s in scenes_of(part)
                           for f, spec in s.figures.items()} for part in PARTS}
     for section in layout.get("sections", []):
-        unknown = set(section) - {"title", "intro", "notebook", "animations", "images"}
-        if unknown:
-            raise ParameterError(f"report layout: unknown keys {sorted(unknown)} in section "
-                                 f"{section.get('title')!r}")
         if "notebook" in section:
             section["figures"] = dict(figures.get(section["notebook"], {}))
     return layout
@@ -140,6 +146,7 @@ CHAPTER_FIGURES = 24
 _WORKFLOW = Path(__file__).resolve().parents[2] / "workflow"
 COVERAGE = _WORKFLOW / "coverage.yaml"
 COVERAGE_SCHEMA = _WORKFLOW / "schemas" / "coverage.schema.yaml"
+REPORT_SCHEMA = _WORKFLOW / "schemas" / "report.schema.yaml"
 _STATUS_CLASS = {"reproduced": "st-reproduced", "reproduced in part": "st-part",
                  "not reproduced": "st-not"}
 

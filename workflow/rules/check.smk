@@ -43,6 +43,7 @@ rule report:
         code=job_sources("flutterfriction.reference", "flutterfriction.report"),
         reference="workflow/reference.yaml",
         layout="workflow/report.yaml",
+        layout_schema="workflow/schemas/report.schema.yaml",
         coverage="workflow/coverage.yaml",
         stress="results/checks/stress.json",
         work_precision=rules.work_precision.output,
