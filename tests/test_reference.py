@@ -18,10 +18,10 @@ def reference():
     return load_reference(ROOT / "workflow" / "reference.yaml")
 
 
-# The nonlinear rod's cycle, its work-precision study and its Hopf branch take ~2 min; the
-# workflow's check (run by CI on every commit) covers their entries, and
-# tests/test_rod_nonlinear.py their solvers.
-WORKFLOW_ONLY = {"beck_limit_cycle", "beck_work_precision", "beck_hopf"}
+# The nonlinear rod's cycle, its work-precision study, its Hopf onset and its branch take
+# ~2-5 min each; the workflow's check (run by CI on every commit) covers their entries, and
+# tests/test_rod_nonlinear.py, tests/test_beck_branch.py their solvers.
+WORKFLOW_ONLY = {"beck_limit_cycle", "beck_work_precision", "beck_hopf", "beck_branch"}
 
 
 @pytest.fixture(scope="module")
@@ -55,6 +55,7 @@ def test_every_entry_documents_its_tolerance(reference):
             assert entry.get(key), f"{entry['id']} lacks {key}"
 
 
+@pytest.mark.slow  # uses every scene's data (built once for the module, ~1-2 min)
 def test_check_fails_on_a_wrong_value(testable, scene_data):
     data = copy.deepcopy(scene_data)
     data["eq46"]["quantities"]["gamma_flu"]["value"] = 2.0 * (1 + 1e-9)
@@ -62,6 +63,7 @@ def test_check_fails_on_a_wrong_value(testable, scene_data):
     assert rows["eq46_P_flu"].status == "FAIL"
 
 
+@pytest.mark.slow  # uses every scene's data (built once for the module, ~1-2 min)
 def test_check_fails_when_the_methods_disagree(testable, scene_data):
     data = copy.deepcopy(scene_data)
     data["eq47"]["quantities"]["P_flu"]["independent"] = 4.81  # still within the quoted digits
@@ -69,6 +71,7 @@ def test_check_fails_when_the_methods_disagree(testable, scene_data):
     assert rows["eq47_P_flu"].status == "FAIL"
 
 
+@pytest.mark.slow  # uses every scene's data (built once for the module, ~1-2 min)
 def test_erratum_unverified_when_printed_form_is_right(testable, scene_data):
     data = copy.deepcopy(scene_data)
     e = data["errata_ziegler"]["errata"]["eq39_flutter_sqrt_ka"]
@@ -77,6 +80,7 @@ def test_erratum_unverified_when_printed_form_is_right(testable, scene_data):
     assert rows["erratum_eq39_flutter_half_width"].status == "UNVERIFIED erratum"
 
 
+@pytest.mark.slow  # uses every scene's data (built once for the module, ~1-2 min)
 def test_categorical_statement_fails_when_regime_differs(testable, scene_data):
     data = copy.deepcopy(scene_data)
     data["eq47"]["quantities"]["regime_at_6.8N"]["value"] = "stable"
