@@ -66,3 +66,12 @@ def test_markdown_table_keeps_every_row_to_its_columns():
         cells = line.replace("\\|", "").strip("|").split("|")
         assert len(cells) == 2, line
     assert "\\|x - ref\\|" in lines[2] and "2 lines" in lines[2]
+
+
+def test_cpu_times_are_timings_not_data():
+    from flutterfriction.io import merge_timings, split_timings
+
+    data = {"cycle": {"period_s": 0.136, "cpu_s": 2.1, "wall_s": 2.3}, "runs": [{"cpu_s": 1.0}]}
+    kept, timings = split_timings(data)
+    assert kept == {"cycle": {"period_s": 0.136}, "runs": [{}]}
+    assert merge_timings(kept, timings) == data

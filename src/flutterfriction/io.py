@@ -65,10 +65,10 @@ def read_json(path: str | os.PathLike) -> Any:
         return json.load(fh)
 
 
-#: Keys whose values are wall-clock measurements: they differ from run to run, so they are kept
-#: out of the data files (which reruns reproduce byte for byte) in a timings file beside the
-#: benchmarks.
-TIMING_KEYS = frozenset({"wall_s", "time_s"})
+#: Keys whose values are measured wall-clock or CPU times: they differ from run to run, so they
+#: are kept out of the data files (which reruns reproduce byte for byte) in a timings file
+#: beside the benchmarks.
+TIMING_KEYS = frozenset({"wall_s", "time_s", "cpu_s"})
 
 
 def split_timings(data: Any) -> tuple[Any, Any]:
