@@ -370,6 +370,12 @@ class CycleContinuation:
         if log:
             log(message)
 
+    def _reject(self, message: str, log: Callable[[str], None] | None) -> None:
+        """A rejected step: counted, its reason logged, the step halved (no cycle added)."""
+        self.rejected += 1
+        self._say(message, log)
+        self.ds /= 2
+
     def first(self, A_first: float) -> CyclePoint:
         """The cycle of amplitude ``A_first`` from the linear mode at the flutter load (on the
         section: the mode's phase with zero lateral tip velocity and positive displacement)."""
@@ -404,11 +410,8 @@ class CycleContinuation:
         try:
             point = self.newton.solve(y_guess, T_guess, P_guess, tangent, target)
         except ConvergenceError as exc:
-            self.rejected += 1
-            self._say(f"step ds = {self.ds:.3g} from A = {a.A:.5f} m rejected ({exc}): "
-                      "halved", log)
-            self.ds /= 2
-            return None
+            return self._reject(f"step ds = {self.ds:.3g} from A = {a.A:.5f} m rejected "
+                                f"({exc}): halved", log)
         pts.append(point)
         self._say(f"cycle {len(pts) - 1}: A = {point.A:.5f} m, P = {point.P:.5f} N, "
                   f"T = {point.T:.6f} s, max |mu| = {point.floquet.max_modulus:.6f}, "
@@ -508,11 +511,8 @@ class CycleContinuation:
             point = self.newton.solve(y_g, T_g, P_g, direction, target,
                                       flow_jacobian=a.flow_jacobian if chord else None)
         except ConvergenceError as exc:
-            self.rejected += 1
-            self._say(f"step ds = {ds:.3g} from A = {a.A:.5f} m, P = {a.P:.5f} N rejected "
-                      f"({exc}): halved", log)
-            self.ds /= 2
-            return None
+            return self._reject(f"step ds = {ds:.3g} from A = {a.A:.5f} m, P = {a.P:.5f} N "
+                                f"rejected ({exc}): halved", log)
         passed = sorted(L for L in land_at if a.P < L * (1 - 1e-9) and point.P > L * (1 + 1e-9))
         if landing is None and passed:
             # The corrector held the amplitude and the cycle overshot a requested load: land on
@@ -524,11 +524,8 @@ class CycleContinuation:
                 point = self.newton.solve(y_g, T_g, landing, (0.0, 1.0), landing / self.P_flu,
                                           flow_jacobian=a.flow_jacobian if chord else None)
             except ConvergenceError as exc:
-                self.rejected += 1
-                self._say(f"landing on {landing:g} N between P = {a.P:.5f} N and the step's "
-                          f"cycle rejected ({exc}): step halved", log)
-                self.ds /= 2
-                return None
+                return self._reject(f"landing on {landing:g} N between P = {a.P:.5f} N and the "
+                                    f"step's cycle rejected ({exc}): step halved", log)
         self.points.append(point)
         if landing is not None:
             self.landed.append(len(self.points) - 1)
