@@ -21,6 +21,7 @@ from typing import Any
 
 from flutterfriction import scenes as _scenes
 from flutterfriction.errors import ParameterError
+from flutterfriction.plotting import apparatus as apparatus_plots
 from flutterfriction.plotting import beck_branch as branch_plots
 from flutterfriction.plotting import rod as rod_plots
 from flutterfriction.plotting import sketches as sketch_plots
@@ -28,8 +29,8 @@ from flutterfriction.plotting import solids as solid_plots
 from flutterfriction.plotting import ziegler as ziegler_plots
 from flutterfriction.plotting import ziegler_damped as damped_plots
 from flutterfriction.plotting import ziegler_nonlinear as nonlinear_plots
-from flutterfriction.scenes import beck_branch as branch
 from flutterfriction.scenes import (
+    apparatus,
     rod,
     sketches,
     solids,
@@ -37,6 +38,7 @@ from flutterfriction.scenes import (
     ziegler_damped,
     ziegler_nonlinear,
 )
+from flutterfriction.scenes import beck_branch as branch
 from flutterfriction.scenes.sweep import Sweep
 from flutterfriction.sources import import_path  # noqa: F401  (re-exported for the workflow)
 
@@ -133,6 +135,13 @@ _ENTRIES = [
             damped_plots.plot_paradox_limit,
             "The damped flutter load as ε → 0 (log axis): it tends to 4/3 K/L, not to the "
             "undamped 2 K/L.")}),
+    Scene("fig18", apparatus.fig18, "ziegler_paradox", {"fig18": _fig(
+        apparatus_plots.plot_fig18,
+        "Fig. 18: the wheel at the pendulum's end on the sliding plate (top view, list (47) "
+        "deflected: the force stays along BC) and the pendulum as a lever (side view, forces to "
+        "scale): moment balance W a = R (b − μ r), P = μ R, checked against the lever's "
+        "equilibrium as a linear system; μ, a, r are our choice. Red spirals: hinge springs; "
+        "blue discs: masses.")}),
     Scene("fig19_theory", ziegler_damped.fig19_theory, "ziegler_paradox", {
         "fig19_theory": _fig(
             damped_plots.plot_fig19_theory,
