@@ -126,9 +126,9 @@ def integrate_path(contact: CoulombContact, vertices: ArrayLike,
                 p = p + dp * (t_new - t)
                 t = t_new
                 branch = "stick"
-                if p[0] < 0:
-                    raise ParameterError("the path separates the contact (p_N < 0): not "
-                                         "modelled (chapter §3.1: contact only)")
+            if p[0] < 0:  # on either branch: a slip through the apex separates too
+                raise ParameterError("the path separates the contact (p_N < 0): not "
+                                     "modelled (chapter §3.1: contact only)")
             us.append(u_a + t * du)
             ps.append(p.copy())
             slips.append(slip)

@@ -6,16 +6,29 @@ from typing import Any
 
 import matplotlib.pyplot as plt
 import numpy as np
+from matplotlib.axes import Axes
 from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
+from matplotlib.patches import Patch, Polygon, Rectangle
 
 from flutterfriction.plotting import REGIME_COLOURS
 
 
-def plot_fig22(data: dict[str, Any]) -> Figure:
+def _label_points(ax: Axes, xy: np.ndarray) -> None:
+    """One label per distinct point of the path ("2, 3" where it stops at the same place
+    twice), coincident ones below-right of the point, clear of the path."""
+    groups: dict[tuple[float, float], list[int]] = {}
+    for k, (x, y) in enumerate(xy):
+        groups.setdefault((round(float(x), 9), round(float(y), 9)), []).append(k)
+    for (x, y), ks in groups.items():
+        ax.annotate(", ".join(map(str, ks)), (x, y), xytext=(4, 4) if len(ks) == 1 else (5, -11),
+                    textcoords="offset points", fontsize=7)
+
+
+def _coulomb_panel(ax: Axes, data: dict[str, Any]) -> None:
     """The Coulomb cone in the (p_N, p_T) plane, a and b at a slip point, and a force path."""
     p = np.array(data["p"])
     mu = data["mu"]
-    fig, ax = plt.subplots(figsize=(5.2, 4.2))
     pn = np.linspace(0, 1.25 * p[:, 0].max(), 2)
     ax.fill_between(pn, -mu * pn, mu * pn, color="0.9", label="stick (inside the cone)")
     ax.plot(pn, mu * pn, "k", lw=1.2)
@@ -28,14 +41,7 @@ def plot_fig22(data: dict[str, Any]) -> Figure:
                 label=f"computed path: {b}" if b not in done else None)
         done.add(b)
     ax.plot(p[:, 0], p[:, 1], "o", color="k", ms=3)
-    # One label per distinct point ("2, 3" where the path stops at the same force twice),
-    # coincident ones below-right of the point, inside the cone, clear of the path.
-    groups: dict[tuple[float, float], list[int]] = {}
-    for k, (x, y) in enumerate(p):
-        groups.setdefault((round(float(x), 9), round(float(y), 9)), []).append(k)
-    for (x, y), ks in groups.items():
-        ax.annotate(", ".join(map(str, ks)), (x, y), xytext=(4, 4) if len(ks) == 1 else (5, -11),
-                    textcoords="offset points", fontsize=7)
+    _label_points(ax, p)
     s = np.array(data["slip_point"])
     L = 0.35 * p[:, 0].max()
     for vec, name, col, ha in ((data["a"], r"$\mathbf{a}$ (normal)", "C2", "right"),
@@ -48,8 +54,156 @@ def plot_fig22(data: dict[str, Any]) -> Figure:
     ax.set_ylabel(r"tangential force $p_T$ [N]")
     ax.set_aspect("equal")
     ax.legend(loc="lower left", fontsize=7)
-    ax.set_title("Fig. 22: Coulomb friction, a nonassociative 'flow rule' (b not parallel to a)",
+    ax.set_title("(right) the Coulomb criterion: a nonassociative 'flow rule'\n"
+                 "(b not parallel to a); points numbered along the path", fontsize=8)
+
+
+STICK_SLIP = {"stick": "C0", "slip": "C3"}
+_FORCE = {"N": "C2", "T": "C1", "reaction": "C4"}
+
+
+def _arrow(ax: Axes, tail, head, colour: str, lw: float = 1.8) -> None:
+    ax.annotate("", tuple(head), tuple(tail),
+                arrowprops={"arrowstyle": "-|>", "color": colour, "lw": lw, "shrinkA": 0,
+                            "shrinkB": 0, "mutation_scale": 12}, zorder=9)
+
+
+def _zigzag(ax: Axes, start, end, n: int = 6, width: float = 0.18, **kw) -> None:
+    """A coil spring from ``start`` to ``end`` (straight leads, ``n`` zigzags between)."""
+    start, end = np.asarray(start, float), np.asarray(end, float)
+    d = end - start
+    t = d / np.linalg.norm(d)
+    nrm = np.array([-t[1], t[0]])
+    s = np.concatenate([[0.0, 0.15], np.linspace(0.15, 0.85, 2 * n + 1)[1:-1], [0.85, 1.0]])
+    off = np.zeros_like(s)
+    off[2:-2] = width * np.where(np.arange(len(s) - 4) % 2 == 0, 1.0, -1.0)
+    pts = start + s[:, None] * d + off[:, None] * nrm
+    ax.plot(*pts.T, **kw)
+
+
+def _ground(ax: Axes, x0: float, x1: float, y: float, h: float = 0.25) -> None:
+    ax.plot([x0, x1], [y, y], color="k", lw=1.2)
+    for x in np.arange(x0 + 0.1, x1, 0.3):
+        ax.plot([x, x - h], [y, y - h], color="k", lw=0.6)
+
+
+def _bricks_panel(ax: Axes, data: dict[str, Any]) -> None:
+    """Two bricks in contact at the path's first slip point: N, T, the contact reaction on the
+    friction cone, and the upper brick shifted by the slip (to the scale of the bricks)."""
+    k = data["slip_point_index"]
+    N, T = data["p"][k]
+    mu, slip = data["mu"], data["slip"][k] - data["slip"][0]
+    L, H, f = 4.0, 1.6, 0.7  # brick length and height [m], arrow length per newton [m/N]
+    ax.add_patch(Rectangle((-L / 2, -H), L, H, fc="#d9a07a", ec="k", lw=1.0))
+    ax.add_patch(Rectangle((-L / 2, 0.0), L, H, fill=False, ec="0.45", lw=0.9, ls="--"))
+    ax.add_patch(Rectangle((-L / 2 + slip, 0.0), L, H, fc="#e8c0a0", ec="k", lw=1.0,
+                           alpha=0.9))
+    _ground(ax, -L / 2 - 0.3, L / 2 + 0.3, -H)
+    xc = slip
+    cone = np.array([[xc - mu * 1.5 * H, 1.5 * H], [xc, 0.0], [xc + mu * 1.5 * H, 1.5 * H]])
+    ax.add_patch(Polygon(cone, closed=True, fc="0.85", ec="0.3", lw=0.8, ls=":", alpha=0.6,
+                         zorder=3))
+    _arrow(ax, (xc, H + N * f), (xc, H), _FORCE["N"])
+    _arrow(ax, (L / 2 + slip, 0.5 * H), (L / 2 + slip + T * f, 0.5 * H), _FORCE["T"])
+    _arrow(ax, (xc, 0.0), (xc - np.sign(T) * abs(T) * f, N * f), _FORCE["reaction"])
+    ax.annotate(f"$N = p_N$ = {N:.2f} N", (xc, H + N * f), xytext=(5, -2),
+                textcoords="offset points", fontsize=8, color=_FORCE["N"], va="top")
+    ax.annotate(f"$T = p_T$ = {T:.2f} N", (L / 2 + slip, 0.5 * H), xytext=(2, 6),
+                textcoords="offset points", fontsize=8, color=_FORCE["T"], ha="left",
+                va="bottom")
+    ax.text(0.5, 0.02, f"friction limit |T| ≤ μN: T = {abs(T):.2f} N = μN = {mu * N:.2f} N,\n"
+            f"so the upper brick slips: $u_T^s$ = {slip:.2f} m (drawn to scale)",
+            transform=ax.transAxes, ha="center", va="bottom", fontsize=8)
+    handles = [Line2D([], [], color=_FORCE["N"], lw=1.8, label="normal force N"),
+               Line2D([], [], color=_FORCE["T"], lw=1.8, label="tangential force T"),
+               Line2D([], [], color=_FORCE["reaction"], lw=1.8,
+                      label="contact reaction (−T, N): on the cone"),
+               Patch(fc="0.85", ec="0.3", ls=":", label=f"friction cone, half-angle "
+                     f"arctan μ = {np.degrees(np.arctan(mu)):.1f}°"),
+               Line2D([], [], color="0.45", ls="--", lw=0.9, label="upper brick before slip")]
+    ax.legend(handles=handles, loc="upper left", fontsize=7)
+    ax.set_xlim(-L / 2 - 0.5, L / 2 + slip + 2.4)
+    ax.set_ylim(-H - 1.9, H + N * f + 2.6)
+    ax.set_aspect("equal")
+    ax.set_axis_off()
+    ax.set_title(f"(left) two 'bricks' in contact, at point {k} of the path", fontsize=8)
+
+
+def _slider_sketch(ax: Axes, data: dict[str, Any]) -> None:
+    """The model of §3.1: a point mass on a rigid plane, a normal spring k_N pressing it with
+    p_N and a tangential spring k_T pulled with p_T; the mass slips by u_T^s."""
+    ax.set_axis_off()
+    _ground(ax, -0.6, 5.2, 0.0, h=0.2)
+    x_m, w = 0.4, 0.7
+    ax.add_patch(Rectangle((x_m, 0.0), w, w, fc="0.35", ec="k", lw=1.0, zorder=4))
+    top = (x_m + w / 2, w + 1.6)
+    _zigzag(ax, (x_m + w / 2, w), top, color="k", lw=1.0)
+    ax.plot([top[0] - 0.3, top[0] + 0.3], [top[1], top[1]], color="k", lw=2)
+    _arrow(ax, (top[0], top[1] + 0.7), top, _FORCE["N"])
+    end = (x_m + w + 2.0, w / 2)
+    _zigzag(ax, (x_m + w, w / 2), end, color="k", lw=1.0)
+    ax.plot([end[0], end[0]], [end[1] - 0.25, end[1] + 0.25], color="k", lw=2)
+    _arrow(ax, end, (end[0] + 0.8, end[1]), _FORCE["T"])
+    ax.annotate(r"$k_N$", (top[0] + 0.25, w + 0.8), fontsize=9, va="center")
+    ax.annotate(r"$p_N$, $u_N$ (elastic)", (top[0] + 0.12, top[1] + 0.45), fontsize=8,
+                color=_FORCE["N"], va="center")
+    ax.annotate(r"$k_T$", (x_m + w + 1.0, w / 2 + 0.3), fontsize=9, ha="center", va="bottom")
+    ax.annotate(r"$p_T$, $u_T = p_T/k_T + u_T^s$", (end[0] - 0.1, end[1] + 0.35), fontsize=8,
+                color=_FORCE["T"], va="bottom", ha="left")
+    ax.annotate(rf"Coulomb friction μ = {data['mu']:g}: slip $u_T^s$ when $|p_T| = \mu p_N$",
+                (x_m, 0.0), xytext=(0, -16), textcoords="offset points", fontsize=8,
+                va="top")
+    ax.set_xlim(-0.7, 5.6)
+    ax.set_ylim(-1.0, 3.2)
+    ax.set_aspect("equal")
+    ax.set_title(rf"(centre) the model: springs $k_N$ = {data['k_N']:g} N/m, "
+                 rf"$k_T$ = {data['k_T']:g} N/m on a point mass", fontsize=8)
+
+
+def _slider_response(ax: Axes, data: dict[str, Any]) -> None:
+    """p_T against u_T along the computed path: stick lines of slope k_T, slip on the moving
+    limit mu p_N, unloading; the slip onset and the residual displacement."""
+    u, p = np.array(data["u"]), np.array(data["p"])
+    mu = data["mu"]
+    ax.plot(u[:, 1], mu * p[:, 0], "--", color="0.5", lw=1.0,
+            label=r"friction limits $\pm\mu p_N$ along the path")
+    ax.plot(u[:, 1], -mu * p[:, 0], "--", color="0.5", lw=1.0)
+    done = set()
+    for k in range(1, len(p)):
+        b = data["branch"][k]
+        ax.plot(u[k - 1:k + 1, 1], p[k - 1:k + 1, 1], "-", color=STICK_SLIP[b], lw=2.2,
+                label=f"computed: {b}" if b not in done else None)
+        done.add(b)
+    ax.plot(u[:, 1], p[:, 1], "o", color="k", ms=3)
+    _label_points(ax, np.column_stack([u[:, 1], p[:, 1]]))
+    i = data["onset_index"]
+    ax.plot(u[i, 1], p[i, 1], "s", mfc="none", mec="C2", ms=9, mew=1.5,
+            label=rf"slip onset: $|p_T| = \mu p_N$ = {abs(p[i, 1]):.2f} N")
+    res = data["residual"]
+    ax.plot(res["u_T"], 0.0, "D", mfc="none", mec="C4", ms=8, mew=1.5,
+            label=rf"unloaded, $p_T$ = 0: $u_T = u_T^s$ = {res['slip']:.2f} m")
+    ax.axhline(0, color="k", lw=0.6)
+    top = mu * p[:, 0].max()
+    ax.set_ylim(-1.15 * top, 2.3 * top)
+    ax.set_xlabel(r"tangential displacement $u_T$ [m]")
+    ax.set_ylabel(r"tangential force $p_T$ [N]")
+    ax.legend(loc="upper center", fontsize=6.5, ncol=2)
+    ax.set_title("its response along the path: stick, slip, unloading, reverse slip",
                  fontsize=8)
+
+
+def plot_fig22(data: dict[str, Any]) -> Figure:
+    """Fig. 22: two bricks in contact (left), the spring–slider model and its computed
+    force–displacement response (centre), the Coulomb criterion with the same path (right)."""
+    fig = plt.figure(figsize=(14.0, 5.6))
+    gs = fig.add_gridspec(2, 3, width_ratios=[1.0, 1.1, 1.15], height_ratios=[0.75, 1.0])
+    _bricks_panel(fig.add_subplot(gs[:, 0]), data)
+    _slider_sketch(fig.add_subplot(gs[0, 1]), data)
+    _slider_response(fig.add_subplot(gs[1, 1]), data)
+    _coulomb_panel(fig.add_subplot(gs[:, 2]), data)
+    fig.suptitle("Fig. 22: contact with Coulomb friction, one computed path (numbered points) "
+                 "in every panel", fontsize=10)
+    fig.tight_layout()
     return fig
 
 

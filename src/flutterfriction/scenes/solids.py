@@ -35,16 +35,35 @@ def fig22(params: dict[str, Any]) -> dict[str, Any]:
     take(params, {"k_N", "k_T", "mu", "path"})
     c = CoulombContact(params["k_N"], params["k_T"], params["mu"])
     r = integrate_path(c, params["path"])
+    if "slip" not in r.branch:
+        raise ParameterError("path never reaches the Coulomb cone |p_T| = mu p_N: Fig. 22 needs "
+                             "stick, slip and unloading")
     slip_pt = r.p[r.branch.index("slip")]
     C = c.slip_operator(slip_pt)
     closed = np.array([[c.k_N, 0.0], [c.mu * c.k_N * np.sign(slip_pt[1]), 0.0]])
     drift = max(abs(c.friction_function(p)) for p, b in zip(r.p, r.branch, strict=True)
                 if b == "slip")
+    onset = r.branch.index("slip") - 1  # the recorded point where the first slip piece starts
+    residual = _unloaded_point(r, onset)
     return {
-        "mu": c.mu, "u": r.u.tolist(), "p": r.p.tolist(), "slip": r.slip.tolist(),
-        "branch": r.branch, "slip_point": slip_pt.tolist(),
+        "mu": c.mu, "k_N": c.k_N, "k_T": c.k_T, "u": r.u.tolist(), "p": r.p.tolist(),
+        "slip": r.slip.tolist(), "branch": r.branch, "slip_point": slip_pt.tolist(),
+        "slip_point_index": r.branch.index("slip"), "onset_index": onset,
+        "residual": residual,
         "a": c.gradient(slip_pt).tolist(), "b": c.slip_direction(slip_pt).tolist(),
         "quantities": {
+            "slip_onset_force": quantity(abs(float(r.p[onset, 1])),
+                                         c.mu * c.k_N * float(r.u[onset, 0] - r.u[0, 0]),
+                                         "|p_T| where the path first reaches the cone (exact "
+                                         "splitting of eq. 140)",
+                                         "mu k_N u_N there: mu N with N from the elastic normal "
+                                         "spring (eq. 129)", "N"),
+            "residual_displacement": quantity(residual["u_T"] - float(r.u[0, 1]),
+                                              residual["slip"],
+                                              "u_T where p_T returns to 0 on unloading "
+                                              "(interpolated on the stick piece)",
+                                              "accumulated slip u_T^s (sum of the slip "
+                                              "multipliers, eq. 135)", "m"),
             "slip_operator_C21": quantity(float(C[1, 0]), float(closed[1, 0]),
                                            "eq. (143) from E, a, b", "closed form mu k_N sgn p_T",
                                            "N/m"),
@@ -53,6 +72,20 @@ def fig22(params: dict[str, Any]) -> dict[str, Any]:
             "cone_drift_while_slipping": quantity(float(drift), 0.0,
                                                    "max |f| on the slip pieces", "zero", "N"),
         }}
+
+
+def _unloaded_point(r: Any, onset: int) -> dict[str, float]:
+    """Where the tangential force first returns to zero after the first slip (on a stick
+    piece, so the spring is unstretched there: ``u_T = u_T^s``)."""
+    for k in range(onset + 2, len(r.p)):
+        p0, p1 = r.p[k - 1, 1], r.p[k, 1]
+        if r.branch[k] == "stick" and p0 != 0.0 and p0 * p1 <= 0.0:
+            s = p0 / (p0 - p1)
+            u = r.u[k - 1] + s * (r.u[k] - r.u[k - 1])
+            return {"u_N": float(u[0]), "u_T": float(u[1]), "slip": float(r.slip[k]),
+                    "p_N": float(r.p[k - 1, 0] + s * (r.p[k, 0] - r.p[k - 1, 0])), "piece": k}
+    raise ParameterError("path must slip and then unload the tangential force through "
+                         "p_T = 0 (Fig. 22: stick, slip, unloading)")
 
 
 # ---------------------------------------------------------------------- acoustic eigenvalues
