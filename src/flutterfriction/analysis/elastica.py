@@ -1,0 +1,512 @@
+"""Statics of the clamped elastica (chapter §2.5–2.6, Fig. 9): an inextensible, unshearable
+Euler–Bernoulli rod of length ``l`` and bending stiffness ``B``, clamped at ``s = 0``
+(eq. 96), loaded at ``s = l`` by the dead force ``P = -P1 e1 - P2 e2`` and along its axis by the
+dead, uniform load ``q = q1 e1 + q2 e2`` per unit length. Geometrically exact, SI units.
+
+The equations (eqs. 64, 77, 80, 83 with ``D = 0``, and 97):
+
+- kinematics ``x' = t = cos(theta) e1 + sin(theta) e2`` (eq. 64), ``x(0) = 0``, ``theta(0) = 0``;
+- equilibrium ``a' + q = 0`` (eq. 77) with ``a(l) = P`` (eq. 97), so that
+  ``a(s) = P + (l - s) q`` is the resultant of the loads beyond the cut ``s``;
+- ``M' = T = a . m`` (eqs. 73, 80) with ``m = sin(theta) e1 - cos(theta) e2`` (eq. 71);
+- ``M = B theta'`` (eq. 83) and ``M(l) = 0`` (eq. 97).
+
+Together they are eq. (91) at rest: ``B theta'' + (P1 - (l-s) q1) sin(theta)
+- (P2 - (l-s) q2) cos(theta) = 0`` (eq. 92 when ``q = 0``).
+
+Three solvers, independent of each other:
+
+- :func:`solve_shooting` (primary): the one unknown is the end rotation ``theta(l)``;
+  ``theta, M`` and the positions are integrated from the free end to the clamp (DOP853,
+  dimensionless, ``rtol = 1e-12``) and Newton, with the exact derivative from the variational
+  equations, makes ``theta(0) = 0``. The loads are applied in steps from zero, so the
+  solution is the one connected to the straight rod (no jump to another branch).
+- :func:`solve_collocation`: ``scipy.integrate.solve_bvp`` on the six states
+  ``x1, x2, theta, M, a1, a2`` (the internal force is a state here, eq. 77), continued in the
+  load from the straight rod as well.
+- :func:`tip_force_closed_form`: a tip force of fixed direction only (``q = 0``): the classical
+  solution by elliptic integrals (eq. 92 is the pendulum equation in ``s``), exact up to the
+  one root for the end rotation, found by Brent's method to round-off.
+
+:func:`linear_tip_deflection` is the linear (small-deflection) cantilever, eq. (95) at rest
+without axial loads: ``u2(l) = -P2 l^3/(3B) + q2 l^4/(8B)``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, fields
+from typing import Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+from scipy.integrate import solve_bvp, solve_ivp
+from scipy.optimize import brentq
+from scipy.special import ellipeinc, ellipj, ellipkinc, ellipkm1
+
+from flutterfriction.errors import (
+    ConvergenceError,
+    ParameterError,
+    check_positive,
+    check_real,
+)
+
+#: Gauss–Legendre rule used for every integral along the rod (per subinterval): the integrands
+#: are smooth (analytic in s), so 24 nodes on each of 16 subintervals integrate them to
+#: round-off.
+_GL_NODES, _GL_WEIGHTS = np.polynomial.legendre.leggauss(24)
+_GL_PANELS = 16
+
+
+@dataclass(frozen=True)
+class ElasticaLoads:
+    """The loads of Fig. 9, dead (fixed in direction and size) [N, N/m].
+
+    Parameters
+    ----------
+    P1, P2 : float
+        The end force ``P = -P1 e1 - P2 e2`` (eq. 97; ``P1 > 0`` compresses the straight rod,
+        ``P2 > 0`` pushes the end towards ``-e2``) [N].
+    q1, q2 : float
+        The uniform load per unit length ``q = q1 e1 + q2 e2`` (eq. 89) [N/m].
+    """
+
+    P1: float = 0.0
+    P2: float = 0.0
+    q1: float = 0.0
+    q2: float = 0.0
+
+    def __post_init__(self) -> None:
+        for f in fields(self):
+            object.__setattr__(self, f.name, check_real(f.name, getattr(self, f.name)))
+
+    def scaled(self, factor: float) -> ElasticaLoads:
+        """Every load times ``factor``."""
+        return ElasticaLoads(*(factor * getattr(self, f.name) for f in fields(self)))
+
+    def tip_force(self) -> NDArray:
+        """``P`` as a vector [N]."""
+        return np.array([-self.P1, -self.P2])
+
+    def distributed(self) -> NDArray:
+        """``q`` as a vector [N/m]."""
+        return np.array([self.q1, self.q2])
+
+
+def _check_rod(length: object, B: object) -> tuple[float, float]:
+    return check_positive("length", length, "m"), check_positive("B", B, "N m^2")
+
+
+def internal_force(s: ArrayLike, length: float, loads: ElasticaLoads) -> NDArray:
+    """``a(s) = P + (l - s) q`` [N], shape ``(..., 2)``: eq. (77) integrated from ``a(l) = P``
+    (eq. 97), the resultant of the loads on the part beyond the cut (eq. 74)."""
+    s = np.asarray(s, dtype=float)
+    return loads.tip_force() + (length - s)[..., None] * loads.distributed()
+
+
+def gauss_integral(fun, a: float, b: float) -> NDArray:
+    """``int_a^b fun(s) ds`` by composite Gauss–Legendre (``fun`` vectorised over ``s``,
+    returning shape ``(n,)`` or ``(n, k)``)."""
+    edges = np.linspace(a, b, _GL_PANELS + 1)
+    half = 0.5 * np.diff(edges)
+    mid = 0.5 * (edges[1:] + edges[:-1])
+    s = (mid[:, None] + half[:, None] * _GL_NODES[None, :]).ravel()
+    w = (half[:, None] * _GL_WEIGHTS[None, :]).ravel()
+    vals = np.asarray(fun(s))
+    return np.tensordot(w, vals, axes=(0, 0))
+
+
+@dataclass(frozen=True)
+class ElasticaSolution:
+    """A computed equilibrium of the clamped elastica.
+
+    ``state(s)`` returns ``theta`` [rad], ``M`` [N m], ``x1``, ``x2`` [m] at the arc lengths
+    ``s`` [m] (rows), from the integrator's dense output (shooting) or the collocation
+    polynomial (``solve_bvp``)."""
+
+    length: float
+    B: float
+    loads: ElasticaLoads
+    method: str
+    _dense: Any  # s -> (theta, M, x1, x2), columns along s
+    tip_rotation: float  # theta(l) [rad]
+    clamp_residual: float  # |theta(0)| of the accepted solution [rad] (0 for collocation)
+    iterations: int  # Newton iterations (shooting) or continuation steps (collocation)
+    _force: Any = None  # s -> a(s) rows, when the internal force is a state (collocation)
+
+    def state(self, s: ArrayLike) -> NDArray:
+        s = np.atleast_1d(np.asarray(s, dtype=float))
+        return np.asarray(self._dense(s)).T
+
+    def theta(self, s: ArrayLike) -> NDArray:
+        return self.state(s)[:, 0]
+
+    def moment(self, s: ArrayLike) -> NDArray:
+        """``M(s) = B theta'(s)`` [N m] (eq. 83)."""
+        return self.state(s)[:, 1]
+
+    def position(self, s: ArrayLike) -> NDArray:
+        """``x(s)`` [m], rows ``(x1, x2)`` (eq. 56)."""
+        return self.state(s)[:, 2:4]
+
+    def force(self, s: ArrayLike) -> NDArray:
+        """``a(s)`` [N], rows: the collocation's state where it is one, else eq. (77)
+        integrated in closed form (:func:`internal_force`)."""
+        s = np.atleast_1d(np.asarray(s, dtype=float))
+        if self._force is not None:
+            return np.asarray(self._force(s)).T
+        return internal_force(s, self.length, self.loads)
+
+    def normal_and_shear(self, s: ArrayLike) -> tuple[NDArray, NDArray]:
+        """``N = a . t`` and ``T = a . m`` [N] (eq. 73)."""
+        th = self.theta(s)
+        a = self.force(s)
+        t = np.column_stack([np.cos(th), np.sin(th)])
+        m = np.column_stack([np.sin(th), -np.cos(th)])
+        return np.sum(a * t, axis=1), np.sum(a * m, axis=1)
+
+    def tip_displacement(self) -> NDArray:
+        """``u(l) = x(l) - l e1`` [m] (eq. 55)."""
+        return self.position(self.length)[0] - np.array([self.length, 0.0])
+
+
+def _dimensionless(length: float, B: float, loads: ElasticaLoads) -> tuple[NDArray, NDArray]:
+    """``a(l) l^2/B`` and ``q l^3/B``: the loads in units of ``B/l^2`` and ``B/l^3``."""
+    return loads.tip_force() * length**2 / B, loads.distributed() * length**3 / B
+
+
+def _shooting_rhs(xi: float, z: NDArray, fP: NDArray, g: NDArray) -> NDArray:
+    """Dimensionless ``d/dxi`` of ``(theta, m, y1, y2, dtheta, dm)``, ``xi = s/l``,
+    ``m = M l/B``, ``y = x/l``; the last two: the variational equations in ``theta(l)``."""
+    th, m, _, _, dth, dm = z
+    c, s = math.cos(th), math.sin(th)
+    a1 = fP[0] + (1.0 - xi) * g[0]
+    a2 = fP[1] + (1.0 - xi) * g[1]
+    return np.array([m, a1 * s - a2 * c, c, s, dm, (a1 * c + a2 * s) * dth])
+
+
+def _integrate_from_tip(theta_l: float, fP: NDArray, g: NDArray, rtol: float,
+                        dense: bool = False):
+    z0 = np.array([theta_l, 0.0, 0.0, 0.0, 1.0, 0.0])
+    sol = solve_ivp(_shooting_rhs, (1.0, 0.0), z0, method="DOP853", rtol=rtol,
+                    atol=rtol * 1e-2, args=(fP, g), dense_output=dense)
+    if not sol.success:
+        raise ConvergenceError(f"the elastica's integration failed: {sol.message}")
+    return sol
+
+
+def solve_shooting(length: float, B: float, loads: ElasticaLoads, *, load_steps: int = 8,
+                   rtol: float = 1e-12, tol: float = 1e-13, max_iter: int = 30
+                   ) -> ElasticaSolution:
+    """The clamped elastica by shooting on the end rotation (module docstring).
+
+    Parameters
+    ----------
+    length, B : float
+        ``l`` [m] and the bending stiffness [N m^2], > 0.
+    loads : ElasticaLoads
+        ``P1, P2`` [N], ``q1, q2`` [N/m].
+    load_steps : int
+        The loads are applied in this many equal steps from zero (Newton starts each from the
+        extrapolation of the previous two), so that the branch of the straight rod is followed.
+    rtol : float
+        Relative tolerance of the integration (dimensionless; absolute ``rtol/100``).
+    tol : float
+        Newton stops when ``|theta(0)| <= tol`` [rad].
+
+    Raises
+    ------
+    ParameterError
+        Bad input (before any work).
+    ConvergenceError
+        Newton fails, or the branch folds (``d theta(0)/d theta(l)`` vanishes).
+    """
+    length, B = _check_rod(length, B)
+    if not isinstance(loads, ElasticaLoads):
+        raise ParameterError(f"loads must be ElasticaLoads, got {type(loads).__name__}")
+    if isinstance(load_steps, bool) or not isinstance(load_steps, int) or load_steps < 1:
+        raise ParameterError(f"load_steps must be an integer >= 1, got {load_steps!r}")
+    rtol = check_positive("rtol", rtol)
+    tol = check_positive("tol", tol, "rad")
+    fP1, g1 = _dimensionless(length, B, loads)
+    history = [(0.0, 0.0)]  # (load factor, end rotation): the straight rod
+    iterations = 0
+    for k in range(1, load_steps + 1):
+        lam = k / load_steps
+        fP, g = lam * fP1, lam * g1
+        if len(history) >= 2:  # secant predictor in the load factor
+            (l0, t0), (l1, t1) = history[-2:]
+            th = t1 + (t1 - t0) * (lam - l1) / (l1 - l0)
+        else:
+            th = history[-1][1]
+        for _ in range(max_iter):
+            iterations += 1
+            z = _integrate_from_tip(th, fP, g, rtol).y[:, -1]
+            r, dr = z[0], z[4]
+            if abs(dr) < 1e-8:
+                raise ConvergenceError(f"the elastica's branch folds at load factor {lam:g} "
+                                       f"(d theta(0)/d theta(l) = {dr:.3g})")
+            th -= r / dr
+            if abs(r) <= tol:
+                break
+        else:
+            raise ConvergenceError(f"Newton on theta(0) = 0 did not converge at load factor "
+                                   f"{lam:g} (residual {r:.3g} rad)")
+        history.append((lam, th))
+    sol = _integrate_from_tip(th, fP1, g1, rtol, dense=True)
+    y0 = sol.y[2:4, -1]  # the clamp's position relative to the end
+
+    def dense(s: NDArray) -> NDArray:
+        z = sol.sol(s / length)
+        return np.vstack([z[0], z[1] * B / length, (z[2] - y0[0]) * length,
+                          (z[3] - y0[1]) * length])
+
+    return ElasticaSolution(length, B, loads, "shooting (DOP853, Newton on theta(l))", dense,
+                            float(th), float(abs(sol.y[0, -1])), iterations)
+
+
+def solve_collocation(length: float, B: float, loads: ElasticaLoads, *, load_steps: int = 4,
+                      tol: float = 1e-10, max_nodes: int = 20000) -> ElasticaSolution:
+    """The clamped elastica by collocation (``scipy.integrate.solve_bvp``) on the six states
+    ``(y1, y2, theta, m, alpha1, alpha2) = (x/l, theta, M l/B, a l^2/B)`` in ``xi = s/l``:
+    ``y' = t``, ``theta' = m``, ``m' = alpha . m_vec``, ``alpha' = -q l^3/B`` (eqs. 64, 83,
+    80, 77), with ``y(0) = 0``, ``theta(0) = 0`` (eq. 96) and ``m(1) = 0``, ``alpha(1) = P
+    l^2/B`` (eq. 97). Continued in ``load_steps`` equal load steps from the straight rod."""
+    length, B = _check_rod(length, B)
+    if not isinstance(loads, ElasticaLoads):
+        raise ParameterError(f"loads must be ElasticaLoads, got {type(loads).__name__}")
+    tol = check_positive("tol", tol)
+    fP1, g1 = _dimensionless(length, B, loads)
+
+    def bc(za: NDArray, zb: NDArray, fP: NDArray) -> NDArray:
+        return np.array([za[0], za[1], za[2], zb[3], zb[4] - fP[0], zb[5] - fP[1]])
+
+    xi = np.linspace(0.0, 1.0, 41)
+    z = np.zeros((6, xi.size))
+    z[0] = xi
+    sol = None
+    for k in range(1, load_steps + 1):
+        lam = k / load_steps
+        fP, g = lam * fP1, lam * g1
+
+        def rhs(x: NDArray, y: NDArray, g: NDArray = g) -> NDArray:
+            c, s = np.cos(y[2]), np.sin(y[2])
+            return np.vstack([c, s, y[3], y[4] * s - y[5] * c,
+                              -g[0] * np.ones_like(x), -g[1] * np.ones_like(x)])
+
+        # the intermediate loads only lead to the last: a loose tolerance is enough there
+        t = tol if k == load_steps else max(tol, 1e-6)
+        sol = solve_bvp(rhs, lambda za, zb, fP=fP: bc(za, zb, fP), xi, z, tol=t,
+                        bc_tol=t, max_nodes=max_nodes)
+        if sol.status != 0:
+            raise ConvergenceError(f"solve_bvp failed at load factor {lam:g}: {sol.message}")
+        xi, z = sol.x, sol.y
+    assert sol is not None
+
+    def dense(s: NDArray) -> NDArray:
+        zz = sol.sol(s / length)
+        return np.vstack([zz[2], zz[3] * B / length, zz[0] * length, zz[1] * length])
+
+    def force(s: NDArray) -> NDArray:
+        return sol.sol(s / length)[4:6] * B / length**2
+
+    return ElasticaSolution(length, B, loads, f"collocation (solve_bvp, tol {tol:g})", dense,
+                            float(sol.sol(1.0)[2]), 0.0, load_steps, force)
+
+
+# ---------------------------------------------------------------------- closed form
+@dataclass(frozen=True)
+class TipForceElastica:
+    """The closed-form elastica under an end force of fixed direction (no distributed load).
+
+    With ``P = R (cos phi, sin phi)`` and ``psi = theta - phi - pi``, eq. (92) reads
+    ``B psi'' = -R sin(psi)``; its first integral with ``M(l) = 0`` is
+    ``(B/2) psi'^2 = R (cos psi - cos psi_l)``. Writing ``sigma psi = hat_psi`` (``sigma`` the sign
+    of ``psi(0)``) and ``sin(hat_psi/2) = k sin(varphi)``, ``k = sin(hat_psi_l / 2)``:
+    ``sqrt(R/B) s = F(varphi, k) - F(varphi0, k)``, so ``varphi(s) = am(F(varphi0) + sqrt(R/B) s)``
+    (Jacobi amplitude) and ``varphi(l) = pi/2`` fixes ``k``:
+    ``sqrt(R/B) l = K(k) - F(varphi0, k)``. Along the rod
+    ``t = -cos(hat_psi) e_P - sigma sin(hat_psi) e_P^perp`` with ``cos hat_psi = 1 - 2 k^2 sin^2
+    varphi``, ``sin hat_psi = 2 k sin varphi dn``, which integrate to
+    ``int cos hat_psi ds = sqrt(B/R) [2 E(varphi) - F(varphi)]`` and
+    ``int sin hat_psi ds = -2 k sqrt(B/R) cos(varphi)``.
+    """
+
+    length: float
+    B: float
+    R: float  # |P| [N]
+    phi: float  # direction of P [rad]
+    sigma: float  # +1 or -1
+    k: float  # elliptic modulus (m = k^2)
+    varphi0: float  # amplitude at the clamp
+    tip_rotation: float  # theta(l) [rad]
+
+    def _parts(self, s: NDArray) -> tuple[NDArray, NDArray]:
+        m = self.k**2
+        c = math.sqrt(self.B / self.R)
+        u = ellipkinc(self.varphi0, m) + s / c
+        _, _, _, varphi = ellipj(u, m)
+        along = c * (2 * (ellipeinc(varphi, m) - ellipeinc(self.varphi0, m))
+                     - (ellipkinc(varphi, m) - ellipkinc(self.varphi0, m)))
+        across = -2 * self.k * c * (np.cos(varphi) - math.cos(self.varphi0))
+        return along, across
+
+    def position(self, s: ArrayLike) -> NDArray:
+        """``x(s)`` [m], rows ``(x1, x2)``."""
+        s = np.atleast_1d(np.asarray(s, dtype=float))
+        along, across = self._parts(s)
+        eP = np.array([math.cos(self.phi), math.sin(self.phi)])
+        eQ = np.array([-math.sin(self.phi), math.cos(self.phi)])
+        return -along[:, None] * eP - self.sigma * across[:, None] * eQ
+
+    def theta(self, s: ArrayLike) -> NDArray:
+        s = np.atleast_1d(np.asarray(s, dtype=float))
+        m = self.k**2
+        u = ellipkinc(self.varphi0, m) + s / math.sqrt(self.B / self.R)
+        sn = ellipj(u, m)[0]
+        # theta(s) - theta(0) = psi(s) - psi(0), and theta(0) = 0 (eq. 96)
+        return self.sigma * (2 * np.arcsin(self.k * sn) - 2 * math.asin(self.k * math.sin(
+            self.varphi0)))
+
+
+def tip_force_closed_form(length: float, B: float, P1: float, P2: float) -> TipForceElastica:
+    """The classical elastica of a cantilever under the end force ``P = -P1 e1 - P2 e2`` of
+    fixed direction (eq. 92), by elliptic integrals (:class:`TipForceElastica`): the branch
+    without inflection, connected to the straight rod. The end rotation is the root of
+    ``K(k) - F(varphi0, k) = sqrt(R/B) l`` (Brent's method to round-off; ``K`` via
+    ``ellipkm1`` to keep its digits as ``k -> 1``)."""
+    length, B = _check_rod(length, B)
+    P1, P2 = check_real("P1", P1), check_real("P2", P2)
+    R = math.hypot(P1, P2)
+    if R == 0.0:
+        raise ParameterError("P1 and P2 are both zero: no end force")
+    phi = math.atan2(-P2, -P1)
+    psi0 = math.remainder(-phi - math.pi, 2 * math.pi)  # psi at the clamp, in [-pi, pi]
+    if abs(math.sin(psi0)) < 1e-12:
+        raise ParameterError("the end force is axial (P2 = 0): the closed form covers a "
+                             "transverse component (the axial case is Euler's buckling)")
+    sigma = math.copysign(1.0, psi0)
+    h0 = abs(psi0)  # hat psi at the clamp, in (0, pi)
+    target = math.sqrt(R / B) * length
+
+    def arclength(hl: float) -> float:  # sqrt(R/B) l as a function of hat psi(l)
+        k = math.sin(hl / 2)
+        varphi0 = math.asin(min(1.0, math.sin(h0 / 2) / k))
+        return float(ellipkm1(math.cos(hl / 2) ** 2) - ellipkinc(varphi0, k * k)) - target
+
+    hi = math.pi - 1e-15
+    if arclength(hi) <= 0:
+        raise ConvergenceError("no end rotation below pi solves the elastica's length")
+    hl = brentq(arclength, h0, hi, xtol=1e-16, rtol=4 * np.finfo(float).eps, maxiter=200)
+    k = math.sin(hl / 2)
+    varphi0 = math.asin(min(1.0, math.sin(h0 / 2) / k))
+    return TipForceElastica(length, B, R, phi, sigma, k, varphi0, sigma * (hl - h0))
+
+
+def linear_tip_deflection(length: float, B: float, loads: ElasticaLoads) -> float:
+    """``u2(l)`` [m] of the linear Euler–Bernoulli cantilever (eq. 95 at rest, transverse
+    loads): ``-P2 l^3/(3B) + q2 l^4/(8B)``. (The axial loads ``P1, q1`` enter eq. 95 only
+    multiplied by the deflection: second order in the loads.)"""
+    length, B = _check_rod(length, B)
+    return -loads.P2 * length**3 / (3 * B) + loads.q2 * length**4 / (8 * B)
+
+
+def perturbation_tip_deflection(length: float, B: float, loads: ElasticaLoads
+                                ) -> tuple[float, float, float]:
+    """The coefficients ``(c1, c2, c3)`` [m] of ``u2(l) = c1 e + c2 e^2 + c3 e^3 + O(e^4)`` for
+    the loads ``e * loads``: eq. (91) at rest expanded in the load factor ``e``.
+
+    With ``xi = s/l``, ``alpha = (P1 - (l - s) q1) l^2/B``, ``f = (P2 - (l - s) q2) l^2/B``, eq.
+    (91) is ``theta'' = e (-alpha sin(theta) + f cos(theta))``; with ``theta = e th1 + e^2 th2 +
+    e^3 th3``: ``th1'' = f``, ``th2'' = -alpha th1``, ``th3'' = -alpha th2 - f th1^2/2``, each
+    with ``th(0) = 0``, ``th'(1) = 0`` (eqs. 96-97), and ``u2(l) = l int_0^1 sin(theta) dxi``.
+    Every term is a polynomial in ``xi``: integrated exactly (``numpy.polynomial``), so the
+    coefficients are exact to round-off; ``c1`` is :func:`linear_tip_deflection`."""
+    length, B = _check_rod(length, B)
+    Poly = np.polynomial.Polynomial
+    one_minus_xi = Poly([1.0, -1.0])
+    alpha = (loads.P1 - length * loads.q1 * one_minus_xi) * (length**2 / B)
+    f = (loads.P2 - length * loads.q2 * one_minus_xi) * (length**2 / B)
+
+    def clamped_free(rhs: np.polynomial.Polynomial) -> np.polynomial.Polynomial:
+        # th'' = rhs, th(0) = 0, th'(1) = 0: th' = -int_xi^1 rhs, th = int_0^xi th'
+        G = rhs.integ()
+        return (G - G(1.0)).integ()
+
+    th1 = clamped_free(f)
+    th2 = clamped_free(-alpha * th1)
+    th3 = clamped_free(-alpha * th2 - 0.5 * f * th1**2)
+
+    def integral(p: np.polynomial.Polynomial) -> float:
+        P = p.integ()
+        return float(P(1.0) - P(0.0)) * length
+
+    return integral(th1), integral(th2), integral(th3 - th1**3 / 6.0)
+
+
+# ---------------------------------------------------------------------- balances (eq. 74, 87, 89)
+def moment_of_loads_beyond(sol: ElasticaSolution, s_cut: float) -> float:
+    """Eq. (89) at rest: the moment about ``x(s_cut)`` of the loads on the part beyond the cut,
+    ``(x(l) - x_c) x P + int_{s_cut}^l (x(sigma) - x_c) x q dsigma`` [N m] (e3 component), by
+    Gauss–Legendre quadrature over the computed deformed shape."""
+    xc = sol.position(s_cut)[0]
+    P, q = sol.loads.tip_force(), sol.loads.distributed()
+    arm_P = sol.position(sol.length)[0] - xc
+    integral = gauss_integral(lambda s: sol.position(s) - xc, s_cut, sol.length)
+    return float(_cross(arm_P, P) + _cross(integral, q))
+
+
+def part_balances(sol: ElasticaSolution, s1: float, s2: float) -> dict[str, float]:
+    """The equilibrium of the part ``[s1, s2]`` (eq. 74) and eq. (87) on it, as residuals
+    relative to the size of their largest term (dimensionless):
+
+    - ``force``: ``|-a(s1) + a(s2) + int q ds| / max |term|`` (eq. 74_1);
+    - ``moment``: ``[M + x x a]_{s1}^{s2} + int x x q ds`` (eq. 74_2, about the origin O);
+    - ``eq87``: ``[N + M^2/(2B)]_{s1}^{s2} + int q . t ds`` (eq. 87), with
+      ``int q . t ds`` by quadrature of ``q . t(theta(s))``.
+    """
+    q = sol.loads.distributed()
+    a1, a2 = sol.force(s1)[0], sol.force(s2)[0]
+    Q = gauss_integral(lambda s: np.broadcast_to(q, (np.size(s), 2)), s1, s2)
+    force_terms = [np.linalg.norm(a1), np.linalg.norm(a2), np.linalg.norm(Q)]
+    force = np.linalg.norm(-a1 + a2 + Q) / max(force_terms)
+    M1, M2 = sol.moment([s1, s2])
+    x1, x2 = sol.position([s1, s2])
+    Xq = _cross(gauss_integral(sol.position, s1, s2), q)
+    m_terms = [M1, M2, _cross(x1, a1), _cross(x2, a2), Xq]
+    moment = (M2 + _cross(x2, a2) - M1 - _cross(x1, a1) + Xq) / max(map(abs, m_terms))
+    (N1, N2), _ = sol.normal_and_shear([s1, s2])
+
+    def q_dot_t(s: NDArray) -> NDArray:
+        th = sol.theta(s)
+        return q[0] * np.cos(th) + q[1] * np.sin(th)
+
+    qt = float(gauss_integral(q_dot_t, s1, s2))
+    e_terms = [N1, N2, M1**2 / (2 * sol.B), M2**2 / (2 * sol.B), qt]
+    eq87 = (N2 + M2**2 / (2 * sol.B) - N1 - M1**2 / (2 * sol.B) + qt) / max(map(abs, e_terms))
+    return {"force": float(force), "moment": float(moment), "eq87": float(eq87)}
+
+
+def projections(sol: ElasticaSolution) -> dict[str, float]:
+    """Eqs. (65)-(66): ``d = int cos(theta) ds`` and ``h = int sin(theta) ds`` by quadrature of
+    the computed rotation, against ``l + u1(l) - u1(0)`` and ``u2(l) - u2(0)`` from the
+    computed positions [m]."""
+    th = sol.theta
+    d = float(gauss_integral(lambda s: np.cos(th(s)), 0.0, sol.length))
+    h = float(gauss_integral(lambda s: np.sin(th(s)), 0.0, sol.length))
+    x0, xl = sol.position([0.0, sol.length])
+    return {"d": d, "h": h, "d_positions": float(xl[0] - x0[0]),
+            "h_positions": float(xl[1] - x0[1])}
+
+
+def _cross(u: ArrayLike, v: ArrayLike) -> float:
+    """``(u x v) . e3`` of two plane vectors."""
+    u, v = np.asarray(u), np.asarray(v)
+    return float(u[0] * v[1] - u[1] * v[0])
+
+
+__all__ = ["ElasticaLoads", "ElasticaSolution", "TipForceElastica", "gauss_integral",
+           "internal_force", "linear_tip_deflection", "moment_of_loads_beyond",
+           "perturbation_tip_deflection",
+           "part_balances", "projections", "solve_collocation", "solve_shooting",
+           "tip_force_closed_form"]

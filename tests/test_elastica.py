@@ -1,0 +1,186 @@
+"""The clamped elastica of Fig. 9 (§2.5–2.6) and the balances of Figs. 6–8: the geometrically
+exact solvers against the closed form by elliptic integrals, the linear cantilever and the
+third-order perturbation; bad input refused before any work."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from flutterfriction.analysis import elastica as el
+from flutterfriction.errors import ParameterError
+from flutterfriction.parameters import LIST_119
+
+L, B = LIST_119["length"], LIST_119["B"]
+FIG09 = {"rod": dict(LIST_119), "P1": 0.2, "P2": 0.5, "q1": -1.0, "q2": -2.0,
+         "n_points": 41}
+
+
+@pytest.mark.parametrize(("P1", "P2"), [(0.0, 0.8), (0.2, 0.5), (-0.4, 0.6), (0.3, -0.5),
+                                        (0.0, 3.0)])
+def test_end_force_shooting_matches_the_elliptic_closed_form(P1, P2):
+    """A fixed end force of any direction: tip and whole curve to ~1e-12 (the brief's 1e-8)."""
+    sol = el.solve_shooting(L, B, el.ElasticaLoads(P1=P1, P2=P2))
+    cf = el.tip_force_closed_form(L, B, P1, P2)
+    s = np.linspace(0.0, L, 101)
+    assert np.max(np.abs(sol.position(s) - cf.position(s))) / L < 1e-11
+    assert np.max(np.abs(sol.theta(s) - cf.theta(s))) < 1e-11
+    assert sol.tip_rotation == pytest.approx(cf.tip_rotation, rel=1e-12, abs=1e-13)
+    assert abs(cf.theta(0.0)[0]) < 1e-14 and np.allclose(cf.position(0.0), 0.0, atol=1e-15)
+    # the end turns towards the force, never past it
+    phi = math.atan2(-P2, -P1)
+    assert abs(math.remainder(cf.tip_rotation - phi, 2 * math.pi)) < abs(
+        math.remainder(phi, 2 * math.pi))
+
+
+def test_closed_form_is_the_classical_cantilever():
+    """P1 = 0: sqrt(F/B) l = K(k) - F(varphi0, k), k^2 = (1 + sin alpha)/2, sin varphi0 =
+    1/(k sqrt 2) (Bisshopp and Drucker 1945), independently of our parametrisation."""
+    from scipy.special import ellipk, ellipkinc
+
+    F = 0.8
+    cf = el.tip_force_closed_form(L, B, 0.0, F)
+    alpha = -cf.tip_rotation
+    k2 = (1 + math.sin(alpha)) / 2
+    varphi0 = math.asin(1 / math.sqrt(2 * k2))
+    assert ellipk(k2) - ellipkinc(varphi0, k2) == pytest.approx(math.sqrt(F / B) * L,
+                                                                 rel=1e-13)
+
+
+def test_collocation_agrees_with_shooting_under_all_four_loads():
+    loads = el.ElasticaLoads(P1=0.2, P2=0.5, q1=-1.0, q2=-2.0)
+    a = el.solve_shooting(L, B, loads)
+    b = el.solve_collocation(L, B, loads)
+    s = np.linspace(0.0, L, 51)
+    assert np.max(np.abs(a.position(s) - b.position(s))) / L < 1e-10
+    assert np.max(np.abs(a.moment(s) - b.moment(s))) < 1e-10
+    assert np.max(np.abs(a.force(s) - b.force(s))) < 1e-13  # a' = -q: linear, collocated exactly
+    assert a.clamp_residual < 1e-13
+    # a visibly large deflection: the end turns by more than 60 degrees
+    assert a.tip_rotation < -math.radians(60)
+
+
+def test_small_loads_approach_the_linear_cantilever_as_load_squared():
+    base = el.ElasticaLoads(P2=0.5, q2=-2.0)
+    c1, c2, c3 = el.perturbation_tip_deflection(L, B, base)
+    assert c1 == pytest.approx(el.linear_tip_deflection(L, B, base), rel=1e-14)
+    assert c2 == 0.0  # transverse loads only: u2 is odd in the load
+    rel = []
+    for e in (1e-2, 1e-3):
+        u = el.solve_shooting(L, B, base.scaled(e), load_steps=1).tip_displacement()[1]
+        rel.append(u / el.linear_tip_deflection(L, B, base.scaled(e)) - 1.0)
+    assert math.log10(rel[0] / rel[1]) == pytest.approx(2.0, abs=1e-3)
+    assert rel[1] / 1e-6 == pytest.approx(c3 / c1, rel=1e-5)
+
+
+def test_perturbation_series_with_axial_loads():
+    """With P1, q1 the relative difference from the linear cantilever is first order (the
+    beam-column coupling c2), and the third-order series is right to O(e^4)."""
+    loads = el.ElasticaLoads(P1=0.2, P2=0.5, q1=-1.0, q2=-2.0)
+    c1, c2, c3 = el.perturbation_tip_deflection(L, B, loads)
+    assert c2 != 0.0
+    for e in (1e-2, 1e-3):
+        u = el.solve_shooting(L, B, loads.scaled(e), load_steps=1).tip_displacement()[1]
+        series = c1 * e + c2 * e**2 + c3 * e**3
+        assert abs(u - series) < 50 * abs(c1) * e**4 + 1e-15
+
+
+def test_equilibrium_of_cuts_and_parts():
+    loads = el.ElasticaLoads(P1=0.2, P2=0.5, q1=-1.0, q2=-2.0)
+    for sol in (el.solve_shooting(L, B, loads), el.solve_collocation(L, B, loads)):
+        for sc in (0.0, 0.3 * L, 0.77 * L):
+            assert el.moment_of_loads_beyond(sol, sc) == pytest.approx(
+                sol.moment(sc)[0], rel=1e-11, abs=1e-14)
+        bal = el.part_balances(sol, 0.2 * L, 0.65 * L)
+        assert abs(bal["force"]) < 1e-14
+        assert abs(bal["moment"]) < 1e-11
+        assert abs(bal["eq87"]) < 1e-11
+        pr = el.projections(sol)
+        assert pr["d"] == pytest.approx(pr["d_positions"], rel=1e-12)
+        assert pr["h"] == pytest.approx(pr["h_positions"], rel=1e-12)
+
+
+def test_eq100_the_follower_free_end_force():
+    """Eq. (87) with q . t = 0 (end forces only): N + M^2/(2B) is constant, equal to its end
+    value P . t(l) (eq. 97) along the whole rod."""
+    sol = el.solve_shooting(L, B, el.ElasticaLoads(P1=0.3, P2=0.7))
+    s = np.linspace(0.0, L, 41)
+    N, _ = sol.normal_and_shear(s)
+    inv = N + sol.moment(s) ** 2 / (2 * B)
+    assert np.ptp(inv) < 1e-11
+
+
+@pytest.mark.parametrize(("kwargs", "name"), [
+    ({"length": float("nan")}, "length"), ({"B": -1.0}, "B"), ({"B": 0.0}, "B"),
+    ({"length": "1"}, "length"), ({"load_steps": 0}, "load_steps"),
+    ({"rtol": float("inf")}, "rtol")])
+def test_bad_solver_input_is_refused(kwargs, name):
+    args = {"length": L, "B": B, "loads": el.ElasticaLoads(P2=0.5)}
+    extra = {k: kwargs.pop(k) for k in list(kwargs) if k in ("load_steps", "rtol")}
+    args.update(kwargs)
+    with pytest.raises(ParameterError, match=name):
+        el.solve_shooting(**args, **extra)
+
+
+@pytest.mark.parametrize("field", ["P1", "P2", "q1", "q2"])
+def test_bad_loads_are_refused(field):
+    with pytest.raises(ParameterError, match=field):
+        el.ElasticaLoads(**{field: float("nan")})
+    with pytest.raises(ParameterError, match=field):
+        el.ElasticaLoads(**{field: True})
+
+
+def test_axial_end_force_has_no_closed_form_here():
+    with pytest.raises(ParameterError, match="axial"):
+        el.tip_force_closed_form(L, B, 0.5, 0.0)
+    with pytest.raises(ParameterError, match="B"):
+        el.tip_force_closed_form(L, -B, 0.0, 0.5)
+
+
+# ---------------------------------------------------------------------- the scene
+def test_scene_quantities_and_bad_parameters():
+    from flutterfriction.scenes.rod_statics import elastica
+
+    d = elastica(FIG09)
+    q = d["quantities"]
+    for key in ("tip_deflection", "tip_rotation", "tip_force_deflection",
+                "tip_force_rotation", "cut_moment", "projection_d", "projection_h"):
+        assert q[key]["value"] == pytest.approx(q[key]["independent"], rel=1e-10), key
+    assert q["arclength"]["value"] == pytest.approx(L, rel=1e-12)
+    assert q["cut_force"]["value"] == pytest.approx(q["cut_force"]["independent"], rel=1e-14)
+    for key in ("part_force_balance", "part_moment_balance", "part_eq87",
+                "tip_force_curve_error"):
+        assert abs(q[key]["value"]) < 1e-11 and abs(q[key]["independent"]) < 1e-11
+    assert q["linear_limit_order"]["value"] == pytest.approx(2.0, abs=1e-3)
+    assert len(d["s"]) == 41
+    # the frame of Fig. 6: t, m orthonormal, m rotated -pi/2 from t (eq. 71), n = m here
+    t, m, n = (np.array(d["point"][k]) for k in ("t", "m", "n"))
+    assert t @ m == pytest.approx(0.0, abs=1e-15)
+    assert t[0] * m[1] - t[1] * m[0] == pytest.approx(-1.0)
+    assert np.allclose(n, m)
+    for bad, name in (({"P2": 0.0}, "P2"), ({"cut": 1.5}, "cut"), ({"part": [0.6, 0.2]}, "part"),
+                      ({"q1": float("nan")}, "q1"), ({"linear_factors": [0.1]}, "linear"),
+                      ({"rod": {**LIST_119, "B": -1.0}}, "B"), ({"load": 1.0}, "unknown"),
+                      ({"n_points": 5}, "n_points")):
+        with pytest.raises(ParameterError, match=name):
+            elastica({**FIG09, **bad})
+
+
+def test_figures_6_to_9_draw():
+    import io
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from flutterfriction.plotting import rod_statics as rp
+    from flutterfriction.scenes.rod_statics import elastica
+
+    d = elastica(FIG09)
+    for f in ("06", "07", "08", "09"):
+        fig = getattr(rp, f"plot_fig{f}")(d)
+        assert fig._suptitle.get_text().startswith(f"Fig. {int(f)}")
+        for ax in fig.axes:
+            assert "[" in ax.get_xlabel() and "[" in ax.get_ylabel()
+        fig.savefig(io.BytesIO(), format="png", dpi=40)
