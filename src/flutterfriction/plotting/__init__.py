@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import time
 from pathlib import Path
 
 import matplotlib
@@ -12,7 +13,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
 
-from flutterfriction.io import atomic_path  # noqa: E402
+from flutterfriction.figure_check import check_figure, offences_json  # noqa: E402
+from flutterfriction.io import atomic_path, write_json  # noqa: E402
 
 plt.rcParams.update({
     "font.size": 9, "axes.titlesize": 9, "axes.labelsize": 9, "legend.fontsize": 8,
@@ -23,12 +25,16 @@ plt.rcParams.update({
 REGIME_COLOURS = {"stable": "#d8ecd3", "flutter": "#fbe0b8", "divergence": "#f4c7c3"}
 
 
-def save_figure(fig: Figure, *paths: str | os.PathLike, draft: bool = False) -> None:
+def save_figure(fig: Figure, *paths: str | os.PathLike, draft: bool = False,
+                check: str | os.PathLike | None = None) -> None:
     """Write ``fig`` to each path atomically (temp file + rename), without dates in metadata.
 
     ``draft`` (the quick preset): PNG at 100 dpi and PDF text as Type 3 glyphs, about half the
     cost of a save; the paper figures embed TrueType (Type 42, editable text, as journals ask)
-    and render PNGs at 200 dpi."""
+    and render PNGs at 200 dpi. ``check``: then run the figure check
+    (:func:`flutterfriction.figure_check.check_figure`) and write its offences to this JSON
+    file (the workflow's check fails the run on any). It draws the figure once more after the
+    saves, so the files saved are the same with or without it."""
     rc = {"pdf.fonttype": 3, "savefig.dpi": 100} if draft else {}
     with plt.rc_context(rc):
         for path in map(Path, paths):
@@ -36,4 +42,11 @@ def save_figure(fig: Figure, *paths: str | os.PathLike, draft: bool = False) -> 
             meta = {"CreationDate": None} if fmt == "pdf" else {"Software": None}
             with atomic_path(path) as tmp:
                 fig.savefig(tmp, format=fmt, metadata=meta, bbox_inches="tight")
+    if check is not None:
+        start = time.perf_counter()
+        offences = check_figure(fig, tight=True, saved=True)
+        write_json(check, offences_json(Path(check).stem, offences))
+        print(f"{Path(check).stem}: figure check, {len(offences)} offences "
+              f"({1e3 * (time.perf_counter() - start):.0f} ms)", *offences, sep="\n  ",
+              flush=True)
     plt.close(fig)

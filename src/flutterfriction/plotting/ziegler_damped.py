@@ -87,8 +87,8 @@ def plot_paradox_limit(data: dict[str, Any]) -> Figure:
     ax.annotate("the Ziegler paradox:\nthe limit is not the\nundamped value",
                 (eps[0] * 2.2, 0.5 * (data["gamma_flu_limit"] + data["gamma_flu_undamped"])),
                 va="center", fontsize=8, color="C3")
-    ax.set_xlabel(r"viscosity $\epsilon = c_2/(l_2\sqrt{k_2 m_2})$")
-    ax.set_ylabel(r"flutter load $P_{flu}\,L/K$")
+    ax.set_xlabel(r"viscosity $\epsilon = c_2/(l_2\sqrt{k_2 m_2})$ [-]")
+    ax.set_ylabel(r"flutter load $P_{flu}\,L/K$ [-]")
     ax.set_ylim(1.2, 2.6)
     ax.legend(loc="upper right", fontsize=7)
     ax.set_title("Flutter load with vanishing hinge viscosity (symmetric pendulum)")

@@ -99,7 +99,8 @@ def plot_fig20(data: dict[str, Any]) -> Figure:
         ax.set_ylim(-lim, lim)
         ax.set_xlim(0, tmax)
         ax.set_xlabel("t [s]")
-    ax1.set_ylabel(r"transverse acceleration of C [m/s$^2$]")
+    for ax in (ax1, ax2):
+        ax.set_ylabel(r"transverse acceleration of C [m/s$^2$]")
     ax1.legend(fontsize=7, loc="lower left")
     ax1.set_title(f"Fig. 20: list (47), c1 = c2 = 0.006 N m s, P = {data['P']:.3f} N (middle "
                   f"of the flutter interval {data['P_flu']:.2f}–{data['P_div']:.2f} N)",
@@ -115,8 +116,9 @@ def plot_fig21(data: dict[str, Any]) -> Figure:
     S = np.array(data["scratch"]) * 1000
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(9.6, 4.4),
                                    gridspec_kw={"width_ratios": [1, 1.6]})
-    time_coloured(ax1, C[:, 0], C[:, 1], data["t"], lw=1.2)
+    lc = time_coloured(ax1, C[:, 0], C[:, 1], data["t"], lw=1.2)
     ax1.set_aspect("equal")
+    fig.colorbar(lc, ax=ax1, label="time t [s]")
     ax1.set_title("path of the loaded end C in the fixed frame [mm]", fontsize=8)
     ax2.set_facecolor("0.15")
     ax2.plot(S[:, 0], S[:, 1], color="w", lw=1.4)

@@ -1,0 +1,173 @@
+"""The figure check catches what makes a figure illegible or unexplained (issue 13): deliberately
+broken figures fail it, each for its reason, and a clean figure passes."""
+
+from __future__ import annotations
+
+import json
+
+import matplotlib
+import numpy as np
+import pytest
+
+matplotlib.use("Agg")
+
+import matplotlib.pyplot as plt  # noqa: E402
+
+from flutterfriction.figure_check import (  # noqa: E402
+    Offence,
+    check_figure,
+    figure_problems,
+    load_figure_checks,
+    offences_json,
+)
+from flutterfriction.plotting import save_figure  # noqa: E402
+
+X = np.linspace(0.0, 1.0, 21)
+
+
+def clean():
+    """Two explained curves, both axes labelled with units, a legend clear of everything."""
+    fig, ax = plt.subplots(figsize=(4.0, 3.0))
+    ax.plot(X, X, color="C0", label="linear")
+    ax.plot(X, X**2, color="C3", ls="--", label="quadratic")
+    ax.axhline(0.5, color="k", lw=0.8)  # a reference line: left to its annotation
+    ax.annotate("half", (0.05, 0.52), fontsize=7)
+    ax.set_xlabel("time t [s]")
+    ax.set_ylabel("ratio [-]")
+    ax.set_title("clean")
+    ax.legend(loc="upper left")
+    return fig, ax
+
+
+def kinds(offences: list[Offence]) -> list[str]:
+    return sorted(o.kind for o in offences)
+
+
+@pytest.fixture(autouse=True)
+def _close():
+    yield
+    plt.close("all")
+
+
+def test_a_clean_figure_passes():
+    fig, _ = clean()
+    assert check_figure(fig) == []
+
+
+def test_two_overlapping_texts_are_caught_by_name():
+    fig, ax = clean()
+    ax.text(0.6, 0.2, "flutter load")
+    ax.text(0.62, 0.21, "divergence load")
+    offences = check_figure(fig)
+    assert kinds(offences) == ["overlap"]
+    assert {offences[0].text, offences[0].other} == {"flutter load", "'divergence load'"}
+    assert "clean" in offences[0].axes  # the axes, by its title
+
+
+def test_a_tick_label_under_a_long_title_of_the_next_panel_overlaps():
+    fig, (a, b) = plt.subplots(1, 2, figsize=(4.0, 2.0))
+    for ax in (a, b):
+        ax.plot(X, X)
+        ax.set_xlabel("x [m]")
+        ax.set_ylabel("y [m]")
+    a.set_title("a title far too long for its own panel, running into the next")
+    b.set_title("second")
+    assert "overlap" in kinds(check_figure(fig))
+
+
+def test_a_label_clipped_by_its_axes_is_caught():
+    fig, ax = clean()
+    ax.text(0.9, 0.3, "a label running out of the axes", transform=ax.transAxes, clip_on=True)
+    offences = check_figure(fig)
+    assert kinds(offences) == ["clipped"]
+    assert offences[0].text == "a label running out of the axes"
+
+
+def test_text_beyond_the_saved_area_is_clipped():
+    fig, ax = clean()
+    t = fig.text(1.3, 0.5, "outside the tight box")
+    t.set_in_layout(False)  # the tight bounding box does not grow to include it
+    assert kinds(check_figure(fig)) == ["clipped"]
+    fig2, _ = clean()
+    fig2.tight_layout()
+    fig2.text(0.9, 0.5, "beyond the canvas")  # saved without bbox_inches="tight"
+    assert kinds(check_figure(fig2, tight=False)) == ["clipped"]
+    assert check_figure(fig2, tight=True) == []  # the tight box grows to include it
+
+
+def test_text_covered_by_a_legend_is_caught():
+    fig, ax = clean()
+    ax.text(0.02, 0.9, "under the legend", transform=ax.transAxes)
+    offences = check_figure(fig)
+    assert ("covered", "under the legend", "a legend") in [(o.kind, o.text, o.other)
+                                                           for o in offences]
+    assert set(kinds(offences)) == {"covered", "overlap"}  # and it runs into the legend's text
+
+
+def test_an_axis_label_without_unit_and_an_unlabelled_axis_are_caught():
+    fig, ax = clean()
+    ax.set_xlabel("time")
+    ax.set_ylabel("")
+    offences = check_figure(fig)
+    assert kinds(offences) == ["unit", "unit"]
+    assert {o.text for o in offences} == {"time", "y axis without a label"}
+    fig2, ax2 = clean()
+    ax2.set_xlabel("time, dimensionless")  # the word, instead of [-]
+    assert check_figure(fig2) == []
+
+
+def test_names_on_an_axis_need_no_unit_and_hidden_tick_labels_need_no_label():
+    fig, (a, b) = plt.subplots(2, 1, sharex=True)
+    a.bar(["Beck", "Pflüger"], [20.05, 16.21])
+    a.set_ylabel("p [-]")
+    b.bar(["Beck", "Pflüger"], [10.94, 7.91])
+    b.set_ylabel("p [-]")
+    a.tick_params(labelbottom=False)
+    assert check_figure(fig) == []
+
+
+def test_two_unexplained_coloured_lines_are_caught():
+    fig, ax = plt.subplots()
+    ax.plot(X, X, color="C0")
+    ax.plot(X, X**2, color="C3")
+    ax.set_xlabel("t [s]")
+    ax.set_ylabel("y [m]")
+    offences = check_figure(fig)
+    assert kinds(offences) == ["unexplained", "unexplained"]
+    assert {o.text for o in offences} == {"#1f77b4 -", "#d62728 -"}
+
+
+def test_lines_named_by_a_text_of_their_colour_or_one_alone_are_explained():
+    fig, ax = plt.subplots()
+    ax.plot(X, X, color="C0")
+    ax.plot(X, X**2, color="C3")
+    ax.text(0.5, 0.2, "quadratic", color="C3")
+    ax.set_xlabel("t [s]")
+    ax.set_ylabel("y [m]")
+    assert check_figure(fig) == []  # C3 named; C0 the one curve the axis labels describe
+
+
+def test_a_colour_map_needs_a_colorbar_and_a_label_a_legend():
+    fig, ax = plt.subplots()
+    sc = ax.scatter(X, X, c=X, cmap="viridis")
+    ax.plot(X, 1 - X, color="C1", label="falling")
+    ax.set_xlabel("t [s]")
+    ax.set_ylabel("y [m]")
+    assert sorted((o.kind, o.text) for o in check_figure(fig)) == [
+        ("unexplained", "colour map viridis"), ("unexplained", "falling")]
+    fig.colorbar(sc, ax=ax, label="time t [s]")
+    ax.legend()
+    assert check_figure(fig) == []
+
+
+def test_save_figure_writes_the_check_and_the_problems_name_the_figure(tmp_path):
+    fig, ax = clean()
+    ax.set_xlabel("time")
+    save_figure(fig, tmp_path / "demo.png", check=tmp_path / "checks" / "demo.json")
+    assert (tmp_path / "demo.png").is_file()
+    saved = json.loads((tmp_path / "checks" / "demo.json").read_text())
+    assert saved == offences_json("demo", [Offence("unit", "time", "x axis label without a "
+                                                   "unit [..]", "axes 0: clean")])
+    checks = load_figure_checks([tmp_path / "checks" / "demo.json"])
+    assert figure_problems(checks) == [
+        "figure check: demo: unit: 'time' / x axis label without a unit [..] (axes 0: clean)"]
