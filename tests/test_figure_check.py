@@ -13,9 +13,11 @@ matplotlib.use("Agg")
 
 import matplotlib.pyplot as plt  # noqa: E402
 
-from flutterfriction.figure_check import (  # noqa: E402
+from flutterfriction.figure_check import check_figure  # noqa: E402
+from flutterfriction.figure_offences import (  # noqa: E402
     Offence,
-    check_figure,
+    figure_checks_markdown,
+    figure_checks_summary,
     figure_problems,
     load_figure_checks,
     offences_json,
@@ -171,3 +173,7 @@ def test_save_figure_writes_the_check_and_the_problems_name_the_figure(tmp_path)
     checks = load_figure_checks([tmp_path / "checks" / "demo.json"])
     assert figure_problems(checks) == [
         "figure check: demo: unit: 'time' / x axis label without a unit [..] (axes 0: clean)"]
+    assert figure_checks_summary(checks | {"fine": []})["n_failed"] == 1
+    md = figure_checks_markdown(checks | {"fine": []})
+    assert "**1 of 2 figures FAIL**" in md and "| demo | unit | time |" in md
+    assert "2 of 2 figures pass" in figure_checks_markdown({"a": [], "b": []})

@@ -4,7 +4,7 @@ A figure is checked as matplotlib draws it: the check draws it once without rast
 (:meth:`~matplotlib.figure.Figure.draw_without_rendering`) and records every text, legend and
 axes actually drawn, in drawing order; extents are matplotlib's own
 (:meth:`~matplotlib.text.Text.get_window_extent` with the canvas renderer). The rules, each an
-:class:`Offence` kind:
+:class:`~flutterfriction.figure_offences.Offence` kind:
 
 ``overlap``
     Two drawn texts (titles, axis labels, tick labels, annotations, legend texts, colorbar
@@ -31,11 +31,9 @@ axes actually drawn, in drawing order; extents are matplotlib's own
 from __future__ import annotations
 
 import contextlib
-import json
 import re
-from collections.abc import Iterable, Iterator, Mapping
-from dataclasses import asdict, dataclass
-from pathlib import Path
+from collections.abc import Iterator
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -51,6 +49,8 @@ from matplotlib.patches import Patch
 from matplotlib.text import Text
 from matplotlib.transforms import Bbox
 
+from flutterfriction.figure_offences import Offence
+
 #: Two texts overlap when their boxes share more than this area [pt²] (a 1 pt square: a box
 #: holds its glyphs' side bearings and descent, so a corner this size touches no ink). On every
 #: figure of the workflow no two text boxes intersect at all; the closest pair is 1.0 pt apart.
@@ -61,24 +61,6 @@ TOLERANCE_PT = 0.5
 
 #: The unit convention of the axis labels: a unit in square brackets, or "dimensionless".
 UNIT = re.compile(r"\[[^\[\]]*\S[^\[\]]*\]|dimensionless", re.IGNORECASE)
-
-KINDS = ("overlap", "clipped", "covered", "unit", "unexplained")
-
-
-@dataclass(frozen=True)
-class Offence:
-    """One problem of a figure: its kind (:data:`KINDS`), the text (or artist) at fault, what
-    it collides with, and the axes it belongs to (its title or labels)."""
-
-    kind: str
-    text: str
-    other: str = ""
-    axes: str = ""
-
-    def __str__(self) -> str:
-        where = f" ({self.axes})" if self.axes else ""
-        return f"{self.kind}: {self.text!r}" + (f" / {self.other}" if self.other else "") + where
-
 
 @dataclass
 class _Drawn:
@@ -403,25 +385,3 @@ def _style_offences(ax: Any, legend_styles: set, legend_labels: set[str], colorb
         out += [Offence("unexplained", _describe(s), "no legend or text of its colour names "
                         f"it ({len(loose)} such styles)", where) for s in loose]
     return out
-
-
-def offences_json(figure: str, offences: list[Offence]) -> dict[str, Any]:
-    """What the workflow writes for one figure (``results/checks/figures/<figure>.json``; no
-    timings: reruns give identical files)."""
-    return {"figure": figure, "offences": [asdict(o) for o in offences]}
-
-
-def load_figure_checks(paths: Iterable[str | Path]) -> dict[str, list[Offence]]:
-    """``{figure: its offences}`` from the files :func:`offences_json` wrote."""
-    out = {}
-    for p in paths:
-        with open(p, encoding="utf-8") as fh:
-            d = json.load(fh)
-        out[d["figure"]] = [Offence(**o) for o in d["offences"]]
-    return dict(sorted(out.items()))
-
-
-def figure_problems(checks: Mapping[str, list[Offence]]) -> list[str]:
-    """One line per offence, naming the figure: what fails the run."""
-    return [f"figure check: {figure}: {o}" for figure, offences in checks.items()
-            for o in offences]

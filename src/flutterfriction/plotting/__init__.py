@@ -13,7 +13,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
 
-from flutterfriction.figure_check import check_figure, offences_json  # noqa: E402
+from flutterfriction.figure_check import check_figure  # noqa: E402
+from flutterfriction.figure_offences import offences_json  # noqa: E402
 from flutterfriction.io import atomic_path, write_json  # noqa: E402
 
 plt.rcParams.update({
