@@ -177,3 +177,22 @@ def test_save_figure_writes_the_check_and_the_problems_name_the_figure(tmp_path)
     md = figure_checks_markdown(checks | {"fine": []})
     assert "**1 of 2 figures FAIL**" in md and "| demo | unit | time |" in md
     assert "2 of 2 figures pass" in figure_checks_markdown({"a": [], "b": []})
+
+
+def test_the_summary_and_the_report_show_the_figure_check(tmp_path):
+    from flutterfriction.reference import write_summary
+    from flutterfriction.report import build_index
+
+    checks = {"figA": [], "figB": [Offence("overlap", "P_flu", "'P_div'", "axes 0: load")]}
+    write_summary([], tmp_path / "summary.json", tmp_path / "summary.md", figure_checks=checks)
+    summary = json.loads((tmp_path / "summary.json").read_text())
+    assert summary["figures"]["n_figures"] == 2 and summary["figures"]["n_failed"] == 1
+    assert "| figB | overlap | P_flu | 'P_div' | axes 0: load |" in (
+        tmp_path / "summary.md").read_text()
+    layout = {"title": "T", "sections": [{"title": "S", "figures": {}}]}
+    page = tmp_path / "index.html"
+    page.write_text(build_index(layout, [], {}, figure_checks=checks))
+    text = page.read_text()
+    assert "<b>Figure check</b>: 1 of 2 figures pass" in text
+    assert "<td>figB</td><td>overlap</td><td>P_flu</td>" in text
+    assert 'href="#figure-check"' in text and 'id="figure-check"' in text

@@ -31,6 +31,7 @@ from typing import Any
 import yaml
 
 from flutterfriction.errors import ParameterError
+from flutterfriction.figure_offences import Offence, figure_checks_markdown, figure_checks_summary
 from flutterfriction.io import markdown_table, write_json, write_text
 
 
@@ -224,10 +225,18 @@ def summary_markdown(rows: list[CheckRow]) -> str:
     return "\n".join(lines) + "\n"
 
 
-def write_summary(rows: list[CheckRow], json_path: str | Path, md_path: str | Path) -> None:
-    write_json(json_path, {"n_entries": len(rows), "n_failed": len(failed(rows)),
-                           "entries": [asdict(r) for r in rows]})
-    write_text(md_path, summary_markdown(rows))
+def write_summary(rows: list[CheckRow], json_path: str | Path, md_path: str | Path,
+                  figure_checks: Mapping[str, list[Offence]] | None = None) -> None:
+    """The check summary (JSON and markdown); with ``figure_checks`` (figure -> offences,
+    :mod:`flutterfriction.figure_offences`), the figure check's result too."""
+    summary: dict[str, Any] = {"n_entries": len(rows), "n_failed": len(failed(rows)),
+                               "entries": [asdict(r) for r in rows]}
+    md = summary_markdown(rows)
+    if figure_checks is not None:
+        summary["figures"] = figure_checks_summary(figure_checks)
+        md += "\n" + figure_checks_markdown(figure_checks)
+    write_json(json_path, summary)
+    write_text(md_path, md)
 
 
 def load_scene_data(paths: list[str | Path]) -> dict[str, Any]:

@@ -24,6 +24,8 @@ from urllib.parse import unquote, urlsplit
 import yaml
 
 from flutterfriction.errors import ParameterError
+from flutterfriction.figure_offences import RULES as FIGURE_RULES
+from flutterfriction.figure_offences import Offence
 from flutterfriction.reference import CheckRow
 
 STYLE = """
@@ -420,7 +422,8 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
                 coverage: list[Mapping[str, Any]] | None = None,
                 row_scene: Mapping[str, str] | None = None,
                 figure_params: Mapping[str, Mapping[str, Any]] | None = None,
-                footer: str = "") -> str:
+                footer: str = "",
+                figure_checks: Mapping[str, list[Offence]] | None = None) -> str:
     """The report's HTML (written even when the check fails: then it says so at the top).
     Paths are relative to ``results/reports/``.
 
@@ -452,6 +455,9 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
         Scene -> the parameters its data were computed with, shown under its figures.
     footer
         Provenance (commit, versions, date), shown at the bottom.
+    figure_checks
+        Figure -> its figure-check offences (:mod:`flutterfriction.figure_offences`): a line
+        under the check's summary, and the offences in the check section.
     """
     figure_data = dict(figure_data or {})
     row_scene = dict(row_scene or {})
@@ -477,7 +483,8 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
              f"quoted values reproduced within tolerance; {n_ver} of {n_err} errata verified by "
              'an independent computation. <a href="#check">Check table</a> · '
              '<a href="../checks/summary.md">summary.md</a> · '
-             '<a href="../checks/summary.json">summary.json</a></p>']
+             '<a href="../checks/summary.json">summary.json</a></p>',
+             *([_figure_check_line(figure_checks)] if figure_checks is not None else [])]
     if extra_links:
         parts.append("<p>" + " · ".join(f'<a href="{html.escape(h)}">{html.escape(t)}</a>'
                                         for h, t in extra_links) + "</p>")
@@ -553,12 +560,37 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
                  "against independent method (must be at most 1). Errata rows are yellow; open "
                  "<i>evidence</i> for the printed and corrected forms.</p>")
     parts.append(_check_table(rows, errata))
+    if figure_checks is not None:
+        parts.append(_figure_check_section(figure_checks))
     if stress:
         parts.append(_stress_section(stress))
     if footer:
         parts.append(f'<hr><p class="params">{html.escape(footer)}</p>')
     parts.append("</body></html>")
     return "\n".join(parts)
+
+
+def _figure_check_line(checks: Mapping[str, list[Offence]]) -> str:
+    bad = sum(bool(o) for o in checks.values())
+    return (f'<p class="summary{" bad" if bad else ""}"><b>Figure check</b>: '
+            f"{len(checks) - bad} of {len(checks)} figures pass: {html.escape(FIGURE_RULES)}. "
+            '<a href="#figure-check">Offences</a></p>')
+
+
+def _figure_check_section(checks: Mapping[str, list[Offence]]) -> str:
+    out = ['<h3 id="figure-check">The figure check</h3>',
+           f"<p>Every figure the workflow draws, checked as matplotlib draws it "
+           f"(<code>flutterfriction.figure_check</code>): {html.escape(FIGURE_RULES)}. "
+           f"{sum(not o for o in checks.values())} of {len(checks)} figures pass.</p>"]
+    bad = [(f, o) for f, offences in checks.items() for o in offences]
+    if bad:
+        out.append('<div class="wide"><table><thead><tr><th>figure</th><th>kind</th>'
+                   "<th>text</th><th>with</th><th>axes</th></tr></thead><tbody>")
+        out += [f'<tr class="fail"><td>{html.escape(f)}</td>' + "".join(
+            f"<td>{html.escape(x)}</td>" for x in (o.kind, o.text, o.other, o.axes))
+            + "</tr>" for f, o in bad]
+        out.append("</tbody></table></div>")
+    return "\n".join(out)
 
 
 def _stress_section(stress: list[Mapping[str, str]]) -> str:

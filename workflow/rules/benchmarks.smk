@@ -19,6 +19,7 @@ rule work_precision:
         md="results/benchmarks/work_precision.md",
         pdf="results/benchmarks/work_precision.pdf",
         png="results/benchmarks/work_precision.png",
+        check="results/checks/figures/work_precision.json",
     log:
         "results/logs/work_precision.log",
     conda:

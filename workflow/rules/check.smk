@@ -25,6 +25,12 @@ rule stress:
         "../scripts/stress.py"
 
 
+# The figure check of every figure drawn (written by its plot job; the report reads them all).
+FIGURE_CHECKS = expand(
+    "results/checks/figures/{figure}.json", figure=[*ALL_FIGURES, "work_precision"]
+)
+
+
 # Every output a reader sees: each is a target of `rule all`, so a deleted one is rebuilt
 # (Snakemake does not rebuild a missing intermediate file whose consumers are up to date),
 # and the report, which links to all of them, is refreshed.
@@ -35,6 +41,7 @@ USER_OUTPUTS = (
     + expand("results/reports/{nb}.html", nb=NOTEBOOK_REPORTS)
     + list(rules.work_precision.output)
     + list(rules.stress.output)
+    + FIGURE_CHECKS
 )
 
 
@@ -51,6 +58,7 @@ rule report:
         figures=expand("results/figures/{scene}.{ext}", scene=ALL_FIGURES, ext=["pdf", "png"]),
         animations=["results/figures/pendulum_cycle.gif", "results/figures/beck_cycle.gif"],
         reports=expand("results/reports/{nb}.html", nb=NOTEBOOK_REPORTS),
+        figure_checks=FIGURE_CHECKS,
     output:
         json="results/checks/summary.json",
         md="results/checks/summary.md",

@@ -166,5 +166,5 @@ def batch_figure_outputs(part):
             category="Figures",
             labels={"figure": f, "caption": FIGURES[f][1].caption},
         )
-        out += [f"results/figures/{f}.pdf", png]
+        out += [f"results/figures/{f}.pdf", png, f"results/checks/figures/{f}.json"]
     return out

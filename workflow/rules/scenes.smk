@@ -77,6 +77,8 @@ rule plot:
             category="Figures",
             labels={"figure": "{scene}"},
         ),
+        # the figure check's offences (flutterfriction.figure_check; the check fails on any)
+        check="results/checks/figures/{scene}.json",
     log:
         "results/logs/plot/{scene}.log",
     wildcard_constraints:

@@ -4,6 +4,7 @@ of a failing job, and a reader needs the report most when something failed)."""
 
 from pathlib import Path
 
+from flutterfriction.figure_offences import figure_problems, load_figure_checks
 from flutterfriction.io import log_job_output, read_json, write_json, write_text
 from flutterfriction.reference import (
     failed,
@@ -28,7 +29,9 @@ log_job_output(snakemake.log[0])  # this job's output goes to its log file
 reference = load_reference(snakemake.input.reference)
 data = load_scene_data(snakemake.input.data)
 rows = run_check(reference, data, snakemake.params.fidelity)
-write_summary(rows, snakemake.output.json, snakemake.output.md)  # first: the report links it
+figure_checks = load_figure_checks(snakemake.input.figure_checks)
+# first: the report links it
+write_summary(rows, snakemake.output.json, snakemake.output.md, figure_checks=figure_checks)
 layout = load_layout(snakemake.input.layout)
 drawn = {Path(f).stem for f in snakemake.input.figures}
 shown = set(layout_figures(layout))
@@ -43,6 +46,7 @@ problems += coverage_problems(coverage, {f: snakemake.params.figure_data.get(f, 
 bad = failed(rows)
 if bad:
     problems.append(f"reference check failed for: {', '.join(r.id for r in bad)}")
+problems += figure_problems(figure_checks)
 errata = {e["id"]: e for e in reference.get("errata", [])}
 stress = read_json(snakemake.input.stress)
 params = {name: d.get("params", {}) for name, d in data.items()}
@@ -52,7 +56,7 @@ def index(problems):
     return build_index(layout, rows, errata, figure_data=snakemake.params.figure_data,
                        stress=stress, problems=problems, coverage=coverage,
                        row_scene=row_scenes(reference), figure_params=params,
-                       footer=provenance())
+                       footer=provenance(), figure_checks=figure_checks)
 
 
 write_text(snakemake.output.html, index(problems))

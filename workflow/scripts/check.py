@@ -1,5 +1,6 @@
 """The run's last step: fail (listing why) when the report found a failed entry, a figure
-missing from the layout or a broken link; the summary and the report stay on disk."""
+missing from the layout, a figure failing the figure check or a broken link; the summary and
+the report stay on disk."""
 
 import sys
 
@@ -13,6 +14,8 @@ write_text(snakemake.log[0], open(snakemake.input.summary_md, encoding="utf-8").
 if problems:
     sys.exit("the check failed (see results/reports/index.html and results/checks/summary.md):"
              "\n  " + "\n  ".join(problems))
+figures = summary.get("figures", {"n_figures": 0})
 write_text(snakemake.output[0],
            f"{summary['n_entries'] - summary['n_failed']} of {summary['n_entries']} entries "
-           "pass; every figure shown, every report link resolves\n")
+           f"pass; {figures['n_figures']} figures pass the figure check; every figure shown, "
+           "every report link resolves\n")

@@ -14,5 +14,6 @@ timing_files = {Path(p).name.removesuffix(".timings.json"): p for p in snakemake
 for figure, (scene, plot) in snakemake.params.figures.items():
     data = merge_timings(read_json(data_files[scene]), read_json(timing_files[scene]) or None)
     save_figure(resolve(plot)(data), f"results/figures/{figure}.pdf",
-                f"results/figures/{figure}.png", draft=snakemake.params.draft)
+                f"results/figures/{figure}.png", draft=snakemake.params.draft,
+                check=f"results/checks/figures/{figure}.json")
     print(f"{figure}: drawn", flush=True)

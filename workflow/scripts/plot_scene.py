@@ -9,4 +9,5 @@ log_job_output(snakemake.log[0])  # this job's output goes to its log file
 
 data = merge_timings(read_json(snakemake.input.data), read_json(snakemake.input.timings) or None)
 fig = resolve(snakemake.params.plot)(data)
-save_figure(fig, snakemake.output.pdf, snakemake.output.png, draft=snakemake.params.draft)
+save_figure(fig, snakemake.output.pdf, snakemake.output.png, draft=snakemake.params.draft,
+            check=snakemake.output.check)
