@@ -24,6 +24,7 @@ from flutterfriction.errors import ParameterError
 from flutterfriction.plotting import apparatus as apparatus_plots
 from flutterfriction.plotting import beck_branch as branch_plots
 from flutterfriction.plotting import rod as rod_plots
+from flutterfriction.plotting import rod_statics as statics_plots
 from flutterfriction.plotting import sketches as sketch_plots
 from flutterfriction.plotting import solids as solid_plots
 from flutterfriction.plotting import ziegler as ziegler_plots
@@ -32,6 +33,7 @@ from flutterfriction.plotting import ziegler_nonlinear as nonlinear_plots
 from flutterfriction.scenes import (
     apparatus,
     rod,
+    rod_statics,
     sketches,
     solids,
     ziegler,
@@ -154,6 +156,29 @@ _ENTRIES = [
     Scene("damped_dead_load", ziegler_damped.damped_dead_load, "ziegler_paradox"),
     Scene("errata_damped", ziegler_damped.errata_damped, "ziegler_paradox"),
     # §2.5–2.8 The Beck and Pflüger rods
+    Scene("elastica", rod_statics.elastica, "rods", {
+        "fig06": _fig(statics_plots.plot_fig06,
+                      "Fig. 6: the kinematics of an inextensible rod, drawn on the computed "
+                      "elastica of Fig. 9: the point x0 e1 of the straight reference, its image "
+                      "x = g(x0), the displacement u = x − x0 e1 (eq. 55), the tangent t, m and "
+                      "n (eqs. 63, 69, 71), the rotation θ(s) and the arc length s = x0; "
+                      "eqs. (65)–(66) and the curve's length from its positions checked."),
+        "fig07": _fig(statics_plots.plot_fig07,
+                      "Fig. 7: the computed rod ideally cut at s = l/2: the force a(s) and the "
+                      "moment M(s) on the left part, −a(s) and −M(s) on the right (drawn apart "
+                      "along t); M = Bθ' at every cut equals the moment of the loads beyond it "
+                      "(eq. 89)."),
+        "fig08": _fig(statics_plots.plot_fig08,
+                      "Fig. 8: a part [s1, s2] of the computed rod as a free body under the "
+                      "distributed load q, with a(s2), M(s2) and −a(s1), −M(s1): the force and "
+                      "moment balances (eq. 74) and eq. (87) hold to round-off; N, T and M "
+                      "along the rod."),
+        "fig09": _fig(statics_plots.plot_fig09,
+                      "Fig. 9: the clamped elastica of list (119) under the end forces P1, P2 "
+                      "and the forces per unit length q1, q2 (geometrically exact, shooting "
+                      "and collocation); the end forces alone against the closed form by "
+                      "elliptic integrals; small loads approach the linear cantilever as the "
+                      "load squared.")}),
     Scene("fig10", sketches.fig10, "rods", {"fig10": _fig(
         sketch_plots.plot_fig10,
         "Fig. 10: the Beck and the Pflüger (tan α = 1) rods with their modes at the exact "
