@@ -40,6 +40,47 @@ def show(name, width=820):
 
 
 # %% [markdown]
+# ## Figs. 6–9: the clamped elastica (§2.5–2.6)
+#
+# The chapter's sketches of the rod's kinematics, of the internal action at a cut and of the
+# equilibrium of a part are drawn on one computed rod: the clamped elastica of Fig. 9, with $l$
+# and $B$ of list (119), under the dead end force $\mathbf{P} = -P_1\mathbf{e}_1 -
+# P_2\mathbf{e}_2$ and the uniform load $\mathbf{q} = q_1\mathbf{e}_1 + q_2\mathbf{e}_2$ (our
+# values: the chapter gives none). At rest, eq. (91) is
+# $B\theta'' + (P_1 - (l-s)q_1)\sin\theta - (P_2 - (l-s)q_2)\cos\theta = 0$ with
+# $\theta(0) = 0$, $\theta'(l) = 0$. It is solved twice, by shooting on the end rotation
+# $\theta(l)$ (Newton with the variational equations, loads applied in steps from the straight
+# rod) and by collocation; with the end forces alone, eq. (92) is the pendulum equation in $s$
+# and its classical solution by elliptic integrals is the third, closed-form check. For small
+# loads the relative difference from the linear cantilever is $c\,\epsilon^2$, with $c$ from
+# the perturbation of eq. (91) to third order.
+
+# %%
+el = scene("elastica")
+loads, tip = el["loads"], el["tip_forces_only"]
+display(Markdown(
+    f"Loads: $P_1$ = {loads['P1']:g} N, $P_2$ = {loads['P2']:g} N, $q_1$ = {loads['q1']:g} N/m, "
+    f"$q_2$ = {loads['q2']:g} N/m. The end turns by {math.degrees(el['tip_rotation']):.2f}°; "
+    f"with the end forces alone by {math.degrees(tip['tip_rotation']):.2f}° (elliptic modulus "
+    f"$k$ = {tip['modulus_k']:.6f}), where shooting and the closed form differ by at most "
+    f"{tip['curve_error']:.1e} $l$ along the rod. Small loads: measured order "
+    f"{el['linear_limit']['order']:.5f}, $c$ = {el['linear_limit']['coefficient']:.10f}."))
+show("fig09")
+show("fig06")
+show("fig07")
+show("fig08")
+display(Markdown(quantities_table(el["quantities"], digits=10)))
+
+# %% [markdown]
+# The balances of Figs. 7–8 are the chapter's equilibrium equations applied to the computed
+# shape: eq. (89), the moment of the loads beyond a cut, equals the constitutive $B\theta'$ at
+# every cut; eq. (74) holds for the part $[s_1, s_2]$; and eq. (87),
+# $(\mathcal{N} + \mathcal{M}^2/2B)' = -\mathbf{q}\cdot\mathbf{t}$, the identity behind
+# eqs. (100)–(101), holds integrated over the part. (With the end forces alone,
+# $\mathbf{q} = 0$, $\mathcal{N} + \mathcal{M}^2/2B$ is constant along the rod: the tests
+# check it.)
+
+# %% [markdown]
 # ## The linearised problem (eqs. 105–118)
 #
 # Small vibrations of the cantilever (bending stiffness $B$, Kelvin–Voigt viscosity $D$, mass
