@@ -7,6 +7,7 @@ import time
 from pathlib import Path
 
 import matplotlib
+import numpy as np
 
 matplotlib.use("Agg")
 
@@ -24,6 +25,24 @@ plt.rcParams.update({
 })
 
 REGIME_COLOURS = {"stable": "#d8ecd3", "flutter": "#fbe0b8", "divergence": "#f4c7c3"}
+
+
+def tidy_log_axis(axis, values) -> None:
+    """Log-axis ticks that never crowd: when the values hold fewer than two powers of ten
+    (measured wall times, say), a few labelled ticks in plain numbers (matplotlib would
+    otherwise label the minor ticks, and their long labels, 2×10⁻², 3×10⁻², overprint each
+    other, or label one tick only)."""
+    from matplotlib.ticker import LogLocator, NullFormatter, ScalarFormatter
+
+    v = np.asarray([x for x in values if x > 0], dtype=float)
+    if v.size == 0:
+        return
+    axis.set_minor_formatter(NullFormatter())
+    if np.floor(np.log10(v.max())) - np.ceil(np.log10(v.min())) < 1:
+        axis.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0), numticks=6))
+        fmt = ScalarFormatter(useMathText=True)
+        fmt.set_powerlimits((-3, 4))
+        axis.set_major_formatter(fmt)
 
 
 def save_figure(fig: Figure, *paths: str | os.PathLike, draft: bool = False,

@@ -8,23 +8,9 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.figure import Figure
 
+from flutterfriction.plotting import tidy_log_axis
+
 FLOOR = 1e-17  # errors of exactly 0 (agreement to the last bit) are drawn here
-
-
-def _tidy_log_axis(axis, values) -> None:
-    """Log-axis ticks that never crowd: over less than a decade, a few labelled ticks in plain
-    numbers (matplotlib would otherwise label every minor tick, overprinting them)."""
-    from matplotlib.ticker import LogLocator, NullFormatter, ScalarFormatter
-
-    v = np.asarray([x for x in values if x > 0], dtype=float)
-    if v.size == 0:
-        return
-    axis.set_minor_formatter(NullFormatter())
-    if np.log10(v.max() / v.min()) < 1.0:
-        axis.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0), numticks=6))
-        fmt = ScalarFormatter(useMathText=True)
-        fmt.set_powerlimits((-3, 4))
-        axis.set_major_formatter(fmt)
 
 
 def plot_work_precision(runs: list[dict[str, Any]]) -> Figure:
@@ -39,8 +25,8 @@ def plot_work_precision(runs: list[dict[str, Any]]) -> Figure:
                          if r["method"] == method)
             ax.loglog(*zip(*pts, strict=True), "o-", ms=3.5, lw=1, color=f"C{k % 10}",
                       label=method)
-        _tidy_log_axis(ax.xaxis, [r["wall_s"] for r in rows])
-        _tidy_log_axis(ax.yaxis, [max(r["error"], FLOOR) for r in rows])
+        tidy_log_axis(ax.xaxis, [r["wall_s"] for r in rows])
+        tidy_log_axis(ax.yaxis, [max(r["error"], FLOOR) for r in rows])
         ax.set_title(family, fontsize=8)
         ax.set_xlabel("wall time [s]")
         ax.set_ylabel("relative error [-]")

@@ -7,9 +7,8 @@ from typing import Any
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.figure import Figure
-from matplotlib.ticker import NullFormatter
 
-from flutterfriction.plotting import REGIME_COLOURS
+from flutterfriction.plotting import REGIME_COLOURS, tidy_log_axis
 
 
 def _mode_of_branch(im: np.ndarray) -> np.ndarray:
@@ -140,13 +139,8 @@ def plot_fe_convergence(data: dict[str, Any]) -> Figure:
     ax1.set_xlabel("number of Hermite elements [-]")
     ax1.set_ylabel("relative error vs exact eq. (118) [-]")
     ax1.legend(fontsize=6)
-    # Run times spanning under a decade (the quick preset's few meshes) get matplotlib's minor
-    # tick labels, whose long forms (2×10⁻², 3×10⁻²) collide: label powers of ten only, and
-    # widen the axis to two of them when it holds fewer.
-    ax2.xaxis.set_minor_formatter(NullFormatter())
-    lo, hi = ax2.get_xlim()
-    if np.floor(np.log10(hi)) - np.ceil(np.log10(lo)) < 1:
-        ax2.set_xlim(10 ** np.floor(np.log10(lo)), 10 ** np.ceil(np.log10(hi)))
+    # (the quick preset's few meshes: run times within a decade)
+    tidy_log_axis(ax2.xaxis, [t for c in data["cases"].values() for t in c["time_s"]])
     ax2.set_xlabel("run time per critical-load solve [s] (median)")
     ax2.set_ylabel("relative error of p_flu [-]")
     ax2.legend(fontsize=7)
