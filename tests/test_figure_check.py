@@ -118,6 +118,20 @@ def test_an_axis_label_without_unit_and_an_unlabelled_axis_are_caught():
     assert check_figure(fig2) == []
 
 
+def test_an_axis_with_a_unit_but_no_values_is_caught_unless_a_shared_axis_shows_them():
+    from matplotlib.ticker import NullFormatter
+
+    fig, (a, b) = plt.subplots(2, 1, sharex=True)
+    for ax in (a, b):
+        ax.semilogx([2.0, 8.0], [1.0, 2.0])
+        ax.set_ylabel("y [m]")
+    b.set_xlabel("wall time [s]")
+    a.tick_params(labelbottom=False)  # the upper panel's values: the lower panel's
+    assert check_figure(fig) == []
+    b.xaxis.set_minor_formatter(NullFormatter())  # no power of ten in 2..8: no label left
+    assert [(o.kind, o.text) for o in check_figure(fig)] == [("unit", "wall time [s]")]
+
+
 def test_names_on_an_axis_need_no_unit_and_hidden_tick_labels_need_no_label():
     fig, (a, b) = plt.subplots(2, 1, sharex=True)
     a.bar(["Beck", "Pflüger"], [20.05, 16.21])

@@ -3,8 +3,9 @@
 A figure is checked as matplotlib draws it: the check draws it once without rasterising
 (:meth:`~matplotlib.figure.Figure.draw_without_rendering`) and records every text, legend and
 axes actually drawn, in drawing order; extents are matplotlib's own
-(:meth:`~matplotlib.text.Text.get_window_extent` with the canvas renderer). The rules, each an
-:class:`~flutterfriction.figure_offences.Offence` kind:
+(:meth:`~matplotlib.text.Text.get_window_extent` with the canvas renderer). Offences name the
+figure's text and the axes (its number in ``fig.axes`` and its title or labels). The rules, each
+an :class:`~flutterfriction.figure_offences.Offence` kind:
 
 ``overlap``
     Two drawn texts (titles, axis labels, tick labels, annotations, legend texts, colorbar
@@ -19,10 +20,12 @@ axes actually drawn, in drawing order; extents are matplotlib's own
     An axis showing values (it draws tick labels that are numbers) without a label, or whose
     label has no unit: the repository's convention is a unit in square brackets, ``[N]``,
     ``[m/s]``, ``[-]`` for a dimensionless quantity (or the word "dimensionless"). An axis whose
-    tick labels are names (categories) needs no unit.
+    tick labels are names (categories) needs no unit. And an axis labelled with a unit that
+    shows no value (a log axis holding no power of ten), unless an axis sharing it does.
 ``unexplained``
     In one axes, more than one line style (colour, line style, marker) of data that no legend
-    of the figure shows and no text of the same colour in the axes names; a colour-mapped
+    of the figure shows (by its style, or by its colour and by its line style and marker in
+    two entries) and no text of the same colour in the axes names; a colour-mapped
     collection whose colour map no colorbar shows; an artist given a label that no legend
     shows. Reference lines (straight horizontal or vertical lines: a zero line, a critical
     load) are left to their annotations, and filled regions to their text.
@@ -319,14 +322,25 @@ def _axes_axes(ax: Any) -> list[Axis]:
             if a is not None and a.get_visible()]
 
 
-def _unit_offences(axis: Axis, drawn: set[int], where: str) -> list[Offence]:
+def _tick_labels(axis: Axis, drawn: set[int]) -> list[str]:
     ticks = [*axis.get_major_ticks(), *axis.get_minor_ticks()]
-    shown = [lab.get_text() for tick in ticks for lab in (tick.label1, tick.label2)
-             if id(lab) in drawn]
-    if not shown or not any(_is_number(s) for s in shown):
-        return []  # no values drawn, or names (categories): no unit to give
+    return [lab.get_text() for tick in ticks for lab in (tick.label1, tick.label2)
+            if id(lab) in drawn]
+
+
+def _unit_offences(axis: Axis, drawn: set[int], where: str) -> list[Offence]:
+    shown = _tick_labels(axis, drawn)
     name = axis.axis_name if hasattr(axis, "axis_name") else "axis"
     label = axis.label.get_text() if id(axis.label) in drawn else ""
+    if not shown and label and UNIT.search(label):
+        # a quantity with a unit but no value on it (a log axis holding no power of ten),
+        # unless an axis sharing it shows them
+        shared = getattr(axis.axes, f"get_shared_{name}_axes", None)
+        siblings = shared().get_siblings(axis.axes) if shared else []
+        if not any(_tick_labels(getattr(a, f"{name}axis"), drawn) for a in siblings):
+            return [Offence("unit", _short(label), f"{name} axis shows no values", where)]
+    if not shown or not any(_is_number(s) for s in shown):
+        return []  # no values drawn, or names (categories): no unit to give
     if not label:
         return [Offence("unit", f"{name} axis without a label",
                         f"ticks {_short(', '.join(shown[:3]), 30)}", where)]
