@@ -14,6 +14,7 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Rectangle
+from matplotlib.text import Annotation
 
 MM = 1e3  # m -> mm
 ROD = "#222222"
@@ -59,14 +60,53 @@ def _basis(ax: Axes, at, size: float) -> None:
                     fontsize=8)
 
 
-def _limits(ax: Axes, pts: np.ndarray, l: float, right: float = 1.2) -> None:
-    """Equal-aspect limits around the drawn points: the clamp on the left, room above the
-    rod for the legend and below it for the text box."""
+def _layout(ax: Axes, pts: np.ndarray, l: float, up: bool, box: str, right: float = 1.2,
+            handles: list | None = None, labels: list | None = None) -> None:
+    """Equal-aspect limits around the drawn points (the clamp on the left), and the legend, the
+    text box and the basis on the side the rod leaves free: a rod bending towards ``-e2`` gets
+    the legend above the clamp and the box below the rod; ``up`` (towards ``+e2``) mirrors."""
     ax.set_aspect("equal")
     ax.set_xlim(-0.12 * l, max(right * l, pts[:, 0].max() + 0.1 * l))
-    ax.set_ylim(min(pts[:, 1].min(), -0.1 * l) - 0.2 * l, 0.55 * l)
-    # the basis on the right, above the text boxes: the rods bending towards -e2 leave it free
-    _basis(ax, (ax.get_xlim()[1] - 0.2 * l, ax.get_ylim()[0] + 0.25 * l), 0.07 * l)
+    band = 0.3 * l if box else 0.2 * l  # the box's own band beyond everything drawn
+    if up:
+        ax.set_ylim(-0.55 * l, max(pts[:, 1].max(), 0.1 * l) + band)
+    else:
+        ax.set_ylim(min(pts[:, 1].min(), -0.1 * l) - band, 0.55 * l)
+    ax.legend(handles, labels, loc="lower right" if up else "upper right", fontsize=7.5,
+              framealpha=0.9)
+    if box:
+        _box(ax, box, loc=(0.02, 0.98) if up else (0.02, 0.02), va="top" if up else "bottom")
+    # the basis where it is farthest from everything drawn (and every label, which may extend
+    # ~0.15 l either side of its anchor), on the free side of the rod
+    anchors = []
+    for tx in ax.texts:
+        if isinstance(tx, Annotation):
+            anchors.append(tx.xy)
+            if tx.anncoords == "data":
+                anchors.append(tx.xyann)
+    pts = np.vstack([pts, *(np.asarray(a) + np.array([dx * l, 0.0]) for a in anchors
+                            for dx in (-0.15, 0.0, 0.15))])
+    x0, x1 = ax.get_xlim()
+    y0, y1 = ax.get_ylim()
+    ax.apply_aspect()  # the legend's extent in data units, as it will be drawn
+    leg = ax.get_legend().get_window_extent(ax.figure.canvas.get_renderer())
+    (lx0, ly0), (lx1, ly1) = ax.transData.inverted().transform(leg.get_points())
+    # (the basis reaches 0.1 l above its anchor: below the box's band when the box is on top)
+    lo, hi = (y0 + 0.1 * l, y1 - band - 0.12 * l) if up else (y0 + band, y1 - 0.15 * l)
+    cands = [np.array([x, y]) for x in np.linspace(x0 + 0.1 * l, x1 - 0.2 * l, 9)
+             for y in np.linspace(lo, hi, 9)
+             if not (lx0 - 0.2 * l < x < lx1 and ly0 - 0.15 * l < y < ly1 + 0.05 * l)]
+    best = max(cands, key=lambda c: np.min(np.linalg.norm(pts - c - 0.035 * l, axis=1)))
+    _basis(ax, best, 0.07 * l)
+
+
+def _free_direction(avoid) -> np.ndarray:
+    """Of the eight compass directions, the one farthest in angle from every direction in
+    ``avoid`` (arrows and the rod at a point): where a label next to that point goes."""
+    dirs = [np.array([np.cos(a), np.sin(a)]) for a in np.arange(8) * np.pi / 4]
+    unit = [v / np.linalg.norm(v) for v in map(np.asarray, avoid) if np.linalg.norm(v) > 0]
+    return max(dirs, key=lambda d: min((np.arccos(np.clip(d @ u, -1, 1)) for u in unit),
+                                       default=np.pi))
 
 
 def _loads_text(loads: dict[str, float]) -> str:
@@ -93,6 +133,7 @@ def plot_fig06(data: dict[str, Any]) -> Figure:
     s0, X = pt["s"] * MM, np.array(pt["x"]) * MM
     fig = plt.figure(figsize=(11.0, 5.6))
     gs = fig.add_gridspec(2, 2, width_ratios=[1.55, 1.0], hspace=0.35, wspace=0.22)
+    fig.subplots_adjust(left=0.06, right=0.98, bottom=0.09, top=0.9)
     ax = fig.add_subplot(gs[:, 0])
     _clamp(ax, 0.08 * l)
     ax.plot([0, l], [0, 0], color=REF, lw=1.4, ls="--", label="reference configuration "
@@ -105,15 +146,20 @@ def plot_fig06(data: dict[str, Any]) -> Figure:
     ax.plot(*X, "o", color=U_COL, ms=5, zorder=10)
     ax.annotate(r"$x_0\mathbf{e}_1$", (s0, 0.0), xytext=(4, 6), textcoords="offset points",
                 fontsize=9)
-    ax.annotate(r"$\mathbf{x} = \mathbf{g}(x_0)$", X, xytext=(X[0] - 0.3 * l, X[1] - 0.35 * l),
-                fontsize=9, ha="center", va="top",
-                arrowprops={"arrowstyle": "-", "lw": 0.6, "color": "0.4", "shrinkB": 4})
     _arrow(ax, (s0, 0.0), X, U_COL, lw=1.6)
     mid = 0.5 * (np.array([s0, 0.0]) + X)
     ax.annotate(r"$\mathbf{u}(x_0)$", mid, xytext=(6, 0), textcoords="offset points",
                 color=U_COL, fontsize=9)
     L = 0.16 * l
     t, m, n = (np.array(pt[k]) for k in ("t", "m", "n"))
+    up = bool(x[-1, 1] > 0)
+    # the label of x between the incoming rod (-t) and n (the concave side), where no arrow is
+    # drawn
+    side = n if np.any(n) else m
+    w = (side - t) / np.linalg.norm(side - t)
+    ax.annotate(r"$\mathbf{x} = \mathbf{g}(x_0)$", X, xytext=X + 0.3 * l * w, fontsize=9,
+                ha="right" if w[0] < 0 else "left", va="top" if w[1] < 0 else "bottom",
+                arrowprops={"arrowstyle": "-", "lw": 0.6, "color": "0.4", "shrinkB": 4})
     _arrow(ax, X, X + L * t, T_COL, lw=1.8)
     ax.annotate(r"$\mathbf{t}$", X + 1.15 * L * t, color=T_COL, fontsize=10, ha="center",
                 va="center")
@@ -129,9 +175,15 @@ def plot_fig06(data: dict[str, Any]) -> Figure:
     ax.plot([X[0], X[0] + 1.3 * r], [X[1], X[1]], color="0.3", lw=0.8, ls=":")
     ang = np.linspace(0.0, pt["theta"], 40)
     ax.plot(X[0] + r * np.cos(ang), X[1] + r * np.sin(ang), color="0.2", lw=1.0)
-    ax.annotate(rf"$\theta(s)$ = {np.degrees(pt['theta']):.1f}°",
-                X + 1.05 * r * np.array([np.cos(0.5 * pt["theta"]), np.sin(0.5 * pt["theta"])]),
-                xytext=(6, -2), textcoords="offset points", fontsize=8, va="center")
+    th = pt["theta"]
+    if abs(th) > np.radians(30):  # inside the angle's arc
+        at, off, va = X + 1.05 * r * np.array([np.cos(0.5 * th), np.sin(0.5 * th)]), (6, -2), \
+            "center"
+    else:  # a narrow angle: beyond the dotted e1 line, on the side away from t
+        at, off, va = X + np.array([1.3 * r, 0.0]), (4, 4 if th < 0 else -4), \
+            "bottom" if th < 0 else "top"
+    ax.annotate(rf"$\theta(s)$ = {np.degrees(th):.1f}°", at, xytext=off,
+                textcoords="offset points", fontsize=8, va=va)
     handles, labels = ax.get_legend_handles_labels()
     handles += [Line2D([], [], color=U_COL, lw=1.6, marker=">", ms=5),
                 Line2D([], [], color=T_COL, lw=1.8, marker=">", ms=5),
@@ -141,16 +193,19 @@ def plot_fig06(data: dict[str, Any]) -> Figure:
                r"\mathbf{e}_2$ (eqs. 63-64)",
                r"$\mathbf{m} = \sin\theta\,\mathbf{e}_1 - \cos\theta\,\mathbf{e}_2$ (eq. 71)"
                + (r"; $\mathbf{n} = \mathbf{m}$ as $\theta' < 0$ (eq. 69)" if same else "")]
-    ax.legend(handles, labels, loc="upper right", fontsize=7.5, framealpha=0.9)
+    if not same:
+        handles.append(Line2D([], [], color=M_COL, lw=1.2, ls="--"))
+        labels.append(r"normal $\mathbf{n} = \mathrm{sgn}(\theta')(-\sin\theta\,\mathbf{e}_1"
+                      r" + \cos\theta\,\mathbf{e}_2) = -\mathbf{m}$ here (eq. 69)")
     pr = data["point"]["projections"]
-    _box(ax, f"eq. (65): d = ∫cos θ ds = {pr['d'] * MM:.3f} mm = l + u1(l) "
+    box = (f"eq. (65): d = ∫cos θ ds = {pr['d'] * MM:.3f} mm = l + u1(l) "
              f"(to {abs(pr['d'] - pr['d_positions']) / l * MM:.0e} l)\n"
              f"eq. (66): h = ∫sin θ ds = {pr['h'] * MM:.3f} mm = u2(l) "
              f"(to {abs(pr['h'] - pr['h_positions']) / l * MM:.0e} l)\n"
              f"curve's length from its positions: "
-             f"{data['point']['length_from_positions'] * MM:.9f} mm = l",
-         loc=(0.02, 0.02))
-    _limits(ax, x, l, right=1.08)
+             f"{data['point']['length_from_positions'] * MM:.9f} mm = l")
+    drawn = np.vstack([x, np.column_stack([s, 0.0 * s]), X + L * t, X + L * m, X + 0.3 * l * w])
+    _layout(ax, drawn, l, up, box, right=1.08, handles=handles, labels=labels)
     ax.set_xlabel(r"$x_1$ [mm]")
     ax.set_ylabel(r"$x_2$ [mm]")
     ax.set_title(f"Kinematics on the computed rod (l = {l:g} mm; {_loads_text(data['loads'])})",
@@ -165,19 +220,18 @@ def plot_fig06(data: dict[str, Any]) -> Figure:
     ax1.axvline(s0, color=U_COL, lw=0.8, ls=":", label=r"the point $x_0$")
     ax1.set_xlabel(r"$s = x_0$ [mm]")
     ax1.set_ylabel("displacement [mm]")
-    ax1.legend(fontsize=7.5, loc="lower left")
+    ax1.legend(fontsize=7.5, loc="best")
     ax1.set_title("Displacement along the rod (eq. 55)", fontsize=8.5)
     ax2 = fig.add_subplot(gs[1, 1])
     ax2.plot(s, c["theta"], color="C2", label=r"rotation $\theta(s)$")
     ax2.axvline(s0, color=U_COL, lw=0.8, ls=":", label=r"the point $x_0$")
     ax2.set_xlabel(r"$s = x_0$ [mm]")
     ax2.set_ylabel(r"$\theta$ [rad]")
-    ax2.legend(fontsize=7.5, loc="lower left")
+    ax2.legend(fontsize=7.5, loc="best")
     ax2.set_title(r"Rotation of the tangent, $\sin\theta = u_2'$, $\cos\theta = 1 + u_1'$ "
                   "(eq. 64)", fontsize=8.5)
     fig.suptitle("Fig. 6: the kinematics of an inextensible rod (reference straight, "
                  r"$s = x_0$)", fontsize=10)
-    fig.subplots_adjust(left=0.06, right=0.98, bottom=0.09, top=0.9)
     return fig
 
 
@@ -199,6 +253,7 @@ def plot_fig07(data: dict[str, Any]) -> Figure:
     left, right = s <= sc, s >= sc
     fig = plt.figure(figsize=(11.0, 5.4))
     gs = fig.add_gridspec(1, 2, width_ratios=[1.5, 1.0], wspace=0.22)
+    fig.subplots_adjust(left=0.06, right=0.98, bottom=0.1, top=0.9)
     ax = fig.add_subplot(gs[0, 0])
     _clamp(ax, 0.08 * l)
     ax.plot(*x[left].T, color=ROD, lw=2.4, label=r"left part $[0, s]$ (clamped)")
@@ -234,8 +289,14 @@ def plot_fig07(data: dict[str, Any]) -> Figure:
                "internal moment (counterclockwise: +e3)",
                r"tangent $\mathbf{t}$ (exits the left part)",
                r"$\mathbf{m}$ (eq. 71)"]
-    ax.legend(handles, labels, loc="upper right", fontsize=7.5, framealpha=0.9)
-    _limits(ax, np.vstack([x[left], xr, X + fs * a, Xr - fs * a]), l)
+    a1, a2 = a
+    box = (f"cut at s = {sc:.1f} mm = {cut['s'] / data['rod']['length']:.2f} l\n"
+           f"a = ({a1:+.4f}, {a2:+.4f}) N, N = {cut['N']:+.4f} N, T = {cut['T']:+.4f} N\n"
+           f"M = Bθ' = {cut['M']:+.6f} N m (eq. 83)\n"
+           f"eq. (89): {cut['M_eq89']:+.6f} N m (relative difference "
+           f"{abs(cut['M'] - cut['M_eq89']) / abs(cut['M']):.0e})")
+    _layout(ax, np.vstack([x[left], xr, X + fs * a, Xr - fs * a, X + L * t, X + L * m]), l,
+            x[-1, 1] > 0, box, handles=handles, labels=labels)
     ax.set_xlabel(r"$x_1$ [mm]")
     ax.set_ylabel(r"$x_2$ [mm]")
     ax.set_title(f"The internal action at a cut of the computed rod ({_loads_text(data['loads'])})",
@@ -249,19 +310,11 @@ def plot_fig07(data: dict[str, Any]) -> Figure:
     ax2.axvline(sc, color="0.4", lw=0.8, ls=":", label="the cut drawn left")
     ax2.set_xlabel(r"arc length $s$ [mm]")
     ax2.set_ylabel(r"bending moment $\mathcal{M}$ [N m]")
-    ax2.legend(fontsize=7.5, loc="lower right")
+    ax2.legend(fontsize=7.5, loc="best")
     ax2.set_title("Moment at every cut: constitutive against equilibrium", fontsize=8.5)
-    a1, a2 = a
-    _box(ax2, f"cut drawn left: s = {sc:.1f} mm = {cut['s'] / data['rod']['length']:.2f} l\n"
-              f"a = ({a1:+.4f}, {a2:+.4f}) N\nN = {cut['N']:+.4f} N, "
-              f"T = {cut['T']:+.4f} N (eq. 73)\n"
-              f"M = Bθ' = {cut['M']:+.6f} N m (eq. 83)\neq. (89): {cut['M_eq89']:+.6f} N m\n"
-              f"(relative difference {abs(cut['M'] - cut['M_eq89']) / abs(cut['M']):.0e})",
-         loc=(0.03, 0.97), va="top")
     fig.suptitle(r"Fig. 7: action $\mathbf{a}(s)$, $\mathcal{M}(s)$ and reaction "
                  r"$-\mathbf{a}(s)$, $-\mathcal{M}(s)$ at an ideal cut of a deformed rod",
                  fontsize=10)
-    fig.subplots_adjust(left=0.06, right=0.98, bottom=0.1, top=0.9)
     return fig
 
 
@@ -279,15 +332,16 @@ def plot_fig08(data: dict[str, Any]) -> Figure:
     q = np.array(part["q"])
     forces = np.array([e1["a"], e2["a"]])
     fs = 0.28 * l / np.max(np.linalg.norm(forces, axis=1))  # mm per N
-    qs = 0.1 * l / np.linalg.norm(q)  # mm per N/m
+    qs = 0.1 * l / max(np.linalg.norm(q), 1e-300)  # mm per N/m (no arrows when q = 0)
     fig = plt.figure(figsize=(11.0, 5.6))
     gs = fig.add_gridspec(2, 2, width_ratios=[1.5, 1.0], hspace=0.35, wspace=0.22)
+    fig.subplots_adjust(left=0.06, right=0.98, bottom=0.09, top=0.9)
     ax = fig.add_subplot(gs[:, 0])
     ax.plot(*x.T, color="0.8", lw=1.6, label="the rest of the rod")
     ax.plot(*xp.T, color=ROD, lw=2.6, label=rf"the part $[s_1, s_2]$ = [{part['s1'] * MM:.0f},"
             rf" {part['s2'] * MM:.0f}] mm")
     idx = np.linspace(0, len(xp) - 1, 7).round().astype(int)
-    for i in idx:
+    for i in idx if np.any(q) else []:
         _arrow(ax, xp[i], xp[i] + qs * q, Q_COL, lw=1.2)
     X1, X2 = np.array(e1["x"]) * MM, np.array(e2["x"]) * MM
     a1, a2 = np.array(e1["a"]), np.array(e2["a"])
@@ -298,18 +352,21 @@ def plot_fig08(data: dict[str, Any]) -> Figure:
     ax.annotate(r"$-\mathbf{a}(s_1)$", X1 - fs * a1, xytext=(-4, 4), textcoords="offset points",
                 color=F_COL, fontsize=10, ha="right")
     rm = 0.05 * l
-    _moment(ax, X2, rm, e2["M"] > 0, MOM_COL, start=np.pi)
-    ax.annotate(r"$\mathcal{M}(s_2)$", X2 + rm * np.array([-1.0, -1.0]), xytext=(-4, -6),
-                textcoords="offset points", color=MOM_COL, fontsize=10, ha="right", va="top")
-    _moment(ax, X1, rm, not e1["M"] > 0, MOM_COL, start=np.pi / 2)
-    ax.annotate(r"$-\mathcal{M}(s_1)$", X1 + rm * np.array([1.0, 1.0]), xytext=(6, 4),
-                textcoords="offset points", color=MOM_COL, fontsize=10)
-    for X, name in ((X1, r"$s_1$"), (X2, r"$s_2$")):
+    t1, t2 = (np.array([np.cos(e["theta"]), np.sin(e["theta"])]) for e in (e1, e2))
+    for X, sign, name, avoid in ((X2, 1, r"$\mathcal{M}(s_2)$", (a2, q, t2, -t2, X1 - X2)),
+                                 (X1, -1, r"$-\mathcal{M}(s_1)$", (-a1, q, t1, -t1))):
+        _moment(ax, X, rm, (sign * (e2 if sign > 0 else e1)["M"]) > 0, MOM_COL,
+                start=np.pi if sign > 0 else np.pi / 2)
+        d = _free_direction(avoid)
+        ax.annotate(name, X + 1.2 * rm * d, xytext=6 * d, textcoords="offset points",
+                    color=MOM_COL, fontsize=10, ha="left" if d[0] > 0.3 else
+                    ("right" if d[0] < -0.3 else "center"),
+                    va="bottom" if d[1] > 0.3 else ("top" if d[1] < -0.3 else "center"))
+    for X in (X1, X2):  # the ends s1, s2 (named by the labels of their actions)
         ax.plot(*X, "o", color=ROD, ms=4, zorder=10)
-        ax.annotate(name, X, xytext=(8, 8), textcoords="offset points", fontsize=9)
-    qm = xp[idx[3]] + qs * q
-    ax.annotate(r"$\mathbf{q}$", qm, xytext=(6, -2), textcoords="offset points",
-                color=Q_COL, fontsize=10)
+    if np.any(q):
+        ax.annotate(r"$\mathbf{q}$", xp[idx[3]] + qs * q, xytext=(6, -2),
+                    textcoords="offset points", color=Q_COL, fontsize=10)
     handles, labels = ax.get_legend_handles_labels()
     handles += [Line2D([], [], color=Q_COL, lw=1.2, marker=">", ms=5),
                 Line2D([], [], color=F_COL, lw=2.0, marker=">", ms=5),
@@ -318,13 +375,13 @@ def plot_fig08(data: dict[str, Any]) -> Figure:
                "per N/m)",
                f"internal force on the part (arrows: {fs / 1e3:.3g} m per N)",
                "internal moment on the part (counterclockwise: +e3)"]
-    ax.legend(handles, labels, loc="upper right", fontsize=7.5, framealpha=0.9)
     b = part["balances"]
-    _box(ax, "equilibrium of the part, residual / largest term:\n"
+    box = ("equilibrium of the part, residual / largest term:\n"
              f"eq. (74)1, forces: {b['force']:.0e}\neq. (74)2, moments about O: "
              f"{b['moment']:.0e}\n"
-             f"eq. (87), [N + M²/2B] + ∫q·t ds: {b['eq87']:.0e}", loc=(0.02, 0.02))
-    _limits(ax, np.vstack([x, X2 + fs * a2, X1 - fs * a1]), l)
+             f"eq. (87), [N + M²/2B] + ∫q·t ds: {b['eq87']:.0e}")
+    _layout(ax, np.vstack([x, X2 + fs * a2, X1 - fs * a1, xp[idx] + qs * q]), l,
+            x[-1, 1] > 0, box, handles=handles, labels=labels)
     ax.set_xlabel(r"$x_1$ [mm]")
     ax.set_ylabel(r"$x_2$ [mm]")
     ax.set_title(f"A part of the computed rod as a free body ({_loads_text(data['loads'])})",
@@ -346,11 +403,10 @@ def plot_fig08(data: dict[str, Any]) -> Figure:
     ax2.axvspan(part["s1"] * MM, part["s2"] * MM, color="0.9", label="the part")
     ax2.set_xlabel(r"arc length $s$ [mm]")
     ax2.set_ylabel(r"moment $\mathcal{M}$ [N m]")
-    ax2.legend(fontsize=7.5, loc="lower right")
+    ax2.legend(fontsize=7.5, loc="best")
     ax2.set_title("Internal moment", fontsize=8.5)
     fig.suptitle(r"Fig. 8: equilibrium of a part of a deformed rod under the distributed "
                  r"load $\mathbf{q}$ (eq. 74)", fontsize=10)
-    fig.subplots_adjust(left=0.06, right=0.98, bottom=0.09, top=0.9)
     return fig
 
 
@@ -369,6 +425,7 @@ def plot_fig09(data: dict[str, Any]) -> Figure:
     xtc = np.column_stack([tip["x1_closed"], tip["x2_closed"]]) * MM
     fig = plt.figure(figsize=(11.0, 5.4))
     gs = fig.add_gridspec(1, 2, width_ratios=[1.5, 1.0], wspace=0.24)
+    fig.subplots_adjust(left=0.06, right=0.98, bottom=0.11, top=0.88)
     ax = fig.add_subplot(gs[0, 0])
     _clamp(ax, 0.08 * l)
     ax.plot([0, l], [0, 0], color=REF, lw=1.4, ls="--", label="straight reference rod")
@@ -393,7 +450,7 @@ def plot_fig09(data: dict[str, Any]) -> Figure:
                     (-4, 0), textcoords="offset points", color=F_COL, fontsize=9,
                     ha="left" if v[1] else "right", va="center")
     qv = np.array([loads["q1"], loads["q2"]])
-    qs = 0.12 * l / np.max(np.abs(qv))  # mm per N/m
+    qs = 0.12 * l / max(np.max(np.abs(qv)), 1e-300)  # mm per N/m (no arrows when q = 0)
     idx = np.linspace(0, len(x) - 1, 10).round().astype(int)[1:-1]
     for i in idx:
         for comp, col in ((0, Q_COL), (1, "C5")):
@@ -422,17 +479,20 @@ def plot_fig09(data: dict[str, Any]) -> Figure:
                f"({qs / 1e3:.3g} m per N/m)",
                rf"$q_2\mathbf{{e}}_2$ per unit length, $q_2$ = {loads['q2']:g} N/m "
                f"({qs / 1e3:.3g} m per N/m)"]
-    ax.legend(handles, labels, loc="upper right", fontsize=7.5, framealpha=0.9)
     qd = data["quantities"]
     u = (qd["tip_shortening"]["value"] * MM, qd["tip_deflection"]["value"] * MM)
     rel = abs(qd["tip_deflection"]["value"] / qd["tip_deflection"]["independent"] - 1)
-    _box(ax, f"end: u = ({u[0]:.2f}, {u[1]:.2f}) mm, θ(l) = "
-             f"{np.degrees(data['tip_rotation']):.2f}°; collocation: {rel:.0e} (relative)\n"
-             f"q = 0: θ(l) = {np.degrees(tip['tip_rotation']):.2f}°, shooting against "
-             f"the closed form: {tip['curve_error']:.0e} l along the rod",
-         loc=(0.02, 0.02))
-    _limits(ax, np.vstack([x, xt, X + fs * np.array([-loads["P1"], -loads["P2"]])]), l,
-            right=1.25)
+    box = (f"end: u = ({u[0]:.2f}, {u[1]:.2f}) mm, θ(l) = "
+           f"{np.degrees(data['tip_rotation']):.2f}°; collocation: {rel:.0e}\n"
+           f"q = 0: θ(l) = {np.degrees(tip['tip_rotation']):.2f}°; shooting against the\n"
+           f"closed form: {tip['curve_error']:.0e} l along the rod")
+    heads = [X + fs * np.array([-loads["P1"], 0.0]), X + fs * np.array([0.0, -loads["P2"]])]
+    # the P2 label's extent beside its arrow
+    heads += [X + 0.6 * fs * np.array([0.0, -loads["P2"]]) + np.array([d * l, 0.0])
+              for d in (0.1, 0.2, 0.3)]
+    heads += [x[i] + qs * np.array(v) for i in idx for v in ((qv[0], 0.0), (0.0, qv[1]))]
+    _layout(ax, np.vstack([x, xt, *heads]), l, x[-1, 1] > 0, box, right=1.25,
+            handles=handles, labels=labels)
     ax.set_xlabel(r"$x_1$ [mm]")
     ax.set_ylabel(r"$x_2$ [mm]")
     ax.set_title(f"The clamped elastica, l = {l:g} mm, B = {data['rod']['B']:g} N m² "
@@ -458,5 +518,4 @@ def plot_fig09(data: dict[str, Any]) -> Figure:
                   f"measured order {lim['order']:.4f}", fontsize=8.5)
     fig.suptitle("Fig. 9: the clamped elastica under the end forces P1, P2 and the forces "
                  "per unit length q1, q2 (geometrically exact)", fontsize=10)
-    fig.subplots_adjust(left=0.06, right=0.98, bottom=0.11, top=0.88)
     return fig
