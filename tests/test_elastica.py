@@ -184,3 +184,22 @@ def test_figures_6_to_9_draw():
         for ax in fig.axes:
             assert "[" in ax.get_xlabel() and "[" in ax.get_ylabel()
         fig.savefig(io.BytesIO(), format="png", dpi=40)
+
+
+@pytest.mark.parametrize("loads", [{}, {"P2": -0.5, "q2": 2.0}, {"P2": 0.2, "q1": 0.0,
+                                                                   "q2": 3.0}],
+                         ids=["configured", "bending up", "S-shaped"])
+def test_figures_6_to_9_pass_the_figure_check(loads):
+    """No overlapping, clipped or covered text, units and legends everywhere, whichever side
+    the rod bends to (the layout follows the computed shape)."""
+    import matplotlib.pyplot as plt
+
+    from flutterfriction.figure_check import check_figure
+    from flutterfriction.plotting import rod_statics as rp
+    from flutterfriction.scenes.rod_statics import elastica
+
+    d = elastica({**FIG09, **loads})
+    for f in ("06", "07", "08", "09"):
+        fig = getattr(rp, f"plot_fig{f}")(d)
+        assert check_figure(fig) == [], f
+        plt.close(fig)
