@@ -106,6 +106,18 @@ def test_text_covered_by_a_legend_is_caught():
     assert set(kinds(offences)) == {"covered", "overlap"}  # and it runs into the legend's text
 
 
+def test_text_under_an_inset_is_covered_and_the_inset_is_named():
+    fig, ax = clean()
+    ax.text(0.7, 0.1, "under the inset", transform=ax.transAxes)
+    ins = ax.inset_axes([0.65, 0.05, 0.3, 0.2])
+    ins.set_xticks([])
+    ins.set_yticks([])
+    ins.set_title("zoom", fontsize=6)
+    offences = check_figure(fig)
+    assert [(o.kind, o.text, o.other) for o in offences] == [
+        ("covered", "under the inset", "axes 0.1: zoom")]
+
+
 def test_an_axis_label_without_unit_and_an_unlabelled_axis_are_caught():
     fig, ax = clean()
     ax.set_xlabel("time")

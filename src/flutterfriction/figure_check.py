@@ -65,6 +65,7 @@ TOLERANCE_PT = 0.5
 #: The unit convention of the axis labels: a unit in square brackets, or "dimensionless".
 UNIT = re.compile(r"\[[^\[\]]*\S[^\[\]]*\]|dimensionless", re.IGNORECASE)
 
+
 @dataclass
 class _Drawn:
     """What one draw of the figure drew, in order."""
@@ -120,7 +121,7 @@ def _short(s: str, n: int = 60) -> str:
     return s if len(s) <= n else s[:n - 1] + "…"
 
 
-def _axes_name(ax: Any, index: dict[int, int]) -> str:
+def _axes_name(ax: Any, index: dict[int, str]) -> str:
     if ax is None:
         return "figure"
     titles = [getattr(ax, a, None) for a in ("title", "_left_title", "_right_title")]
@@ -128,11 +129,7 @@ def _axes_name(ax: Any, index: dict[int, int]) -> str:
     if not name:
         labels = [ax.yaxis.label.get_text(), ax.xaxis.label.get_text()]
         name = " / ".join(_short(s, 30) for s in labels if s)
-    number = index.get(id(ax))
-    if number is None:  # an axes inside another (a secondary axis, an inset)
-        parent = getattr(ax, "_parent", None) or getattr(ax, "axes", None)
-        number = f"in {index[id(parent)]}" if id(parent) in index else "?"
-    return f"axes {number}" + (f": {_short(name, 50)}" if name else "")
+    return f"axes {index.get(id(ax), '?')}" + (f": {_short(name, 50)}" if name else "")
 
 
 def _area(a: np.ndarray, b: np.ndarray) -> np.ndarray:
@@ -229,7 +226,11 @@ def check_figure(fig: Figure, *, tight: bool = True, saved: bool = False) -> lis
             fig.set_layout_engine(engine)
     renderer = fig.canvas.get_renderer()
     pt = 72.0 / fig.dpi  # points per pixel
-    index = {id(ax): k for k, ax in enumerate(fig.axes)}
+    # axes by their number in fig.axes; an inset or a secondary axis as <its parent's>.<n>
+    index = {id(ax): str(k) for k, ax in enumerate(fig.axes)}
+    for k, ax in enumerate(fig.axes):
+        for j, child in enumerate(ax.child_axes):
+            index.setdefault(id(child), f"{k}.{j + 1}")
     offences: list[Offence] = []
 
     def where(ax: Any) -> str:
@@ -250,11 +251,11 @@ def check_figure(fig: Figure, *, tight: bool = True, saved: bool = False) -> lis
 
     # clipped: by the text's own clip box or path, or by the saved area
     tol = TOLERANCE_PT / pt
-    saved = _box(fig.bbox)
+    area = _box(fig.bbox)
     if tight and any(not t.get_in_layout() for _, t, _, _ in texts):
         # (a text in the layout is inside the tight box by construction)
         pad = fig.get_tightbbox(renderer).padded(_pad_inches()).transformed(fig.dpi_scale_trans)
-        saved = _box(pad)
+        area = _box(pad)
     for (_, t, ax, _), box, name in zip(texts, boxes, names, strict=True):
         if t.get_clip_on():
             clip = t.get_clip_box()
@@ -265,7 +266,7 @@ def check_figure(fig: Figure, *, tight: bool = True, saved: bool = False) -> lis
             if any(not _inside(list(box), lim, tol) for lim in limits):
                 offences.append(Offence("clipped", name, "its clip box", where(ax)))
                 continue
-        if (not tight or not t.get_in_layout()) and not _inside(list(box), saved, tol):
+        if (not tight or not t.get_in_layout()) and not _inside(list(box), area, tol):
             offences.append(Offence("clipped", name, "the saved area", where(ax)))
 
     # covered: by a legend's opaque frame or an opaque axes drawn after the text
