@@ -221,3 +221,11 @@ def test_the_readme_shows_the_current_coverage_and_parameter_lists():
     readme = (ROOT / "README.md").read_text(encoding="utf-8")
     assert coverage_markdown().rstrip() in readme
     assert parameter_lists_markdown().rstrip() in readme
+
+
+def test_quick_preset_report_links_no_pdf(tmp_path):
+    """The quick preset draws PNG only: its report links no PDF (the link check would fail)."""
+    layout = {"title": "T", "sections": [{"title": "S", "figures": {"figA": "caption A"}}]}
+    html_text = build_index(layout, _rows(), {}, formats=("png",))
+    assert 'href="../figures/figA.png"' in html_text
+    assert ".pdf" not in html_text

@@ -423,7 +423,8 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
                 row_scene: Mapping[str, str] | None = None,
                 figure_params: Mapping[str, Mapping[str, Any]] | None = None,
                 footer: str = "",
-                figure_checks: Mapping[str, list[Offence]] | None = None) -> str:
+                figure_checks: Mapping[str, list[Offence]] | None = None,
+                formats: Iterable[str] = ("pdf", "png")) -> str:
     """The report's HTML (written even when the check fails: then it says so at the top).
     Paths are relative to ``results/reports/``.
 
@@ -458,6 +459,8 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
     figure_checks
         Figure -> its figure-check offences (:mod:`flutterfriction.figure_offences`): a line
         under the check's summary, and the offences in the check section.
+    formats
+        The figure files drawn (``("png",)`` in the quick preset: no PDF links then).
     """
     figure_data = dict(figure_data or {})
     row_scene = dict(row_scene or {})
@@ -536,12 +539,13 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
                 f'title="open the PNG"><img src="../figures/{scene}.png" alt="{scene}" '
                 f'loading="lazy"></a><figcaption><b>{scene}</b>: {html.escape(caption)}'
                 f'<div class="links"><a href="../figures/{scene}.png">PNG</a>'
-                f'<a href="../figures/{scene}.pdf">PDF</a>'
-                f'<a href="../data/{data}.json">data ({html.escape(data)})</a></div>'
+                + (f'<a href="../figures/{scene}.pdf">PDF</a>' if "pdf" in formats else "")
+                + f'<a href="../data/{data}.json">data ({html.escape(data)})</a></div>'
                 f"{checks}{params}</figcaption></figure>")
         for path, spec in section.get("images", {}).items():
             links = "".join(f'<a href="../{html.escape(h)}">{html.escape(t)}</a>'
-                            for t, h in spec.get("links", {}).items())
+                            for t, h in spec.get("links", {}).items()
+                            if not h.endswith(".pdf") or "pdf" in formats)
             parts.append(
                 f'<figure class="big"><a href="../{path}"><img src="../{path}" alt="{path}" '
                 f'loading="lazy"></a><figcaption>{html.escape(spec["caption"])}'

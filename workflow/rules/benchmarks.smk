@@ -15,9 +15,9 @@ rule work_precision:
         rod_cycle_timings="results/benchmarks/beck_limit_cycle.timings.json",
         benchmarks=benchmark_files,
     output:
+        *[f"results/benchmarks/work_precision.{ext}" for ext in PDF],
         json="results/benchmarks/work_precision.json",
         md="results/benchmarks/work_precision.md",
-        pdf="results/benchmarks/work_precision.pdf",
         png="results/benchmarks/work_precision.png",
         check="results/checks/figures/work_precision.json",
     log:

@@ -36,7 +36,7 @@ FIGURE_CHECKS = expand(
 # and the report, which links to all of them, is refreshed.
 USER_OUTPUTS = (
     expand("results/data/{scene}.json", scene=ALL_SCENES)
-    + expand("results/figures/{scene}.{ext}", scene=ALL_FIGURES, ext=["pdf", "png"])
+    + expand("results/figures/{scene}.{ext}", scene=ALL_FIGURES, ext=FIGURE_FORMATS)
     + ["results/figures/pendulum_cycle.gif", "results/figures/beck_cycle.gif"]
     + expand("results/reports/{nb}.html", nb=NOTEBOOK_REPORTS)
     + list(rules.work_precision.output)
@@ -55,7 +55,7 @@ rule report:
         stress="results/checks/stress.json",
         work_precision=rules.work_precision.output,
         data=expand("results/data/{scene}.json", scene=ALL_SCENES),
-        figures=expand("results/figures/{scene}.{ext}", scene=ALL_FIGURES, ext=["pdf", "png"]),
+        figures=expand("results/figures/{scene}.{ext}", scene=ALL_FIGURES, ext=FIGURE_FORMATS),
         animations=["results/figures/pendulum_cycle.gif", "results/figures/beck_cycle.gif"],
         reports=expand("results/reports/{nb}.html", nb=NOTEBOOK_REPORTS),
         figure_checks=FIGURE_CHECKS,
@@ -74,6 +74,7 @@ rule report:
     params:
         figure_data=FIGURE_DATA,
         fidelity=config.get("fidelity", "paper"),
+        formats=FIGURE_FORMATS,
     script:
         "../scripts/build_report.py"
 

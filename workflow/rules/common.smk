@@ -17,6 +17,10 @@ SWEEP_SCENES = [n for n, s in SCENES.items() if s.sweep is not None]
 # The slow solvers (~10-45 s each, the rest ~1 s) start first, so that the many short jobs
 # fill the other core around them instead of leaving a long tail.
 SLOW_SCENES = [n for n, s in SCENES.items() if s.slow]
+# The quick preset (a smoke test) draws PNG only; the paper run also the PDF (vector, for print).
+DRAFT = config.get("fidelity", "paper") == "quick"
+FIGURE_FORMATS = ["png"] if DRAFT else ["pdf", "png"]
+PDF = [] if DRAFT else ["pdf"]
 # The cheap scenes of each chapter part are solved by one job, and their figures drawn by one:
 # a job is a Python process whose start-up and imports (~1 s here) outweigh a cheap scene's
 # computation (~0.1-1 s), so 30 such jobs would spend most of their time starting. Slow scenes
@@ -166,5 +170,6 @@ def batch_figure_outputs(part):
             category="Figures",
             labels={"figure": f, "caption": FIGURES[f][1].caption},
         )
-        out += [f"results/figures/{f}.pdf", png, f"results/checks/figures/{f}.json"]
+        out += [f"results/figures/{f}.{ext}" for ext in PDF]
+        out += [png, f"results/checks/figures/{f}.json"]
     return out

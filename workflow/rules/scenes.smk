@@ -69,7 +69,8 @@ rule plot:
         data=figure_data,
         timings=figure_timings,
     output:
-        pdf="results/figures/{scene}.pdf",
+        # the PDF (not in the quick preset: PNG only there)
+        *[f"results/figures/{{scene}}.{ext}" for ext in PDF],
         # in `snakemake --report`, with the figure's caption from the registry
         png=report(
             "results/figures/{scene}.png",
@@ -90,7 +91,7 @@ rule plot:
         mem_mb=1000,
     params:
         # quick preset: cheaper PNG/PDF rendering (see plotting.save_figure)
-        draft=config.get("fidelity", "paper") == "quick",
+        draft=DRAFT,
         plot=figure_plot,
         caption=figure_caption,
         part=figure_part,
@@ -149,7 +150,7 @@ for _part in FIGURE_BATCHES:
             figures={
                 f: (FIGURE_DATA[f], import_path(FIGURES[f][1].plot)) for f in FIGURE_BATCHES[_part]
             },
-            draft=config.get("fidelity", "paper") == "quick",
+            draft=DRAFT,
         script:
             "../scripts/plot_batch.py"
 

@@ -56,7 +56,8 @@ def index(problems):
     return build_index(layout, rows, errata, figure_data=snakemake.params.figure_data,
                        stress=stress, problems=problems, coverage=coverage,
                        row_scene=row_scenes(reference), figure_params=params,
-                       footer=provenance(), figure_checks=figure_checks)
+                       footer=provenance(), figure_checks=figure_checks,
+                       formats=snakemake.params.formats)
 
 
 write_text(snakemake.output.html, index(problems))

@@ -13,7 +13,8 @@ data_files = {Path(p).stem: p for p in snakemake.input.data}
 timing_files = {Path(p).name.removesuffix(".timings.json"): p for p in snakemake.input.timings}
 for figure, (scene, plot) in snakemake.params.figures.items():
     data = merge_timings(read_json(data_files[scene]), read_json(timing_files[scene]) or None)
-    save_figure(resolve(plot)(data), f"results/figures/{figure}.pdf",
-                f"results/figures/{figure}.png", draft=snakemake.params.draft,
+    paths = [f"results/figures/{figure}.{ext}" for ext in ("pdf", "png")
+             if f"results/figures/{figure}.{ext}" in snakemake.output]
+    save_figure(resolve(plot)(data), *paths, draft=snakemake.params.draft,
                 check=f"results/checks/figures/{figure}.json")
     print(f"{figure}: drawn", flush=True)
