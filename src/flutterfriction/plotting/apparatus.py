@@ -55,13 +55,17 @@ def _top_view(ax: Axes, data: dict[str, Any], s: float) -> None:
     n = np.array([-t[1], t[0]])
     ax.plot(*np.array([C - r * n, C + r * n]).T, color="k", lw=4.5, solid_capstyle="butt",
             zorder=8)
+    # the mass at C on top of the wheel (draw_pendulum's size for it), so that all three show
+    m = top["masses"]
+    r_C = max(0.075 * 0.5 * b * (m["m2"] / max(m.values())) ** (1 / 3), 0.03 * 0.5 * b)
+    ax.add_patch(Circle(C, r_C, fc=MASS, ec="black", lw=0.5, zorder=10))
     f = np.array(top["force_direction"])
     _force(ax, C - top["P"] * s * f, C, FORCE["P"])
     ax.annotate(rf"$P = \mu R$ = {top['P']:.2f} N, along CB", C - top["P"] * s * f,
                 xytext=(4, 6), textcoords="offset points", fontsize=8, color=FORCE["P"],
                 ha="left", va="bottom")
     ax.annotate("wheel: axle along BC,\nrolls freely normal to BC", C + r * n,
-                xytext=(-6, 18), textcoords="offset points", fontsize=7.5, ha="right",
+                xytext=(x0 - 0.008, 0.045), textcoords="data", fontsize=7.5, ha="right",
                 va="bottom", arrowprops={"arrowstyle": "-", "color": "0.3", "lw": 0.7})
     ax.annotate("C", C - (r + 0.004) * n, ha="center", va="top", fontsize=10)
     handles = [Line2D([], [], color=ROD, lw=2, label="rigid rods AB, BC"),
@@ -76,7 +80,7 @@ def _top_view(ax: Axes, data: dict[str, Any], s: float) -> None:
                  f"α2 = {a2:g}°;\nthe plate transmits only the friction along BC "
                  f"(its component normal to BC: {top['force_transverse_to_BC']:.0f} N)",
                  fontsize=8)
-    ax.set_xlim(-0.045, b + 0.085)
+    ax.set_xlim(-0.045, b + 0.125)
     ax.set_ylim(-0.085, 0.075)
     ax.set_aspect("equal")
     ax.set_xlabel("x [m]")
