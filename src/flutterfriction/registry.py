@@ -260,8 +260,9 @@ _ENTRIES = [
     Scene("fig22", solids.fig22, "solids", {"fig22": _fig(
         solid_plots.plot_fig22,
         "Fig. 22: one force path computed exactly through stick, slip, unloading and reverse "
-        "slip (eq. 140), drawn three ways: two bricks at its first slip (N, T, the contact "
-        "reaction on the friction cone, the upper brick shifted by the slip, to scale); the "
+        "slip (eq. 140), drawn three ways: two bricks after the first slip (point 3 of the "
+        "path; N, T, the contact reaction on the friction cone, the upper brick shifted by the "
+        "slip, to scale with a 0.5 m bar); the "
         "spring–slider model of §3.1 and its p_T–u_T response (slip onset at |p_T| = μ p_N, "
         "unloaded to p_T = 0 at u_T = u_T^s); the Coulomb cone with the normal a and the slip "
         "direction b.")}),

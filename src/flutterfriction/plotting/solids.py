@@ -88,8 +88,9 @@ def _ground(ax: Axes, x0: float, x1: float, y: float, h: float = 0.25) -> None:
 
 
 def _bricks_panel(ax: Axes, data: dict[str, Any]) -> None:
-    """Two bricks in contact at the path's first slip point: N, T, the contact reaction on the
-    friction cone, and the upper brick shifted by the slip (to the scale of the bricks)."""
+    """Two bricks in contact after the path's first slip (its first recorded slip point): N, T,
+    the contact reaction on the friction cone, and the upper brick shifted by the slip (to the
+    scale of the bricks, with a scale bar)."""
     k = data["slip_point_index"]
     N, T = data["p"][k]
     mu, slip = data["mu"], data["slip"][k] - data["slip"][0]
@@ -122,11 +123,18 @@ def _bricks_panel(ax: Axes, data: dict[str, Any]) -> None:
                      f"arctan μ = {np.degrees(np.arctan(mu)):.1f}°"),
                Line2D([], [], color="0.45", ls="--", lw=0.9, label="upper brick before slip")]
     ax.legend(handles=handles, loc="upper left", fontsize=7)
+    bar, xb, yb = 0.5, L / 2 + slip + 0.9, -0.6 * H  # length scale bar [m]
+    ax.plot([xb, xb + bar], [yb, yb], color="k", lw=2, solid_capstyle="butt")
+    for x in (xb, xb + bar):
+        ax.plot([x, x], [yb - 0.08, yb + 0.08], color="k", lw=1)
+    ax.annotate(f"{bar:g} m", (xb + bar / 2, yb), xytext=(0, 3), textcoords="offset points",
+                ha="center", va="bottom", fontsize=8)
     ax.set_xlim(-L / 2 - 0.5, L / 2 + slip + 2.4)
     ax.set_ylim(-H - 1.9, H + N * f + 2.6)
     ax.set_aspect("equal")
     ax.set_axis_off()
-    ax.set_title(f"(left) two 'bricks' in contact, at point {k} of the path", fontsize=8)
+    ax.set_title(f"(left) two 'bricks' in contact, after the first slip (point {k} of the path)",
+                 fontsize=8)
 
 
 def _slider_sketch(ax: Axes, data: dict[str, Any]) -> None:
