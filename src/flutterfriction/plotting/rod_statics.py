@@ -160,9 +160,13 @@ def plot_fig06(data: dict[str, Any]) -> Figure:
     ax.annotate(r"$\mathbf{x} = \mathbf{g}(x_0)$", X, xytext=X + 0.3 * l * w, fontsize=9,
                 ha="right" if w[0] < 0 else "left", va="top" if w[1] < 0 else "bottom",
                 arrowprops={"arrowstyle": "-", "lw": 0.6, "color": "0.4", "shrinkB": 4})
-    _arrow(ax, X, X + L * t, T_COL, lw=1.8)
-    ax.annotate(r"$\mathbf{t}$", X + 1.15 * L * t, color=T_COL, fontsize=10, ha="center",
-                va="center")
+    # t lies along the rod: drawn above it (wider) and named beside its head, on the side
+    # towards m, inside the right angle of t and m (theta is drawn on the other side; the rod
+    # itself runs on through the head)
+    _arrow(ax, X, X + L * t, T_COL, lw=2.4, zorder=12)
+    ax.annotate(r"$\mathbf{t}$", X + 0.9 * L * t, xytext=9 * m, textcoords="offset points",
+                color=T_COL, fontsize=10, ha="right" if m[0] < 0 else "left",
+                va="top" if m[1] < 0 else "bottom", zorder=12)
     _arrow(ax, X, X + L * m, M_COL, lw=1.8)
     same = np.allclose(m, n)
     ax.annotate(r"$\mathbf{m} = \mathbf{n}$" if same else r"$\mathbf{m}$",
@@ -340,7 +344,8 @@ def plot_fig08(data: dict[str, Any]) -> Figure:
     ax.plot(*x.T, color="0.8", lw=1.6, label="the rest of the rod")
     ax.plot(*xp.T, color=ROD, lw=2.6, label=rf"the part $[s_1, s_2]$ = [{part['s1'] * MM:.0f},"
             rf" {part['s2'] * MM:.0f}] mm")
-    idx = np.linspace(0, len(xp) - 1, 7).round().astype(int)
+    # q along the part, with a gap at its ends: clear of the actions drawn there
+    idx = np.linspace(0.2 * (len(xp) - 1), 0.7 * (len(xp) - 1), 5).round().astype(int)
     for i in idx if np.any(q) else []:
         _arrow(ax, xp[i], xp[i] + qs * q, Q_COL, lw=1.2)
     X1, X2 = np.array(e1["x"]) * MM, np.array(e2["x"]) * MM
@@ -355,9 +360,11 @@ def plot_fig08(data: dict[str, Any]) -> Figure:
     t1, t2 = (np.array([np.cos(e["theta"]), np.sin(e["theta"])]) for e in (e1, e2))
     for X, sign, name, avoid in ((X2, 1, r"$\mathcal{M}(s_2)$", (a2, q, t2, -t2, X1 - X2)),
                                  (X1, -1, r"$-\mathcal{M}(s_1)$", (-a1, q, t1, -t1))):
-        _moment(ax, X, rm, (sign * (e2 if sign > 0 else e1)["M"]) > 0, MOM_COL,
-                start=np.pi if sign > 0 else np.pi / 2)
-        d = _free_direction(avoid)
+        positive = (sign * (e2 if sign > 0 else e1)["M"]) > 0
+        start = np.pi if sign > 0 else np.pi / 2
+        _moment(ax, X, rm, positive, MOM_COL, start=start)
+        head = start + (1.5 * np.pi if positive else 0.0)  # where the moment's arrowhead is
+        d = _free_direction((*avoid, (np.cos(head), np.sin(head))))
         ax.annotate(name, X + 1.2 * rm * d, xytext=6 * d, textcoords="offset points",
                     color=MOM_COL, fontsize=10, ha="left" if d[0] > 0.3 else
                     ("right" if d[0] < -0.3 else "center"),
@@ -365,8 +372,12 @@ def plot_fig08(data: dict[str, Any]) -> Figure:
     for X in (X1, X2):  # the ends s1, s2 (named by the labels of their actions)
         ax.plot(*X, "o", color=ROD, ms=4, zorder=10)
     if np.any(q):
-        ax.annotate(r"$\mathbf{q}$", xp[idx[3]] + qs * q, xytext=(6, -2),
-                    textcoords="offset points", color=Q_COL, fontsize=10)
+        # before the first arrow's head (back towards s1), clear of the others
+        tq = xp[idx[0] + 1] - xp[idx[0]]
+        tq = -tq / np.linalg.norm(tq)
+        ax.annotate(r"$\mathbf{q}$", xp[idx[0]] + qs * q, xytext=8 * tq,
+                    textcoords="offset points", color=Q_COL, fontsize=10,
+                    ha="right" if tq[0] < 0 else "left", va="center")
     handles, labels = ax.get_legend_handles_labels()
     handles += [Line2D([], [], color=Q_COL, lw=1.2, marker=">", ms=5),
                 Line2D([], [], color=F_COL, lw=2.0, marker=">", ms=5),
