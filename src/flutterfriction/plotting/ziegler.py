@@ -8,10 +8,11 @@ from typing import Any
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.figure import Figure
+from matplotlib.lines import Line2D
 from matplotlib.patches import Arc
 
 from flutterfriction.plotting import REGIME_COLOURS
-from flutterfriction.plotting.pendulum import draw_pendulum
+from flutterfriction.plotting.pendulum import MASS, ROD, draw_pendulum
 
 
 def _shade_regimes(ax, edges: list[float], names: list[str], x_max: float) -> None:
@@ -218,6 +219,27 @@ def plot_fig04(data: dict[str, Any]) -> Figure:
         ax_t.yaxis.set_label_position("right")
         ax_t.yaxis.tick_right()
         ax_t.legend(fontsize=7, loc="lower left")
+        n_free = rows[k] * ncol - len(times)
+        if k == len(order) - 1:
+            # the key to the frames: in the free slots of the last row, else below the figure
+            handles = [
+                Line2D([], [], color=ROD, lw=2, label="rigid rods AB, BC"),
+                Line2D([], [], color=MASS, marker="o", ls="none", mec="k", mew=0.5, ms=5,
+                       label="masses at D, E, C"),
+                Line2D([], [], color=ROD, marker="o", ls="none", mfc="white", mew=1.0, ms=3,
+                       label="hinge B"),
+                Line2D([], [], color="#c0392b", marker="<", ls="none", ms=6,
+                       label="follower load P at C"),
+                Line2D([], [], color="0.7", lw=0.8, ls="--",
+                       label="straight: α1 = α2 = 0")]
+            if n_free >= 2:
+                ax_key = fig.add_subplot(sub[rows[k] - 1, ncol - n_free:ncol])
+                ax_key.set_axis_off()
+                ax_key.legend(handles=handles, loc="center", fontsize=6.5,
+                              title="key to the frames", title_fontsize=7)
+            else:
+                fig.legend(handles=handles, loc="lower center", ncol=3, fontsize=6.5,
+                           bbox_to_anchor=(0.5, 0.0))
         label = {"flutter": "Flutter (upper part)", "divergence": "Divergence (lower part)"}
         fig.text(0.1, outer[k].get_position(fig).y1 + 0.008,
                  f"{label.get(name, name)}: P = {case['P']:g} N, initially "
