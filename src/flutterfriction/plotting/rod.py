@@ -191,10 +191,11 @@ def _title(data, fig: str, what: str) -> str:
     return (f"{fig}: nonlinear Beck rod, list (119), P = {data['P']:g} N: {what}\n"
             f"flutter grows from the straight rod ({tr['initial_amplitude_m'] * 1000:g} mm "
             f"flutter mode) and saturates into the limit cycle\n"
-            f"(transient on {n} P2 elements, whose cycle is within "
-            f"{100 * max(err.values()):.2f}% of {data['meshes'][-1]}; it ends "
-            f"{100 * tr['final_distance']:.1f}% from the cycle, at t = {tr['t_end']:.2f} s)\n"
-            f"cycle ({data['meshes'][-2]} elements): tip amplitude "
+            f"transient on {n} P2 elements; black: the limit cycle on the same {n} elements "
+            f"(periodic-orbit Newton),\nwithin {100 * max(err.values()):.2f}% of the "
+            f"{data['meshes'][-1]}-element cycle; the transient ends "
+            f"{100 * tr['final_distance']:.1f}% from it, at t = {tr['t_end']:.2f} s\n"
+            f"converged cycle ({data['meshes'][-2]} elements): tip amplitude "
             f"{c['tip_amplitude_m'] * 1000:.1f} mm, period {c['period_s'] * 1000:.2f} ms")
 
 
@@ -212,7 +213,8 @@ def _growth(ax, x, y, t, cx, cy):
     ax.add_collection(lc)
     ax.plot([], [], color=plt.get_cmap("viridis")(0.5), lw=1.2,
             label="transient: flutter grows (colour: time)")
-    ax.plot(cx, cy, color="k", lw=1.4, label="limit cycle (periodic-orbit Newton)")
+    ax.plot(cx, cy, color="k", lw=1.4,
+            label="limit cycle (periodic-orbit Newton): on the transient's mesh")
     ax.autoscale()
     return lc
 
