@@ -61,19 +61,27 @@ def _basis(ax: Axes, at, size: float) -> None:
 
 
 def _layout(ax: Axes, pts: np.ndarray, l: float, up: bool, box: str, right: float = 1.2,
-            handles: list | None = None, labels: list | None = None) -> None:
+            handles: list | None = None, labels: list | None = None,
+            legend_below: bool = False) -> None:
     """Equal-aspect limits around the drawn points (the clamp on the left), and the legend, the
     text box and the basis on the side the rod leaves free: a rod bending towards ``-e2`` gets
-    the legend above the clamp and the box below the rod; ``up`` (towards ``+e2``) mirrors."""
+    the legend above the clamp and the box below the rod; ``up`` (towards ``+e2``) mirrors.
+    ``legend_below``: a legend too tall for that side goes below the axes, in two columns, and
+    the free side keeps only the room of the clamp and the basis."""
+    free = 0.17 * l if legend_below else 0.55 * l
     ax.set_aspect("equal")
     ax.set_xlim(-0.12 * l, max(right * l, pts[:, 0].max() + 0.1 * l))
     band = 0.3 * l if box else 0.2 * l  # the box's own band beyond everything drawn
     if up:
-        ax.set_ylim(-0.55 * l, max(pts[:, 1].max(), 0.1 * l) + band)
+        ax.set_ylim(-free, max(pts[:, 1].max(), 0.1 * l) + band)
     else:
-        ax.set_ylim(min(pts[:, 1].min(), -0.1 * l) - band, 0.55 * l)
-    ax.legend(handles, labels, loc="lower right" if up else "upper right", fontsize=7.5,
-              framealpha=0.9)
+        ax.set_ylim(min(pts[:, 1].min(), -0.1 * l) - band, free)
+    if legend_below:
+        ax.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=2,
+                  fontsize=7.5, framealpha=0.9)
+    else:
+        ax.legend(handles, labels, loc="lower right" if up else "upper right", fontsize=7.5,
+                  framealpha=0.9)
     if box:
         _box(ax, box, loc=(0.02, 0.98) if up else (0.02, 0.02), va="top" if up else "bottom")
     # the basis where it is farthest from everything drawn (and every label, which may extend
@@ -98,6 +106,14 @@ def _layout(ax: Axes, pts: np.ndarray, l: float, up: bool, box: str, right: floa
              if not (lx0 - 0.2 * l < x < lx1 and ly0 - 0.15 * l < y < ly1 + 0.05 * l)]
     best = max(cands, key=lambda c: np.min(np.linalg.norm(pts - c - 0.035 * l, axis=1)))
     _basis(ax, best, 0.07 * l)
+
+
+def _seg_dist(p0, p1, q0, q1) -> float:
+    """The least distance between the segments ``p0 p1`` and ``q0 q1`` (sampled finely)."""
+    u = np.linspace(0.0, 1.0, 41)[:, None]
+    a = np.asarray(p0) + u * (np.asarray(p1) - np.asarray(p0))
+    b = np.asarray(q0) + u * (np.asarray(q1) - np.asarray(q0))
+    return float(np.min(np.linalg.norm(a[:, None] - b[None], axis=2)))
 
 
 def _free_direction(avoid) -> np.ndarray:
@@ -434,9 +450,9 @@ def plot_fig09(data: dict[str, Any]) -> Figure:
     tip = data["tip_forces_only"]
     xt = np.column_stack([tip["x1"], tip["x2"]]) * MM
     xtc = np.column_stack([tip["x1_closed"], tip["x2_closed"]]) * MM
-    fig = plt.figure(figsize=(11.0, 5.4))
+    fig = plt.figure(figsize=(11.0, 6.2))
     gs = fig.add_gridspec(1, 2, width_ratios=[1.5, 1.0], wspace=0.24)
-    fig.subplots_adjust(left=0.06, right=0.98, bottom=0.11, top=0.88)
+    fig.subplots_adjust(left=0.06, right=0.98, bottom=0.24, top=0.88)  # the legend below
     ax = fig.add_subplot(gs[0, 0])
     _clamp(ax, 0.08 * l)
     ax.plot([0, l], [0, 0], color=REF, lw=1.4, ls="--", label="straight reference rod")
@@ -463,6 +479,11 @@ def plot_fig09(data: dict[str, Any]) -> Figure:
     qv = np.array([loads["q1"], loads["q2"]])
     qs = 0.12 * l / max(np.max(np.abs(qv)), 1e-300)  # mm per N/m (no arrows when q = 0)
     idx = np.linspace(0, len(x) - 1, 10).round().astype(int)[1:-1]
+    # no q arrow (nor its head) within 0.05 l of the end forces' arrows
+    ends = [(X, X + fs * np.array(v)) for v in ((-loads["P1"], 0.0), (0.0, -loads["P2"]))]
+    idx = np.array([i for i in idx if min(
+        _seg_dist(x[i], x[i] + qs * qv * e, *seg) for e in ((1, 0), (0, 1)) for seg in ends)
+        > 0.05 * l], dtype=int)
     for i in idx:
         for comp, col in ((0, Q_COL), (1, "C5")):
             v = np.zeros(2)
@@ -493,9 +514,9 @@ def plot_fig09(data: dict[str, Any]) -> Figure:
     qd = data["quantities"]
     u = (qd["tip_shortening"]["value"] * MM, qd["tip_deflection"]["value"] * MM)
     rel = abs(qd["tip_deflection"]["value"] / qd["tip_deflection"]["independent"] - 1)
-    box = (f"end: u = ({u[0]:.2f}, {u[1]:.2f}) mm, θ(l) = "
-           f"{np.degrees(data['tip_rotation']):.2f}°; collocation: {rel:.0e}\n"
-           f"q = 0: θ(l) = {np.degrees(tip['tip_rotation']):.2f}°; shooting against the\n"
+    box = (f"end: u = ({u[0]:.2f}, {u[1]:.2f}) mm,\n"
+           f"θ(l) = {np.degrees(data['tip_rotation']):.2f}°; collocation: {rel:.0e}\n"
+           f"q = 0: θ(l) = {np.degrees(tip['tip_rotation']):.2f}°; against the\n"
            f"closed form: {tip['curve_error']:.0e} l along the rod")
     heads = [X + fs * np.array([-loads["P1"], 0.0]), X + fs * np.array([0.0, -loads["P2"]])]
     # the P2 label's extent beside its arrow
@@ -503,7 +524,7 @@ def plot_fig09(data: dict[str, Any]) -> Figure:
               for d in (0.1, 0.2, 0.3)]
     heads += [x[i] + qs * np.array(v) for i in idx for v in ((qv[0], 0.0), (0.0, qv[1]))]
     _layout(ax, np.vstack([x, xt, *heads]), l, x[-1, 1] > 0, box, right=1.25,
-            handles=handles, labels=labels)
+            handles=handles, labels=labels, legend_below=True)
     ax.set_xlabel(r"$x_1$ [mm]")
     ax.set_ylabel(r"$x_2$ [mm]")
     ax.set_title(f"The clamped elastica, l = {l:g} mm, B = {data['rod']['B']:g} N m² "
