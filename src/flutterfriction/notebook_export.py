@@ -138,10 +138,14 @@ def fmt(x: Any, digits: int = 6) -> str:
     return f"{x:.{digits}g}"
 
 
-def quantities_table(quantities: dict[str, dict[str, Any]], digits: int = 7) -> str:
+def quantities_table(quantities: dict[str, dict[str, Any]], digits: int = 7,
+                     absolute: Iterable[str] = ()) -> str:
     """A scene's ``quantities`` (value, unit, method, independent value and method) as a
     markdown table for a notebook: ``digits`` significant digits, the unit, and the relative
-    difference of the two methods."""
+    difference of the two methods; for the quantities named in ``absolute`` (residuals, whose
+    quoted value is 0, so that a relative difference of two round-offs means nothing) the
+    absolute difference, marked "(abs.)"."""
+    absolute = set(absolute)
     lines = ["| quantity | value | unit | method | independent | independent method | "
              "rel. difference |", "|---|---|---|---|---|---|---|"]
     for k, q in quantities.items():
@@ -149,7 +153,8 @@ def quantities_table(quantities: dict[str, dict[str, Any]], digits: int = 7) -> 
         diff = ""
         if all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in (v, w)):
             scale = max(abs(v), abs(w))
-            diff = "0" if v == w else (f"{abs(v - w) / scale:.1e}" if scale else "")
+            diff = "0" if v == w else (f"{abs(v - w):.1e} (abs.)" if k in absolute else
+                                       f"{abs(v - w) / scale:.1e}" if scale else "")
         cells = [k, fmt(v, digits), q.get("unit", ""), q.get("method", ""), fmt(w, digits),
                  q.get("independent_method", ""), diff]
         lines.append("| " + " | ".join(str(c).replace("|", "\\|") for c in cells) + " |")

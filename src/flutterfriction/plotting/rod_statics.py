@@ -76,8 +76,10 @@ def _layout(ax: Axes, pts: np.ndarray, l: float, up: bool, box: str, right: floa
         ax.set_ylim(-free, max(pts[:, 1].max(), 0.1 * l) + band)
     else:
         ax.set_ylim(min(pts[:, 1].min(), -0.1 * l) - band, free)
-    if legend_below:
-        ax.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=2,
+    if legend_below:  # 0.55 in below the axes: clear of the ticks and the x label
+        ax.apply_aspect()
+        h = ax.get_position().height * ax.figure.get_figheight()
+        ax.legend(handles, labels, loc="upper center", bbox_to_anchor=(0.5, -0.55 / h), ncol=2,
                   fontsize=7.5, framealpha=0.9)
     else:
         ax.legend(handles, labels, loc="lower right" if up else "upper right", fontsize=7.5,
