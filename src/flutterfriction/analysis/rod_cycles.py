@@ -462,8 +462,11 @@ class CycleContinuation:
         self.points.append(point)
         return point
 
-    def step(self, log: Callable[[str], None] | None = None) -> CyclePoint | None:
-        """One pseudo-arclength step of length ``ds``; ``None`` (and ``ds`` halved) on failure."""
+    def step(self, log: Callable[[str], None] | None = None,
+             chord: bool = False) -> CyclePoint | None:
+        """One pseudo-arclength step of length ``ds``; ``None`` (and ``ds`` halved) on failure.
+        ``chord``: Newton starts with chord corrections on the previous cycle's flow
+        derivatives (:meth:`PeriodicOrbitNewton.chord`)."""
         pts = self.points
         a, b = pts[-1], pts[-2] if len(pts) > 1 else None
         if b is None:  # second point: step in amplitude at the first one's load
@@ -479,7 +482,8 @@ class CycleContinuation:
             T_guess, P_guess = a.T + r * (a.T - b.T), a.P + r * (a.P - b.P)
         target = tangent[0] * a.A / self.A_max + tangent[1] * a.P / self.P_flu + self.ds
         try:
-            point = self.newton.solve(y_guess, T_guess, P_guess, tangent, target)
+            point = self.newton.solve(y_guess, T_guess, P_guess, tangent, target,
+                                      flow_jacobian=a.flow_jacobian if chord else None)
         except ConvergenceError as exc:
             return self._reject(f"step ds = {self.ds:.3g} from A = {a.A:.5f} m rejected "
                                 f"({exc}): halved", log)
@@ -668,7 +672,10 @@ def cycle_branch(rod: Rod, n_elements: int = 4, A_first: float = 0.01, A_max: fl
     - ``chord``: at 4 elements to 7 N, 42 cycles, 82-86 variational and ~150 orbit-only
       integrations, 7 rejected steps, 240-300 CPU-s (without chord corrections: ~3 variational
       integrations per cycle, then 1.7 s each; on 2 elements to 4 N without them: 135 variational
-      integrations for 49 cycles, 164 CPU-s).
+      integrations for 49 cycles, 164 CPU-s). With the Radau-collocated variational
+      equations (a variational period ~2x an orbit-only one, not ~6x) chord still pays: 79 CPU-s
+      against 96 without; ``beck_hopf`` (secant stepping) 45 -> 21 variational integrations,
+      25 -> 18 CPU-s, the same cycles to 1e-7.
     - ``error_target`` 5e-3: larger first corrections leave Newton's basin in the amplitude's
       dip (rejections there: "Newton not contracting" at first corrections of 1-7e-2)."""
     if not 0 < A_first < A_max:
@@ -705,7 +712,7 @@ def cycle_branch(rod: Rod, n_elements: int = 4, A_first: float = 0.01, A_max: fl
             return cont.branch("max_points")
         if cont.ds < cont.ds_min:
             return cont.branch("min_step")
-        cont.step(log)
+        cont.step(log, chord=chord)
 
 
 def cycle_on_finer_mesh(coarse: NonlinearRod, y: NDArray, T: float, P: float,

@@ -637,12 +637,13 @@ def beck_hopf(params: dict[str, Any]) -> dict[str, Any]:
     with sigma the exact linear growth rate."""
     from flutterfriction.analysis.rod_cycles import cycle_branch
 
-    take(params, {"rod", "n_elements", "A_max", "rtol", "max_points"})
+    take(params, {"rod", "n_elements", "A_max", "rtol", "max_points", "chord"})
     rod = _rod(params)
     b = cycle_branch(rod, n_elements=int(params.get("n_elements", 4)),
                      A_max=check_positive("A_max", params.get("A_max", 0.09), "m"),
                      rtol=float(params.get("rtol", 1e-10)),
-                     max_points=int(params.get("max_points", 60)))
+                     max_points=int(params.get("max_points", 60)),
+                     chord=bool(params.get("chord", True)))
     if b.stopped_by != "A_max":
         raise ConvergenceError(f"beck_hopf: the branch stopped at A = {b.A[-1]:.4f} m "
                                f"({b.stopped_by}) before A_max; raise max_points or check the "
