@@ -37,18 +37,25 @@ from flutterfriction.models.rod_nonlinear import NonlinearRod
 _H = 1e-30  # complex step: h^2 is far below rounding, and no subtraction cancels
 
 
+def _stepped_rhs(model: NonlinearRod, Y: NDArray, P: float) -> NDArray:
+    """The right-hand side at the ``m`` states ``Y`` (N, m), each with its ``N + 1`` complex
+    steps (one per state component, one in the load), as one batch: shape (N, m, N + 1)."""
+    N, m = Y.shape
+    Z = np.empty((N, m, N + 1), dtype=complex)
+    Z[:] = Y[:, :, None]
+    Z[:, :, :N] += 1j * _H * np.eye(N)[:, None, :]
+    loads = np.full((m, N + 1), P, dtype=complex)
+    loads[:, N] += 1j * _H
+    return model.rhs(0.0, Z.reshape(N, -1), loads.ravel()).reshape(N, m, N + 1)
+
+
 def rhs_derivatives(model: NonlinearRod, y: NDArray, P: float
                     ) -> tuple[NDArray, NDArray, NDArray]:
     """``(f, J, f_P)``: the first-order right-hand side at ``y``, its Jacobian ``df/dy`` and
     ``df/dP``, from ``N + 1`` complex steps evaluated as one batch (every operation of the
     equations of motion is analytic, so ``Im f(y + i h e) / h`` is exact to rounding)."""
     N = y.size
-    Y = np.empty((N, N + 1), dtype=complex)
-    Y[:] = y[:, None]
-    Y[:, :N] += 1j * _H * np.eye(N)
-    loads = np.full(N + 1, P, dtype=complex)
-    loads[N] += 1j * _H
-    F = model.rhs(0.0, Y, loads)
+    F = _stepped_rhs(model, y[:, None], P)[:, 0]
     return F[:, N].real, F[:, :N].imag / _H, F[:, N].imag / _H
 
 
@@ -107,14 +114,8 @@ def jacobians_along(model: NonlinearRod, Y: NDArray, P: float) -> tuple[NDArray,
     N, m = Y.shape
     J, f_P = np.empty((m, N, N)), np.empty((m, N))
     for k in range(0, m, _CHUNK):
-        Yk = Y[:, k:k + _CHUNK]
-        b = Yk.shape[1]
-        Z = np.empty((N, b, N + 1), dtype=complex)
-        Z[:] = Yk[:, :, None]
-        Z[:, :, :N] += 1j * _H * np.eye(N)[:, None, :]
-        loads = np.full((b, N + 1), P, dtype=complex)
-        loads[:, N] += 1j * _H
-        F = model.rhs(0.0, Z.reshape(N, -1), loads.ravel()).reshape(N, b, N + 1).imag / _H
+        F = _stepped_rhs(model, Y[:, k:k + _CHUNK], P).imag / _H
+        b = F.shape[1]
         J[k:k + b] = np.moveaxis(F[:, :, :N], 1, 0)
         f_P[k:k + b] = F[:, :, N].T
     return J, f_P

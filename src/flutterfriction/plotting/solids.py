@@ -33,13 +33,7 @@ def _coulomb_panel(ax: Axes, data: dict[str, Any]) -> None:
     ax.fill_between(pn, -mu * pn, mu * pn, color="0.9", label="stick (inside the cone)")
     ax.plot(pn, mu * pn, "k", lw=1.2)
     ax.plot(pn, -mu * pn, "k", lw=1.2, label=r"Coulomb cone $|p_T| = \mu p_N$")
-    colours = {"stick": "C0", "slip": "C3"}
-    done = set()
-    for k in range(1, len(p)):
-        b = data["branch"][k]
-        ax.plot(p[k - 1:k + 1, 0], p[k - 1:k + 1, 1], "-", color=colours[b], lw=2.2,
-                label=f"computed path: {b}" if b not in done else None)
-        done.add(b)
+    _path_by_branch(ax, p[:, 0], p[:, 1], data["branch"], "computed path")
     ax.plot(p[:, 0], p[:, 1], "o", color="k", ms=3)
     _label_points(ax, p)
     s = np.array(data["slip_point"])
@@ -59,6 +53,17 @@ def _coulomb_panel(ax: Axes, data: dict[str, Any]) -> None:
 
 
 STICK_SLIP = {"stick": "C0", "slip": "C3"}
+
+
+def _path_by_branch(ax, x, y, branches, label: str) -> None:
+    """The path's segments coloured by the branch each ends on (stick, slip), each branch in
+    the legend once."""
+    done = set()
+    for k in range(1, len(x)):
+        b = branches[k]
+        ax.plot(x[k - 1:k + 1], y[k - 1:k + 1], "-", color=STICK_SLIP[b], lw=2.2,
+                label=f"{label}: {b}" if b not in done else None)
+        done.add(b)
 _FORCE = {"N": "C2", "T": "C1", "reaction": "C4"}
 
 
@@ -176,12 +181,7 @@ def _slider_response(ax: Axes, data: dict[str, Any]) -> None:
     ax.plot(u[:, 1], mu * p[:, 0], "--", color="0.5", lw=1.0,
             label=r"friction limits $\pm\mu p_N$ along the path")
     ax.plot(u[:, 1], -mu * p[:, 0], "--", color="0.5", lw=1.0)
-    done = set()
-    for k in range(1, len(p)):
-        b = data["branch"][k]
-        ax.plot(u[k - 1:k + 1, 1], p[k - 1:k + 1, 1], "-", color=STICK_SLIP[b], lw=2.2,
-                label=f"computed: {b}" if b not in done else None)
-        done.add(b)
+    _path_by_branch(ax, u[:, 1], p[:, 1], data["branch"], "computed")
     ax.plot(u[:, 1], p[:, 1], "o", color="k", ms=3)
     _label_points(ax, np.column_stack([u[:, 1], p[:, 1]]))
     i = data["onset_index"]

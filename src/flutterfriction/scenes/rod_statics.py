@@ -26,6 +26,10 @@ _KEYS = {"rod", "P1", "P2", "q1", "q2", "point", "cut", "part", "linear_factors"
 _POLYLINE = 2048
 
 
+#: The two methods every elastica quantity is computed by (primary, independent).
+SHOOTING = "shooting on theta(l), DOP853 rtol 1e-12"
+COLLOCATION = "collocation (solve_bvp, tol 1e-10)"
+
 def _fraction(name: str, value: object) -> float:
     x = check_real(name, value)
     if not 0.0 < x < 1.0:
@@ -172,14 +176,14 @@ def elastica(params: dict[str, Any]) -> dict[str, Any]:
     q = {
         # Fig. 9
         "tip_deflection": quantity(
-            float(u_tip[1]), float(u_tip_c[1]), "shooting on theta(l), DOP853 rtol 1e-12",
-            "collocation (solve_bvp, tol 1e-10)", "m"),
+            float(u_tip[1]), float(u_tip_c[1]), SHOOTING,
+            COLLOCATION, "m"),
         "tip_shortening": quantity(
-            float(u_tip[0]), float(u_tip_c[0]), "shooting on theta(l), DOP853 rtol 1e-12",
-            "collocation (solve_bvp, tol 1e-10)", "m"),
+            float(u_tip[0]), float(u_tip_c[0]), SHOOTING,
+            COLLOCATION, "m"),
         "tip_rotation": quantity(
-            shoot.tip_rotation, colloc.tip_rotation, "shooting on theta(l), DOP853 rtol 1e-12",
-            "collocation (solve_bvp, tol 1e-10)", "rad"),
+            shoot.tip_rotation, colloc.tip_rotation, SHOOTING,
+            COLLOCATION, "rad"),
         "tip_force_deflection": quantity(
             float(tip_shoot.tip_displacement()[1]), float(u_tip_closed[1]),
             "shooting, end forces alone", "elliptic integrals (closed form)", "m"),
