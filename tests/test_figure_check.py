@@ -222,3 +222,25 @@ def test_the_summary_and_the_report_show_the_figure_check(tmp_path):
     assert "<b>Figure check</b>: 1 of 2 figures pass" in text
     assert "<td>figB</td><td>overlap</td><td>P_flu</td>" in text
     assert 'href="#figure-check"' in text and 'id="figure-check"' in text
+
+
+@pytest.mark.parametrize("span", [(2.5e-3, 9e-3), (1.2e-4, 8.6e-3), (0.9, 2.1), (3e-2, 0.95)])
+def test_timing_axes_never_overprint_their_labels(span):
+    """tidy_log_axis on a work-precision-sized panel: measured wall times anywhere within two
+    decades (1.2e-4 to 8.6e-3 s overprinted with 1-2-5 labels on CI's machine) give labels the
+    figure check passes, and at least two of them."""
+    from flutterfriction.plotting import tidy_log_axis
+
+    fig, ax = plt.subplots(figsize=(4.3, 4.0))
+    x = np.geomspace(*span, 5)
+    ax.loglog(x, x, "o-")
+    tidy_log_axis(ax.xaxis, x)
+    tidy_log_axis(ax.yaxis, x)
+    ax.set_xlabel("wall time [s]")
+    ax.set_ylabel("time [s]")
+    fig.canvas.draw()
+    shown = [t for t in ax.xaxis.get_ticklabels() if t.get_visible() and t.get_text()
+             and ax.get_xlim()[0] <= t.get_position()[0] <= ax.get_xlim()[1]]
+    assert len(shown) >= 2
+    assert check_figure(fig, tight=True) == []
+    plt.close(fig)

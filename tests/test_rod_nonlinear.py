@@ -133,9 +133,10 @@ def test_cycle_branch_leaves_the_hopf_point_towards_higher_loads():
     for P, T, decay, defect, mu_max in zip(b.P, b.T, b.slow_decay, b.trivial_defect,
                                            b.max_floquet_modulus, strict=True):
         # |Phi f - f| / |f| is the accepted iterate's periodicity error (a scaled Newton
-        # correction of at most 30 rtol = 3e-7 here) seen through Phi - I, whose entries reach
-        # ~100 (119 measured at 4 elements, 5.5 N): at most ~3e-5. Measured 5e-8 to 5.8e-6, depending on how far
-        # below its threshold the last correction fell (rounding-level changes move that).
+        # correction of at most 30 rtol = 3e-7 here) seen through Phi - I, whose entries
+        # reach ~100 (119 measured at 4 elements, 5.5 N): at most ~3e-5. Measured 5e-8 to
+        # 5.8e-6, depending on how far below its threshold the last correction fell
+        # (rounding-level changes move that).
         assert defect < 3e-5
         lin = np.block([[np.zeros((n, n)), np.eye(n)],
                         [-np.linalg.solve(M0, K + P * K1), -np.linalg.solve(M0, C)]])

@@ -29,20 +29,31 @@ REGIME_COLOURS = {"stable": "#d8ecd3", "flutter": "#fbe0b8", "divergence": "#f4c
 
 def tidy_log_axis(axis, values) -> None:
     """Log-axis ticks that never crowd: when the values hold fewer than two powers of ten
-    (measured wall times, say), a few labelled ticks in plain numbers (matplotlib would
-    otherwise label the minor ticks, and their long labels, 2×10⁻², 3×10⁻², overprint each
-    other, or label one tick only)."""
-    from matplotlib.ticker import LogLocator, NullFormatter, ScalarFormatter
+    (measured wall times, say), two to five labelled ticks inside the values' range, in short
+    plain numbers (matplotlib would otherwise label the minor ticks, and their long labels,
+    2×10⁻², 3×10⁻², overprint each other, or label one tick only, or fall back to every
+    integer multiple: 0.002 ... 0.009 overprinted). The first of 1-3, 1-2-5, 1-1.5-2-3-5-7
+    times powers of ten that gives two to five ticks; else a few linear steps. (1-2-5 over
+    1.2e-4 to 8.6e-3 s gave seven labels that overprinted on CI's machine: the values are
+    timings, so the rule must hold for any of them.)"""
+    from matplotlib.ticker import FixedLocator, FuncFormatter, MaxNLocator, NullFormatter
 
     v = np.asarray([x for x in values if x > 0], dtype=float)
     if v.size == 0:
         return
     axis.set_minor_formatter(NullFormatter())
-    if np.floor(np.log10(v.max())) - np.ceil(np.log10(v.min())) < 1:
-        axis.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0), numticks=6))
-        fmt = ScalarFormatter(useMathText=True)
-        fmt.set_powerlimits((-3, 4))
-        axis.set_major_formatter(fmt)
+    lo, hi = v.min(), v.max()
+    if np.floor(np.log10(hi)) - np.ceil(np.log10(lo)) >= 1:
+        return  # two powers of ten or more: matplotlib's decades are fine
+    powers = 10.0 ** np.arange(np.floor(np.log10(lo)), np.floor(np.log10(hi)) + 1)
+    for subs in ((1.0, 3.0), (1.0, 2.0, 5.0), (1.0, 1.5, 2.0, 3.0, 5.0, 7.0)):
+        ticks = [m * p for p in powers for m in subs if lo <= m * p <= hi]
+        if 2 <= len(ticks) <= 5:
+            break
+    else:
+        ticks = [t for t in MaxNLocator(3).tick_values(lo, hi) if lo <= t <= hi]
+    axis.set_major_locator(FixedLocator(ticks))
+    axis.set_major_formatter(FuncFormatter(lambda x, _: f"{x:g}"))
 
 
 def save_figure(fig: Figure, *paths: str | os.PathLike, draft: bool = False,
