@@ -29,10 +29,10 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.polynomial import legendre
 from numpy.typing import NDArray
-from scipy.linalg.lapack import dposv as _posv
 
 from flutterfriction.errors import ConvergenceError, ParameterError
 from flutterfriction.models.rod import Rod
+from flutterfriction.models.rod_kernel import rhs_one
 
 
 def _integration_matrix(x: NDArray) -> NDArray:
@@ -60,6 +60,10 @@ def _cos_sin(theta: NDArray) -> tuple[NDArray, NDArray]:
     a, b = theta.real, theta.imag
     ca, sa, chb, shb = np.cos(a), np.sin(a), np.cosh(b), np.sinh(b)
     return ca * chb - 1j * (sa * shb), sa * chb + 1j * (ca * shb)
+
+
+_NOT_POSITIVE = ("the rod's mass matrix is not positive definite at this state (the Cholesky "
+                 "factorisation failed)")
 
 
 @dataclass
@@ -103,16 +107,6 @@ class NonlinearRod:
         self.K = self.rod.B * stiff
         self.C = self.rod.D * stiff
         self.int_phi = self.w @ self.phi  # int phi_i
-        # The cumulative integral int_0^{s_q} f as one matrix on the quadrature values (block
-        # lower triangular: whole elements before, the spectral matrix within): the one-state
-        # right-hand side (:meth:`_rhs_one`) then needs a handful of small matmuls.
-        Cq = np.zeros((N * ng, N * ng))
-        for k in range(N):
-            rows = slice(k * ng, (k + 1) * ng)
-            Cq[rows, : k * ng] = np.tile(self.wg, k)
-            Cq[rows, rows] = self.S
-        self.Cq = Cq
-        self._phi_t = np.ascontiguousarray(self.phi.T)
         self.int_phiphi = np.einsum("q,qi,qj->ij", self.w, self.phi, self.phi)
 
     def nodal_values_at(self, q: NDArray, s: NDArray) -> NDArray:
@@ -213,38 +207,27 @@ class NonlinearRod:
             return self._rhs_one(y, float(P))
         return np.concatenate([y[n:], self.accelerations(y[:n], y[n:], P)])
 
+    def rhs_at(self, P: float):
+        """``f(t, y)``: :meth:`rhs` for one real state at the load ``P`` [N], for an
+        integrator's many calls (the compiled kernel with its arguments bound once)."""
+        r = self.rod
+        args = (float(P), self.phi, self.w, self.S, self.wg, self.K, self.C, r.rho,
+                r.tip_mass, r.kappa)
+
+        def f(t: float, y: NDArray) -> NDArray:
+            out, ok = rhs_one(y, *args)
+            if not ok:
+                raise ConvergenceError(_NOT_POSITIVE)
+            return out
+
+        return f
+
     def _rhs_one(self, y: NDArray, P: float) -> NDArray:
-        """:meth:`rhs` for one real state: the same equations as :meth:`dynamic_terms` with the
-        cumulative integrals as one matrix (``Cq``), in ~15 small array operations instead of
-        ~60 (an explicit integrator calls this thousands of times per period; the batched
-        path stays the definition, ``tests/test_rod_nonlinear.py`` checks both agree)."""
-        r, n = self.rod, self.n_dof
-        q, v = y[:n], y[n:]
-        theta = self.phi @ q
-        c, s = np.cos(theta), np.sin(theta)
-        # G[q, :, j] = int_0^{s_q} t_perp phi_j: x and y components side by side.
-        tp_phi = np.concatenate((-s[:, None] * self.phi, c[:, None] * self.phi), axis=1)
-        G, G_tip = self.Cq @ tp_phi, self.w @ tp_phi
-        Gx, Gy, tx, ty = G[:, :n], G[:, n:], G_tip[:n], G_tip[n:]
-        wGx, wGy = self.w[:, None] * Gx, self.w[:, None] * Gy
-        M = r.rho * (Gx.T @ wGx + Gy.T @ wGy)
-        theta_dot = self.phi @ v
-        td2 = theta_dot * theta_dot
-        ax, ay = self.Cq @ (c * td2), self.Cq @ (s * td2)  # minus the centripetal x_ddot
-        h = -r.rho * (wGx.T @ ax + wGy.T @ ay)
-        if r.tip_mass > 0:
-            M = M + r.tip_mass * (np.outer(tx, tx) + np.outer(ty, ty))
-            h = h - r.tip_mass * (tx * (self.w @ (c * td2)) + ty * (self.w @ (s * td2)))
-        F = -P * (self._phi_t @ (self.w * np.sin(q[-1] - theta)))
-        if r.kappa > 0:
-            F = F - r.kappa * (wGx.T @ (Gx @ v) + wGy.T @ (Gy @ v))
-        g = h + self.K @ q + self.C @ v - F
-        # M is symmetric positive definite (a Gram matrix): LAPACK's Cholesky solve, called
-        # directly (numpy's solve spends ~20 us per call on checks at this size).
-        _, acc, info = _posv(M, -g, lower=0)
-        if info != 0:
-            raise ConvergenceError(f"the rod's mass matrix is singular (LAPACK info {info})")
-        return np.concatenate((v, acc))
+        """:meth:`rhs` for one real state: the same equations as :meth:`dynamic_terms`,
+        compiled (:func:`flutterfriction.models.rod_kernel.rhs_one`; an explicit integrator
+        calls this ~1e6 times per branch; the batched path stays the definition,
+        ``tests/test_rod_nonlinear.py`` checks both agree)."""
+        return self.rhs_at(P)(0.0, np.ascontiguousarray(y, dtype=float))
 
     # ------------------------------------------------------------------ linearisation
     def linear_matrices(self):

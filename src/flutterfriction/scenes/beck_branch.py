@@ -37,7 +37,7 @@ def cycle_shapes(model, y, T: float, P: float, n_times: int = 12, n_s: int = 41,
                  rtol: float = 1e-9) -> list:
     """The rod's centre line at ``n_times`` instants of one period of the cycle through the
     section state ``y``: ``[[x_0..x_{n_s-1}], [y_0..]]`` per instant [m] (rounded to 10 um)."""
-    sol = solve_ivp(lambda t, x: model.rhs(t, x, P), (0.0, T), y, method="DOP853", rtol=rtol,
+    sol = solve_ivp(model.rhs_at(P), (0.0, T), y, method="DOP853", rtol=rtol,
                     atol=rtol * 1e-3, dense_output=True)
     s = np.linspace(0.0, model.rod.length, 8 * (n_s - 1) + 1)
     out = []
