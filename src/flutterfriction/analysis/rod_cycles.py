@@ -105,20 +105,13 @@ def radau_iia(stages: int) -> tuple[NDArray, NDArray]:
 
 _STAGES = 5  # Radau IIA order 9 on the orbit's own steps: measured below
 _RADAU = radau_iia(_STAGES)
-_CHUNK = 64  # states per batched Jacobian evaluation (x (N + 1) complex steps: a few MB)
 
 
 def jacobians_along(model: NonlinearRod, Y: NDArray, P: float) -> tuple[NDArray, NDArray]:
-    """``J`` (m, N, N) and ``f_P`` (m, N) at the ``m`` states ``Y`` (N, m): the complex steps
-    of :func:`rhs_derivatives` for all states in a few batched right-hand sides."""
-    N, m = Y.shape
-    J, f_P = np.empty((m, N, N)), np.empty((m, N))
-    for k in range(0, m, _CHUNK):
-        F = _stepped_rhs(model, Y[:, k:k + _CHUNK], P).imag / _H
-        b = F.shape[1]
-        J[k:k + b] = np.moveaxis(F[:, :, :N], 1, 0)
-        f_P[k:k + b] = F[:, :, N].T
-    return J, f_P
+    """``J`` (m, N, N) and ``f_P`` (m, N) at the ``m`` states ``Y`` (N, m): the compiled
+    hand-differentiated Jacobian (:meth:`NonlinearRod.jacobians`; equal to the complex steps of
+    :func:`rhs_derivatives` to rounding, tested)."""
+    return model.jacobians(Y, P)
 
 
 def variational_flow(model: NonlinearRod, y: NDArray, T: float, P: float,
@@ -736,9 +729,12 @@ def cycle_on_finer_mesh(coarse: NonlinearRod, y: NDArray, T: float, P: float,
     Phi = Pr @ coarse_flow.Phi @ R_s
     z = np.concatenate([Pr @ y, [T]])
 
+    def jac(t, x):
+        return fine.jacobians(x[:, None], P)[0][0]
+
     def residual(z):
         yy, TT = z[:N], z[N]
-        sol = solve_ivp(fine.rhs_at(P), (0.0, TT), yy, method="LSODA",
+        sol = solve_ivp(fine.rhs_at(P), (0.0, TT), yy, method="LSODA", jac=jac,
                         rtol=rtol, atol=rtol * 1e-3, dense_output=True)
         if not sol.success:
             raise ConvergenceError(f"fine-mesh orbit failed at P = {P:g} N: {sol.message}")

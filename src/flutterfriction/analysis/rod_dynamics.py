@@ -23,7 +23,6 @@ from flutterfriction.analysis.rod_cycles import (
     Floquet,
     _gradient,
     floquet,
-    rhs_derivatives,
     section_value,
     tip_lateral,
     variational_flow,
@@ -69,12 +68,12 @@ def tip_state(model: NonlinearRod, y: NDArray) -> NDArray:
 
 def exact_jacobian(model: NonlinearRod, P: float, method: str) -> dict:
     """``solve_ivp`` options giving the implicit integrators (BDF, Radau, LSODA) the exact
-    Jacobian of the rod's right-hand side (batched complex step,
-    :func:`~flutterfriction.analysis.rod_cycles.rhs_derivatives`) instead of their finite
-    differences; none for the explicit ones."""
+    Jacobian of the rod's right-hand side (compiled, :meth:`NonlinearRod.jacobians`; equal to
+    the complex steps of :func:`~flutterfriction.analysis.rod_cycles.rhs_derivatives`)
+    instead of their finite differences; none for the explicit ones."""
     if method not in ("BDF", "Radau", "LSODA"):
         return {}
-    return {"jac": lambda t, y: rhs_derivatives(model, y, P)[1]}
+    return {"jac": lambda t, y: model.jacobians(y[:, None], P)[0][0]}
 
 
 def beck_limit_cycle(rod: Rod, P: float, n_elements: int = 8, method: str = "BDF",
