@@ -140,7 +140,7 @@ def figure_plot(wildcards):
 
 
 def scene_priority(wildcards):
-    return 10 if wildcards.scene in SLOW_SCENES else 0
+    return 10 if wildcards.scene in SLOW_SCENES else 5
 
 
 def figure_caption(wildcards):

@@ -114,6 +114,9 @@ for _part in BATCHES:
             f"results/logs/solve/{_part}.log",
         benchmark:
             f"results/benchmarks/solve_{_part}.tsv"
+        # before any figure or notebook (all solves first, longest first; the many short plot
+        # and notebook jobs then fill both cores to the end instead of a serial tail)
+        priority: 5
         conda:
             "../envs/flutterfriction.yaml"
         resources:

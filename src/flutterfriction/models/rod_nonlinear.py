@@ -215,7 +215,7 @@ class NonlinearRod:
                 r.tip_mass, r.kappa)
 
         def f(t: float, y: NDArray) -> NDArray:
-            out, ok = rhs_one(y, *args)
+            out, ok = rhs_one(np.ascontiguousarray(y, dtype=float), *args)  # one layout
             if not ok:
                 raise ConvergenceError(_NOT_POSITIVE)
             return out
@@ -229,8 +229,9 @@ class NonlinearRod:
         elements against ~400 us by complex steps on the batched definition, which checks it
         in ``tests/test_rod_nonlinear.py``)."""
         r = self.rod
-        J, f_P, ok = jacobians(np.asarray(Y, dtype=float), float(P), self.phi, self.w, self.S,
-                               self.wg, self.K, self.C, r.rho, r.tip_mass, r.kappa)
+        # C order always: one compiled specialisation (a second layout compiles again, ~4 s)
+        J, f_P, ok = jacobians(np.ascontiguousarray(Y, dtype=float), float(P), self.phi, self.w,
+                               self.S, self.wg, self.K, self.C, r.rho, r.tip_mass, r.kappa)
         if not ok:
             raise ConvergenceError(_NOT_POSITIVE)
         return J, f_P
@@ -240,7 +241,7 @@ class NonlinearRod:
         compiled (:func:`flutterfriction.models.rod_kernel.rhs_one`; an explicit integrator
         calls this ~1e6 times per branch; the batched path stays the definition,
         ``tests/test_rod_nonlinear.py`` checks both agree)."""
-        return self.rhs_at(P)(0.0, np.ascontiguousarray(y, dtype=float))
+        return self.rhs_at(P)(0.0, y)
 
     # ------------------------------------------------------------------ linearisation
     def linear_matrices(self):
