@@ -105,3 +105,33 @@ def test_adding_a_scene_is_one_registry_entry(tmp_path):
     shown = subprocess.run([sys.executable, "-c", probe], cwd=tmp_path, env=env,
                            capture_output=True, text=True, check=True).stdout
     assert "'toy'" in shown
+
+
+def test_the_import_scan_finds_every_import_statement_of_every_module():
+    """The workflow's dependency scan reads import statements from their lines (fast); on every
+    module of the package it finds exactly the statements of the full syntax tree."""
+    import ast
+
+    from flutterfriction.sources import _import_statements
+
+    for path in sorted((ROOT / "src" / "flutterfriction").rglob("*.py")):
+        text = path.read_text(encoding="utf-8")
+        full = sorted(ast.dump(n) for n in ast.walk(ast.parse(text))
+                      if isinstance(n, ast.Import | ast.ImportFrom))
+        assert sorted(ast.dump(n) for n in _import_statements(text, str(path))) == full, path
+
+
+def test_the_registry_does_not_import_the_plotting_code():
+    """Reading the registry (every `snakemake` call does) imports no matplotlib; a figure's
+    plot function is imported when drawn, and check_registry finds a missing one."""
+    code = ("import sys; from flutterfriction.registry import check_registry; "
+            "assert not check_registry(); print('matplotlib' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout
+    assert out.strip() == "False"
+    from flutterfriction.registry import FigureSpec, Scene
+
+    broken = Scene("toy", lambda p: {}, "ziegler",
+                   {"toy": FigureSpec("flutterfriction.plotting.rod:no_such_plot", "caption")})
+    assert check_registry({"toy": broken}) == [
+        "figure 'toy': a plot function and a caption are required"]

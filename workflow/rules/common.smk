@@ -50,7 +50,7 @@ SCENE_SOURCES = {
     for n, s in SCENES.items()
 }
 FIGURE_SOURCES = {
-    f: job_sources(spec.plot.__module__, "flutterfriction.plotting", "flutterfriction.sources")
+    f: job_sources(spec.module, "flutterfriction.plotting", "flutterfriction.sources")
     for f, (_, spec) in FIGURES.items()
 }
 
@@ -136,7 +136,7 @@ def scene_sweep(wildcards):
 
 
 def figure_plot(wildcards):
-    return import_path(FIGURES[wildcards.scene][1].plot)
+    return FIGURES[wildcards.scene][1].path
 
 
 def scene_priority(wildcards):

@@ -151,7 +151,7 @@ for _part in FIGURE_BATCHES:
             mem_mb=1000,
         params:
             figures={
-                f: (FIGURE_DATA[f], import_path(FIGURES[f][1].plot)) for f in FIGURE_BATCHES[_part]
+                f: (FIGURE_DATA[f], FIGURES[f][1].path) for f in FIGURE_BATCHES[_part]
             },
             draft=DRAFT,
         script:
