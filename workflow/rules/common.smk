@@ -49,6 +49,12 @@ SCENE_SOURCES = {
     n: job_sources(s.compute.__module__, "flutterfriction.scenes", "flutterfriction.sources")
     for n, s in SCENES.items()
 }
+# ... and the jobs importing the rod's compiled kernels wait for them to be compiled once.
+KERNELS = str(PKG / "models" / "rod_kernel.py")
+SCENE_SOURCES = {
+    n: files + (["results/benchmarks/kernels.json"] if KERNELS in files else [])
+    for n, files in SCENE_SOURCES.items()
+}
 FIGURE_SOURCES = {
     f: job_sources(spec.module, "flutterfriction.plotting", "flutterfriction.sources")
     for f, (_, spec) in FIGURES.items()

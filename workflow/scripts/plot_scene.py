@@ -1,5 +1,5 @@
-"""Draw one figure from its scene's data (thin: JSON in, PDF + PNG out; PNG only in the quick preset); the job imports only
-the figure's plotting module (params.plot, from the registry)."""
+"""Draw one figure from its scene's data (thin: JSON in, PDF + PNG out; PNG only in the quick
+preset); the job imports only the figure's plotting module (params.plot, from the registry)."""
 
 from flutterfriction.io import log_job_output, merge_timings, read_json
 from flutterfriction.plotting import save_figure
