@@ -183,8 +183,9 @@ display(Markdown("| P [N] | P / P_flu | growth rate [1/s] | frequency [rad/s] |\
 # section and a pseudo-arclength condition; the start is the linear flutter mode scaled to a tip
 # amplitude of 1 cm. Newton's method uses the exact Jacobian: the flow's derivatives with
 # respect to the state (the monodromy Φ) and to the load come from the variational equations
-# Φ' = J(y(t)) Φ integrated with the orbit (J by complex steps), so it converges quadratically,
-# and the converged cycle's Φ gives its Floquet multipliers with no further integration.
+# Φ' = J(y(t)) Φ integrated with the orbit (J differentiated by hand, checked against complex
+# steps), so it converges quadratically, and the converged cycle's Φ gives its Floquet
+# multipliers with no further integration.
 # The branch bends to higher loads with A ∝ √(P − P_flu), and every cycle's non-trivial
 # multipliers lie inside the unit circle, the slow one as the normal form predicts,
 # 1 − exp(−2σ(P)T) (0.2% apart at A = 1 cm): the Hopf bifurcation is supercritical.

@@ -5,9 +5,10 @@ A cycle is a state ``y`` on the Poincaré section (lateral tip velocity 0, the t
 lateral maximum), a period ``T`` and a load ``P`` with ``phi_T(y; P) = y``. Newton's method on
 these equations uses the *exact* Jacobian, from the variational equations integrated with the
 orbit (the flow's derivatives ``Phi = d phi_T / d y`` and ``S = d phi_T / d P``; the right-hand
-side's Jacobian by complex steps, exact to rounding), so it converges quadratically to the
-integrator's accuracy instead of stalling at a finite-difference noise floor. The same ``Phi``
-at the converged cycle gives the Floquet multipliers without another integration.
+side's Jacobian differentiated by hand and compiled, equal to complex steps to rounding), so
+it converges quadratically to the integrator's accuracy instead of stalling at a
+finite-difference noise floor. The same ``Phi`` at the converged cycle gives the Floquet
+multipliers without another integration.
 
 The slow (amplitude) multiplier near the Hopf point is ``1 - mu ~ 1e-5``: as an eigenvalue of
 ``Phi`` it sits next to the trivial multiplier 1 and is ill-conditioned (a near-coalescence:
@@ -122,7 +123,7 @@ def variational_flow(model: NonlinearRod, y: NDArray, T: float, P: float,
 
     The variational equations are linear along the known orbit, so they are solved after it,
     by 5-stage Radau IIA collocation on the orbit's own steps: ``J`` and ``f_P`` at every stage
-    point at once (complex steps on the dense output, batched), each step's transfer matrix
+    point at once (the compiled Jacobian on the dense output), each step's transfer matrix
     from one small linear solve (all steps batched), then their product. Radau IIA is
     L-stable, so the Kelvin–Voigt modes, which limit an explicit integrator's step, cost
     nothing here. Measured at 4 elements, P = 5.5 N, against DOP853 on the coupled system at

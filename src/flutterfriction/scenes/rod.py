@@ -446,7 +446,7 @@ def beck_work_precision(params: dict[str, Any]) -> dict[str, Any]:
     ``explicit_reference_meshes`` DOP853 at rtol 1e-11, where it is both cheaper and ~1e-15
     accurate (measured at 4 elements: 2.7 s against LSODA's 3.2 s; at 8 elements the
     Kelvin–Voigt stiffness makes it 31 s against 6.4 s). The implicit integrators (here and
-    in the setup) get the exact Jacobian of the right-hand side (complex step), not their
+    in the setup) get the exact Jacobian of the right-hand side (compiled), not their
     finite differences. The mesh errors of the converged cycle are in the
     ``beck_limit_cycle`` scene."""
     import time as _time
