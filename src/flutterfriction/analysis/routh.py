@@ -15,6 +15,7 @@ smooth function matter.
 
 from __future__ import annotations
 
+import math
 from fractions import Fraction
 from typing import NamedTuple
 
@@ -55,27 +56,36 @@ def hurwitz_determinants(coeffs: ArrayLike) -> NDArray[np.float64]:
 
 
 def _exact_minors(a: list[Fraction]) -> list[Fraction]:
-    """Leading principal minors of the Hurwitz matrix by fraction-free (Bareiss) elimination."""
+    """Leading principal minors of the Hurwitz matrix by fraction-free (Bareiss) elimination.
+
+    In integers: the coefficients times their common denominator ``D`` (a power of two for
+    floats) are integers, the Hurwitz matrix's ``k``-th minor scales by ``D^k``, and Bareiss'
+    divisions are exact in integers; each minor is returned as the exact fraction
+    ``minor / D^k`` (~10x cheaper than the same elimination in ``Fraction``s, which reduce by
+    a gcd at every operation)."""
     n = len(a) - 1
-    H = [[a[2 * j - i + 1] if 0 <= 2 * j - i + 1 <= n else Fraction(0) for j in range(n)]
+    D = math.lcm(*(x.denominator for x in a))
+    c = [x.numerator * (D // x.denominator) for x in a]
+    H = [[c[2 * j - i + 1] if 0 <= 2 * j - i + 1 <= n else 0 for j in range(n)]
          for i in range(n)]
     minors = []
     for k in range(1, n + 1):
         M = [row[:k] for row in H[:k]]
-        sign, prev = 1, Fraction(1)
+        sign, prev = 1, 1
         for p in range(k - 1):
             if M[p][p] == 0:  # pivot: swap with a lower row with a non-zero entry in column p
                 swap = next((r for r in range(p + 1, k) if M[r][p] != 0), None)
                 if swap is None:
-                    M[k - 1][k - 1] = Fraction(0)
+                    M[k - 1][k - 1] = 0
                     break
                 M[p], M[swap] = M[swap], M[p]
                 sign = -sign
             for i in range(p + 1, k):
                 for j in range(p + 1, k):
-                    M[i][j] = (M[i][j] * M[p][p] - M[i][p] * M[p][j]) / prev
+                    # exact: Bareiss' quotient is an integer (Sylvester's identity)
+                    M[i][j] = (M[i][j] * M[p][p] - M[i][p] * M[p][j]) // prev
             prev = M[p][p]
-        minors.append(sign * M[k - 1][k - 1])
+        minors.append(Fraction(sign * M[k - 1][k - 1], D**k))
     return minors
 
 
