@@ -344,8 +344,8 @@ def _fe_vanishing_damping_limit(tan_alpha: float, n_elements: int = 48) -> float
         return float(max(rates))
 
     grid = np.arange(0.1, 40.0, 0.1)
-    vals = [growth(p) for p in grid]
-    i = next(k for k, v in enumerate(vals) if v > 0)
+    # up to the first positive growth rate only (the grid beyond it cannot change the result)
+    i = next(k for k, p in enumerate(grid) if growth(p) > 0)
     return float(brentq(growth, grid[i - 1], grid[i], xtol=1e-14))
 
 
