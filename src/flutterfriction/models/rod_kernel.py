@@ -107,12 +107,7 @@ def _assemble(y, P, phi, w, S, wg, K, C, rho, tip_mass, kappa):  # pragma: no co
                 M[i, j] += tip_mass * (bx[i] * bx[j] + by[i] * by[j])
             g[i] -= tip_mass * (bx[i] * bax + by[i] * bay)
     if kappa > 0.0:  # external damping -kappa x_dot per length
-        xv = np.zeros(nq)
-        yv = np.zeros(nq)
-        for j in range(n):
-            for a in range(nq):
-                xv[a] += Gx[j, a] * v[j]
-                yv[a] += Gy[j, a] * v[j]
+        xv, yv = _along(Gx, Gy, v)
         for i in range(n):
             acc = 0.0
             for a in range(nq):
@@ -124,6 +119,20 @@ def _assemble(y, P, phi, w, S, wg, K, C, rho, tip_mass, kappa):  # pragma: no co
             acc += K[i, j] * q[j] + C[i, j] * v[j]
         g[i] += acc
     return M, g, c, s, td, td2, sn, cn, Gx, Gy, ax, ay, bx, by, bax, bay
+
+
+@njit(cache=True)
+def _along(Gx, Gy, x):  # pragma: no cover (compiled)
+    """``sum_j G_j(s_a) x_j`` at every point ``a`` (x and y components): the points' velocity
+    for ``x = q_dot``, the part of their acceleration in ``q_ddot`` for ``x = q_ddot``."""
+    n, nq = Gx.shape
+    px = np.zeros(nq)
+    py = np.zeros(nq)
+    for j in range(n):
+        for a in range(nq):
+            px[a] += Gx[j, a] * x[j]
+            py[a] += Gy[j, a] * x[j]
+    return px, py
 
 
 @njit(cache=True)
@@ -233,16 +242,9 @@ def jacobian_one(y, P, phi, w, S, wg, K, C, rho, tip_mass, kappa, J, f_P):  # pr
         for j in range(n):
             tdd[a] += phi[a, j] * acc[j]
     # x_ddot = sum_j G_j q_ddot_j - int t theta_dot^2 at the points (ex, ey) and the tip (EX, EY)
-    ex = np.zeros(nq)
-    ey = np.zeros(nq)
-    for a in range(nq):
-        sx = 0.0
-        sy = 0.0
-        for j in range(n):
-            sx += Gx[j, a] * acc[j]
-            sy += Gy[j, a] * acc[j]
-        ex[a] = w[a] * (sx - ax[a])
-        ey[a] = w[a] * (sy - ay[a])
+    ex, ey = _along(Gx, Gy, acc)
+    ex = w * (ex - ax)
+    ey = w * (ey - ay)
     EX = -bax
     EY = -bay
     for j in range(n):
@@ -263,16 +265,9 @@ def jacobian_one(y, P, phi, w, S, wg, K, C, rho, tip_mass, kappa, J, f_P):  # pr
     Vx = np.zeros(nq)
     Vy = np.zeros(nq)
     if kappa > 0.0:
-        for a in range(nq):
-            sx = 0.0
-            sy = 0.0
-            for j in range(n):
-                sx += Gx[j, a] * v[j]
-                sy += Gy[j, a] * v[j]
-            tmp[a] = w[a] * sx
-            Vy[a] = w[a] * sy
-        Vx = _cumint_t(tmp, S, wg)
-        Vy = _cumint_t(Vy.copy(), S, wg)
+        xv, yv = _along(Gx, Gy, v)
+        Vx = _cumint_t(w * xv, S, wg)
+        Vy = _cumint_t(w * yv, S, wg)
     Rq = np.zeros((n, n))  # dR_i/dq_k
     Rv = np.zeros((n, n))  # dR_i/dv_k
     for i in range(n):
