@@ -9,7 +9,7 @@ from scipy.integrate import solve_ivp
 
 from flutterfriction.analysis import rod as ar
 from flutterfriction.analysis.stability import discriminant, pencil_eigenvalues, refine_roots
-from flutterfriction.errors import ConvergenceError
+from flutterfriction.errors import ConvergenceError, ParameterError
 from flutterfriction.models.rod import Rod, RodGroups
 from flutterfriction.models.rod_nonlinear import NonlinearRod
 
@@ -371,3 +371,12 @@ def test_compiled_jacobian_is_the_complex_step_of_the_batched_definition(extra):
             assert np.abs(f_P[k] - f_P_cs).max() <= 1e-12 * np.abs(f_P_cs).max()
     with pytest.raises(ConvergenceError, match="positive definite"):
         m.jacobians(np.full((2 * m.n_dof, 1), np.nan), 5.5)
+    # the compiled kernels do not check their indices: a wrong shape is refused before them
+    for bad in (np.zeros(2 * m.n_dof - 1), np.zeros((2 * m.n_dof, 2))):
+        with pytest.raises(ParameterError, match="shape"):
+            m.rhs_at(5.5)(0.0, bad)
+    with pytest.raises(ParameterError, match="shape"):
+        m.rhs(0.0, np.zeros(2 * m.n_dof + 1), 5.5)
+    for bad in (np.zeros(2 * m.n_dof), np.zeros((2 * m.n_dof + 2, 3))):
+        with pytest.raises(ParameterError, match="shape"):
+            m.jacobians(bad, 5.5)

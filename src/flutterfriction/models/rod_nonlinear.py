@@ -214,8 +214,14 @@ class NonlinearRod:
         args = (float(P), self.phi, self.w, self.S, self.wg, self.K, self.C, r.rho,
                 r.tip_mass, r.kappa)
 
+        size = 2 * self.n_dof
+
         def f(t: float, y: NDArray) -> NDArray:
-            out, ok = rhs_one(np.ascontiguousarray(y, dtype=float), *args)  # one layout
+            y = np.ascontiguousarray(y, dtype=float)  # one layout: one compiled specialisation
+            if y.shape != (size,):  # the kernel does not check its indices
+                raise ParameterError(f"the state must have shape ({size},) (q and v of "
+                                     f"{size // 2} nodes), got {y.shape}")
+            out, ok = rhs_one(y, *args)
             if not ok:
                 raise ConvergenceError(_NOT_POSITIVE)
             return out
@@ -230,8 +236,12 @@ class NonlinearRod:
         in ``tests/test_rod_nonlinear.py``)."""
         r = self.rod
         # C order always: one compiled specialisation (a second layout compiles again, ~4 s)
-        J, f_P, ok = jacobians(np.ascontiguousarray(Y, dtype=float), float(P), self.phi, self.w,
-                               self.S, self.wg, self.K, self.C, r.rho, r.tip_mass, r.kappa)
+        Y = np.ascontiguousarray(Y, dtype=float)
+        if Y.ndim != 2 or Y.shape[0] != 2 * self.n_dof:  # the kernel does not check indices
+            raise ParameterError(f"the states must have shape ({2 * self.n_dof}, m), got "
+                                 f"{Y.shape}")
+        J, f_P, ok = jacobians(Y, float(P), self.phi, self.w, self.S, self.wg, self.K, self.C,
+                               r.rho, r.tip_mass, r.kappa)
         if not ok:
             raise ConvergenceError(_NOT_POSITIVE)
         return J, f_P
