@@ -22,7 +22,7 @@ PACKAGE = "flutterfriction"
 ROOT = Path(__file__).resolve().parent
 
 
-def _module_file(name: str, root: Path) -> Path | None:
+def module_file(name: str, root: Path = ROOT) -> Path | None:
     """The file of package module ``name`` (a module or a package's ``__init__``), if any."""
     parts = name.split(".")
     if parts[0] != PACKAGE:
@@ -33,11 +33,6 @@ def _module_file(name: str, root: Path) -> Path | None:
     if base.with_suffix(".py").is_file():
         return base.with_suffix(".py")
     return None
-
-
-def module_file(name: str, root: Path = ROOT) -> Path | None:
-    """The source file of package module ``name``, if there is one."""
-    return _module_file(name, root)
 
 
 def _parents(name: str) -> list[str]:
@@ -70,7 +65,7 @@ def _import_statements(text: str, filename: str) -> list[ast.stmt]:
 @cache
 def _imports(name: str, root: Path) -> frozenset[str]:
     """Package modules that module ``name`` imports directly (with their parent packages)."""
-    path = _module_file(name, root)
+    path = module_file(name, root)
     if path is None:
         return frozenset()
     is_package = path.name == "__init__.py"
@@ -90,8 +85,8 @@ def _imports(name: str, root: Path) -> frozenset[str]:
         else:
             continue
         for target in targets:
-            if _module_file(target, root) is not None:
-                found.update(p for p in _parents(target) if _module_file(p, root) is not None)
+            if module_file(target, root) is not None:
+                found.update(p for p in _parents(target) if module_file(p, root) is not None)
     return frozenset(found)
 
 
@@ -109,16 +104,16 @@ def module_sources(modules: Iterable[str], root: Path = ROOT) -> list[str]:
     seen: set[str] = set()
     todo = []
     for m in modules:
-        if _module_file(m, root) is None:
+        if module_file(m, root) is None:
             raise ValueError(f"{m!r} is not a module of {root}")
         todo += _parents(m)
     while todo:
         m = todo.pop()
-        if m in seen or _module_file(m, root) is None:
+        if m in seen or module_file(m, root) is None:
             continue
         seen.add(m)
         todo.extend(_imports(m, root) - seen)
-    return sorted(str(_module_file(m, root)) for m in seen)
+    return sorted(str(module_file(m, root)) for m in seen)
 
 
 def import_path(obj: Any, module: str | None = None) -> str:

@@ -108,9 +108,11 @@ def beck_limit_cycle(rod: Rod, P: float, n_elements: int = 8, method: str = "BDF
         y[n:] = coarse.nodal_values_at(yc[coarse.n_dof:], nodes)
     counter = {"rhs": 0}
 
+    one_state = model.rhs_at(P)  # the compiled kernel, its arguments bound once
+
     def rhs(t, z):
         counter["rhs"] += 1
-        return model.rhs(t, z, P)
+        return one_state(t, z)
 
     def section(t, z):  # lateral tip velocity; -1: at the maximum of the lateral displacement
         return section_value(model, z)
@@ -289,10 +291,12 @@ def _period(model: NonlinearRod, y: NDArray, T: float, P: float, method: str, rt
             counter: dict | None = None):
     """One period of the orbit from ``y`` (dense output; implicit methods get the exact
     Jacobian)."""
+    one_state = model.rhs_at(P)  # the compiled kernel, its arguments bound once
+
     def rhs(t, z):
         if counter is not None:
             counter["rhs"] += 1
-        return model.rhs(t, z, P)
+        return one_state(t, z)
 
     sol = solve_ivp(rhs, (0.0, T), y, method=method, rtol=rtol, atol=rtol * 1e-2,
                     dense_output=True, **exact_jacobian(model, P, method))
@@ -555,9 +559,11 @@ def grow_into_cycle(model: NonlinearRod, P: float, amplitude: float = 1e-3,
     sigma = float(np.linalg.eigvals(first_order_matrix(M0, K + P * K1, C)).real.max())
     counter = {"rhs": 0}
 
+    one_state = model.rhs_at(P)  # the compiled kernel, its arguments bound once
+
     def rhs(t, z):
         counter["rhs"] += 1
-        return model.rhs(t, z, P)
+        return one_state(t, z)
 
     def section(t, z):
         return section_value(model, z)
