@@ -16,7 +16,11 @@ from typing import Any
 
 import numpy as np
 
-from flutterfriction.io import markdown_table
+from flutterfriction.io import markdown_table, merge_timings, read_json
+
+#: The four studies of :func:`gather_runs`, in its order (the workflow's input names; each with
+#: its ``<name>_timings`` file).
+STUDIES = ("pendulum", "rod_fe", "rod_integrators", "rod_cycle")
 
 
 def _row(family: str, method: str, setting: Any, error: float | None, wall_s: float | None
@@ -54,6 +58,13 @@ def gather_runs(pendulum: Mapping[str, Any], rod_fe: Mapping[str, Any],
                   for k in ("tip_amplitude_m", "period_s", "tip_rotation_amplitude_rad"))
         rows.append(_row("rod limit cycle: mesh (vs finest)", "mesh continuation", n, err, wall))
     return rows
+
+
+def read_studies(files: Mapping[str, str | Path]) -> list[dict[str, Any]]:
+    """The four studies of :func:`gather_runs` (:data:`STUDIES`) read from ``files``, a
+    mapping of each name and ``<name>_timings`` to its JSON file, with the timings merged."""
+    return [merge_timings(read_json(files[name]), read_json(files[f"{name}_timings"]) or None)
+            for name in STUDIES]
 
 
 def read_benchmarks(paths: list[str | Path]) -> list[dict[str, Any]]:

@@ -40,6 +40,7 @@ USER_OUTPUTS = (
     + ["results/figures/pendulum_cycle.gif", "results/figures/beck_cycle.gif"]
     + expand("results/reports/{nb}.html", nb=NOTEBOOK_REPORTS)
     + list(rules.work_precision.output)
+    + list(rules.work_precision_figure.output)
     + list(rules.stress.output)
     + FIGURE_CHECKS
 )
@@ -54,6 +55,7 @@ rule report:
         coverage="workflow/coverage.yaml",
         stress="results/checks/stress.json",
         work_precision=rules.work_precision.output,
+        work_precision_figure=rules.work_precision_figure.output,
         data=expand("results/data/{scene}.json", scene=ALL_SCENES),
         figures=expand("results/figures/{scene}.{ext}", scene=ALL_FIGURES, ext=FIGURE_FORMATS),
         animations=["results/figures/pendulum_cycle.gif", "results/figures/beck_cycle.gif"],
