@@ -1,11 +1,19 @@
 """The work-precision gathering: runs from every study, and Snakemake's benchmark files."""
 
+import json
+import math
+
+import pytest
+
 from flutterfriction.benchmarks import (
+    STUDIES,
     best_per_method,
     gather_runs,
     read_benchmarks,
+    read_studies,
     work_precision_markdown,
 )
+from flutterfriction.errors import ParameterError
 
 
 def _studies():
@@ -87,3 +95,38 @@ def test_the_readme_timing_table_is_generated_from_benchmark_files(tmp_path):
     readme = f"intro\n{TIMING_START}\nold\n{TIMING_END}\nrest\n"
     expected = f"intro\n{TIMING_START}\n{table}{TIMING_END}\nrest\n"
     assert replace_timing_block(readme, table) == expected
+
+
+def test_median_wall_time_repeats_short_runs_only(monkeypatch):
+    """Short runs are repeated `repeats` times (their median tames timer noise); once the runs
+    took TIMED_ENOUGH_S together, no more (a long run is timed once); the value is fun's."""
+    import flutterfriction.scenes.common as common
+
+    calls = []
+
+    def fun():
+        calls.append(1)
+        return 42.0
+
+    monkeypatch.setattr(common, "TIMED_ENOUGH_S", math.inf)  # every run is "short"
+    value, t = common.median_wall_time(fun, 3)
+    assert (value, len(calls)) == (42.0, 3) and t >= 0
+    calls.clear()
+    monkeypatch.setattr(common, "TIMED_ENOUGH_S", 0.0)  # every run is "long"
+    value, t = common.median_wall_time(fun, 3)
+    assert (value, len(calls)) == (42.0, 1) and t >= 0
+    with pytest.raises(ParameterError, match="repeats"):
+        common.median_wall_time(fun, 0)
+
+
+def test_read_studies_merges_each_study_with_its_timings(tmp_path):
+    """The two work-precision jobs read the four studies by one function: each data file with
+    its timings merged back, in gather_runs' order."""
+    files = {}
+    for k, name in enumerate(STUDIES):
+        files[name] = tmp_path / f"{name}.json"
+        files[name].write_text(json.dumps({"runs": [{"error": k}]}))
+        files[f"{name}_timings"] = tmp_path / f"{name}.timings.json"
+        files[f"{name}_timings"].write_text(json.dumps({"runs": [{"wall_s": 0.5 + k}]}))
+    assert read_studies(files) == [{"runs": [{"error": k, "wall_s": 0.5 + k}]}
+                                   for k in range(4)]

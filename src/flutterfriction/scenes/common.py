@@ -2,10 +2,19 @@
 
 from __future__ import annotations
 
-from typing import Any
+import statistics
+import time
+from collections.abc import Callable
+from typing import Any, TypeVar
 
 from flutterfriction.errors import ParameterError
 from flutterfriction.models.ziegler import ZieglerPendulum
+
+T = TypeVar("T")
+
+#: A run this long [s] is timed once: its wall time is then known to a few per cent by itself
+#: (timer resolution, caches and the first call's warm-up matter for millisecond runs).
+TIMED_ENOUGH_S = 0.25
 
 
 def quantity(value: float | str, independent: float | str, method: str, independent_method: str,
@@ -37,3 +46,20 @@ def n_points(params: dict[str, Any], default: int = 401) -> int:
     if isinstance(n, bool) or not isinstance(n, int) or n < 11:
         raise ParameterError(f"n_points must be an integer >= 11, got {n!r}")
     return n
+
+
+def median_wall_time(fun: Callable[[], T], repeats: int) -> tuple[T, float]:
+    """``(fun(), median wall time [s])`` of up to ``repeats`` runs of ``fun``: a run is repeated
+    while the runs so far took less than :data:`TIMED_ENOUGH_S` together (as ``timeit``'s
+    autorange), so a work-precision study repeats its short runs, whose times are noisy, and
+    does not pay its longest runs three times over. Only the measured time depends on the
+    clock: ``fun`` is deterministic and its value is the same on every run."""
+    if repeats < 1:
+        raise ParameterError(f"repeats must be >= 1, got {repeats}")
+    times: list[float] = []
+    while True:
+        start = time.perf_counter()
+        value = fun()
+        times.append(time.perf_counter() - start)
+        if len(times) >= repeats or sum(times) >= TIMED_ENOUGH_S:
+            return value, float(statistics.median(times))

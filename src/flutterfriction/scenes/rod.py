@@ -4,7 +4,6 @@ over the tip mass, self-adjointness, and the evidence for the Fig. 12 erratum.""
 from __future__ import annotations
 
 import math
-import time
 from typing import Any
 
 import numpy as np
@@ -19,7 +18,7 @@ from flutterfriction.errors import (
 )
 from flutterfriction.models.rod import Rod, RodGroups
 from flutterfriction.models.rod_fe import assemble
-from flutterfriction.scenes.common import n_points, quantity, take
+from flutterfriction.scenes.common import median_wall_time, n_points, quantity, take
 from flutterfriction.scenes.sweep import Sweep
 
 EXACT = "Newton on the exact characteristic function, eq. (118)"
@@ -191,14 +190,10 @@ def rod_fe_convergence(params: dict[str, Any]) -> dict[str, Any]:
         exact = ar.critical_loads(g)
         err_p, err_w, times = [], [], []
         for n in elements:
-            ts = []
-            for _ in range(repeats):
-                t0 = time.perf_counter()
-                fe = ar.fe_critical_loads(g, n)
-                ts.append(time.perf_counter() - t0)
+            fe, t = median_wall_time(lambda g=g, n=n: ar.fe_critical_loads(g, n), repeats)
             err_p.append(abs(fe.p_flu - exact.p_flu) / exact.p_flu)
             err_w.append(abs(fe.omega_flu - exact.omega_flu) / exact.omega_flu)
-            times.append(float(np.median(ts)))
+            times.append(t)
         # Convergence rate: least-squares slope of log(error) against log(h) where the error is
         # above round-off (1e-12) and the asymptotic range has started (n >= 4).
         n_arr, e_arr = np.array(elements, float), np.array(err_p)

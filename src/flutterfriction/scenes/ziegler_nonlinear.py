@@ -18,7 +18,7 @@ from flutterfriction.analysis.ziegler import (
 from flutterfriction.closed_forms.ziegler_damped import eq54_flutter_gamma, viscosity_groups
 from flutterfriction.errors import ConvergenceError, check_positive, check_real
 from flutterfriction.models.ziegler import ZieglerPendulum
-from flutterfriction.scenes.common import pendulum_of, quantity, take
+from flutterfriction.scenes.common import median_wall_time, pendulum_of, quantity, take
 from flutterfriction.scenes.sweep import Sweep
 
 
@@ -218,9 +218,7 @@ def pendulum_work_precision(params: dict[str, Any]) -> dict[str, Any]:
       each integrator and tolerance, errors of period and amplitude against shooting at
       rtol 1e-12.
 
-    Times are medians of ``repeats`` runs."""
-    import time as _time
-
+    Times are medians of up to ``repeats`` runs (:func:`median_wall_time`)."""
     from scipy.integrate import solve_ivp
 
     from flutterfriction.analysis.ziegler import (
@@ -236,12 +234,7 @@ def pendulum_work_precision(params: dict[str, Any]) -> dict[str, Any]:
     repeats = int(params.get("repeats", 5))
 
     def timed(fun):
-        times, value = [], None
-        for _ in range(repeats):
-            t0 = _time.perf_counter()
-            value = fun()
-            times.append(_time.perf_counter() - t0)
-        return value, float(np.median(times))
+        return median_wall_time(fun, repeats)
 
     P_mp = float(flutter_load_multiprecision(p))
     runs = []
