@@ -380,3 +380,19 @@ def test_compiled_jacobian_is_the_complex_step_of_the_batched_definition(extra):
     for bad in (np.zeros(2 * m.n_dof), np.zeros((2 * m.n_dof + 2, 3))):
         with pytest.raises(ParameterError, match="shape"):
             m.jacobians(bad, 5.5)
+
+
+@pytest.mark.parametrize("n_elements", [1, 3, 8])
+def test_tip_lateral_velocity_is_the_kinematics_tip_row(n_elements):
+    """The section function's shortcut int cos(theta) theta_dot ds equals the second row of
+    G_tip v from the cumulative integrals, for real states and their complex steps."""
+    m = NonlinearRod(Rod(length=0.35, B=0.0332, rho=0.0546, D=7.078e-6, tip_mass=0.01),
+                     n_elements)
+    rng = np.random.default_rng(n_elements)
+    for _ in range(5):
+        q, v = rng.normal(size=m.n_dof), rng.normal(size=m.n_dof)
+        q = q + 1e-20j * rng.normal(size=m.n_dof)
+        full = (m.kinematics(q)[3] @ v)[1]
+        short = m.tip_lateral_velocity(q, v)
+        assert abs(short.real - full.real) <= 1e-14 * abs(full.real)
+        assert abs(short.imag - full.imag) <= 1e-14 * abs(full.imag)

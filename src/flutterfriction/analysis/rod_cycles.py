@@ -63,8 +63,7 @@ def rhs_derivatives(model: NonlinearRod, y: NDArray, P: float
 def section_value(model: NonlinearRod, y: NDArray):
     """The section function: lateral tip velocity (zero at the lateral extremes of the tip)."""
     n = model.n_dof
-    _, _, _, G_tip = model.kinematics(y[:n])
-    return (G_tip @ y[n:])[1]
+    return model.tip_lateral_velocity(y[:n], y[n:])
 
 
 def tip_lateral(model: NonlinearRod, y: NDArray):

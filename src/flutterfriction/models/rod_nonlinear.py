@@ -144,6 +144,12 @@ class NonlinearRod:
         G, G_tip = self._cumint(tp[..., None] * phi)
         return theta, t, G, G_tip
 
+    def tip_lateral_velocity(self, q: NDArray, v: NDArray):
+        """The tip's lateral velocity ``int_0^l cos(theta) theta_dot ds`` (the second row of
+        ``G_tip v``) without the cumulative integrals of :meth:`kinematics`: the Poincaré
+        section's function, which the integrators evaluate at every step (~10x cheaper)."""
+        return self.w @ (_cos_sin(self.phi @ q)[0] * (self.phi @ v))
+
     def tip_position(self, q: NDArray) -> NDArray:
         theta = self.phi @ q
         _, x_tip = self._cumint(np.stack([np.cos(theta), np.sin(theta)], axis=-1))

@@ -448,6 +448,7 @@ def beck_work_precision(params: dict[str, Any]) -> dict[str, Any]:
 
     from scipy.integrate import solve_ivp
 
+    from flutterfriction.analysis.rod_cycles import section_value
     from flutterfriction.analysis.rod_dynamics import (
         exact_jacobian,
         generalized_alpha,
@@ -466,8 +467,8 @@ def beck_work_precision(params: dict[str, Any]) -> dict[str, Any]:
         m = NonlinearRod(rod, int(n_el))
         n = m.n_dof
 
-        def section(t, z, m=m, n=n):
-            return (m.kinematics(z[:n])[3] @ z[n:])[1]
+        def section(t, z, m=m):
+            return section_value(m, z)
 
         section.direction = -1.0
 
