@@ -185,3 +185,16 @@ def test_plastic_modulus_eq152_and_classification():
     assert ac.classify_acoustic(so.acoustic_tensor(E, P, Q, np.sqrt(g1 * g2), n)) == "flutter"
     assert ac.classify_acoustic(so.acoustic_tensor(E, P, Q, 10 * g2, n)) == "stable"
     assert ac.classify_acoustic(so.acoustic_tensor(E, P, Q, -0.01, n)) == "divergence"
+
+
+def test_cubic_discriminant_is_the_eigenvalues_discriminant():
+    """The invariants from the entries give the discriminant prod (eta_i - eta_j)^2 of the
+    eigenvalues: positive for three real ones, negative for a complex pair."""
+    rng = np.random.default_rng(7)
+    A = rng.normal(size=(2000, 3, 3))
+    eta = np.linalg.eigvals(A)
+    exact = ((eta[:, 0] - eta[:, 1]) * (eta[:, 0] - eta[:, 2]) * (eta[:, 1] - eta[:, 2])) ** 2
+    D = ac.cubic_discriminant(A)
+    scale = np.sum(A**2, axis=(-2, -1)) ** 3
+    assert np.max(np.abs(D - exact.real) / scale) < 1e-13
+    assert np.all((D < 0) == np.any(np.abs(eta.imag) > 1e-9, axis=-1))

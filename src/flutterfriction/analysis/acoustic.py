@@ -25,9 +25,15 @@ def cubic_discriminant(A: NDArray) -> NDArray:
     three distinct real eigenvalues, negative for a complex-conjugate pair (flutter), zero at a
     coalescence. No eigenvalue is computed."""
     A = np.asarray(A, dtype=float)
-    i1 = np.trace(A, axis1=-2, axis2=-1)
-    i2 = 0.5 * (i1**2 - np.trace(A @ A, axis1=-2, axis2=-1))
-    i3 = np.linalg.det(A)
+    # The invariants from the entries (elementwise over the stack: ~5x faster than a stacked
+    # matrix product and LU determinant on the flutter map's ~1e6 tensors); i2 as the sum of
+    # the principal minors, free of the cancellation in (i1^2 - tr A^2) / 2.
+    (a11, a12, a13), (a21, a22, a23), (a31, a32, a33) = (
+        [A[..., i, j] for j in range(3)] for i in range(3))
+    i1 = a11 + a22 + a33
+    i2 = a11 * a22 + a11 * a33 + a22 * a33 - a12 * a21 - a13 * a31 - a23 * a32
+    i3 = (a11 * (a22 * a33 - a23 * a32) - a12 * (a21 * a33 - a23 * a31)
+          + a13 * (a21 * a32 - a22 * a31))
     # eta^3 - i1 eta^2 + i2 eta - i3: discriminant of a x^3 + b x^2 + c x + d
     a, b, c, d = 1.0, -i1, i2, -i3
     return (18 * a * b * c * d - 4 * b**3 * d + b**2 * c**2 - 4 * a * c**3
