@@ -260,7 +260,10 @@ def pendulum_work_precision(params: dict[str, Any]) -> dict[str, Any]:
     x0 = np.array(ref.section_state)
 
     def section(t, x):
-        return x[2]
+        # each run starts on the section (x0): 0 there by definition, not the rounding-level
+        # residue whose sign the dense output need not reproduce (scipy's event search would
+        # then raise; seen on the rod's section, beck_work_precision)
+        return 0.0 if t == 0.0 else x[2]
 
     section.direction = -1.0
     for method in params["methods"]:
