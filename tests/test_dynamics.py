@@ -96,3 +96,23 @@ def test_tip_acceleration_is_second_derivative_of_position():
     fd = np.gradient(np.gradient(C, t, axis=0), t, axis=0)
     acc = dy.tip_acceleration(SEC29, sol.y.T, P)
     assert np.allclose(acc[10:-10], fd[10:-10], rtol=1e-3, atol=1e-3 * np.abs(acc).max())
+
+
+def test_an_integration_started_on_the_section_never_trips_the_event_search():
+    """A start on the section (its value a rounding-level residue of either sign): the event
+    is 0 at the start, the section's own value after, with its direction; scipy then finds the
+    next crossing whatever the residue's sign (it raised when the residue's sign was not
+    reproduced by the dense output)."""
+    from scipy.integrate import solve_ivp
+
+    from flutterfriction.analysis.events import from_the_section
+
+    event = from_the_section(lambda t, y: y[1])
+    assert event.direction == -1.0
+    assert event(0.0, np.array([1.0, 1e-17])) == 0.0
+    assert event(0.5, np.array([1.0, -0.25])) == -0.25
+    for residue in (1e-17, -1e-17, 0.0):  # y = (cos t, -sin t): y[1] falls through 0 at pi
+        sol = solve_ivp(lambda t, y: [y[1], -y[0]], (0.0, 7.0), [-1.0, residue],
+                        method="LSODA", rtol=1e-8, atol=1e-10, events=event)
+        later = [t for t in sol.t_events[0] if t > 1.0]
+        assert later and abs(later[0] - math.pi) < 1e-6

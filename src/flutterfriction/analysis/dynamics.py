@@ -16,6 +16,7 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.integrate import solve_ivp
 from scipy.optimize import root
 
+from flutterfriction.analysis.events import from_the_section
 from flutterfriction.errors import ConvergenceError, ParameterError, check_real
 from flutterfriction.models.ziegler import ZieglerPendulum
 
@@ -279,10 +280,7 @@ def section_return(pendulum: ZieglerPendulum, P: float, state: ArrayLike, period
     """Time and state of the first return to the section ``alpha1_dot = 0`` (downwards,
     ``alpha1 > 0``) after half a ``period`` [s], with another integrator (Radau, analytic
     Jacobian) than the shooting: an independent check of a periodic orbit."""
-    def section(t, x):
-        return x[2]
-
-    section.direction = -1.0
+    section = from_the_section(lambda t, x: x[2])  # ``state`` is on the section
     sol = simulate(pendulum, P, state, 1.5 * period, method=method, rtol=rtol, atol=atol,
                    events=section)
     hits = [(float(t), y) for t, y in zip(sol.t_events[0], sol.y_events[0], strict=True)

@@ -448,6 +448,7 @@ def beck_work_precision(params: dict[str, Any]) -> dict[str, Any]:
 
     from scipy.integrate import solve_ivp
 
+    from flutterfriction.analysis.events import from_the_section
     from flutterfriction.analysis.rod_cycles import section_value
     from flutterfriction.analysis.rod_dynamics import (
         exact_jacobian,
@@ -472,16 +473,9 @@ def beck_work_precision(params: dict[str, Any]) -> dict[str, Any]:
 
         section.direction = -1.0
 
-        def from_the_section(t, z, m=m):
-            # A period starts on the section (a crossing of the run before): the value there is
-            # 0 by definition, not its rounding-level residue, whose sign the integrator's
-            # dense output need not reproduce at t = 0 (scipy's event search then finds no
-            # sign change in the bracket it detected and raises: LSODA, 2 elements, rtol 1e-5).
-            return 0.0 if t == 0.0 else section_value(m, z)
+        on_section = from_the_section(section)  # each timed period starts on the section
 
-        from_the_section.direction = -1.0
-
-        def one_period(y0, method, rtol, m=m, section=from_the_section):
+        def one_period(y0, method, rtol, m=m, section=on_section):
             """Return time and lateral tip displacement at the next positive crossing."""
             s = solve_ivp(lambda t, y: m.rhs(t, y, P), (0.0, 4 * rod.time_scale), y0,
                           method=method, rtol=rtol, atol=rtol * 1e-2, events=section,

@@ -9,6 +9,7 @@ from typing import Any
 import numpy as np
 
 from flutterfriction.analysis import dynamics as dy
+from flutterfriction.analysis.events import from_the_section
 from flutterfriction.analysis.ziegler import (
     damped_divergence_load,
     damped_flutter_load,
@@ -259,13 +260,8 @@ def pendulum_work_precision(params: dict[str, Any]) -> dict[str, Any]:
     ref = dy.shoot_periodic_orbit(pc, P, lc)
     x0 = np.array(ref.section_state)
 
-    def section(t, x):
-        # each run starts on the section (x0): 0 there by definition, not the rounding-level
-        # residue whose sign the dense output need not reproduce (scipy's event search would
-        # then raise; seen on the rod's section, beck_work_precision)
-        return 0.0 if t == 0.0 else x[2]
-
-    section.direction = -1.0
+    # each run starts on the section (x0, the shooting's section state)
+    section = from_the_section(lambda t, x: x[2])
     for method in params["methods"]:
         for rtol in params["rtols"]:
             kw = {}
