@@ -141,7 +141,7 @@ def plot_fe_convergence(data: dict[str, Any]) -> Figure:
     ax1.legend(fontsize=6)
     # (the quick preset's few meshes: run times within a decade)
     tidy_log_axis(ax2.xaxis, [t for c in data["cases"].values() for t in c["time_s"]])
-    ax2.set_xlabel("run time per critical-load solve [s] (median)")
+    ax2.set_xlabel("run time per critical-load solve [s] (median of ≤ 3 runs)")
     ax2.set_ylabel("relative error of p_flu [-]")
     ax2.legend(fontsize=7)
     fig.suptitle("Finite elements (scikit-fem) against the exact characteristic function",
