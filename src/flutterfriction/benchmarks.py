@@ -18,9 +18,10 @@ import numpy as np
 
 from flutterfriction.io import markdown_table, merge_timings, read_json
 
-#: The four studies of :func:`gather_runs`, in its order (the workflow's input names; each with
-#: its ``<name>_timings`` file).
-STUDIES = ("pendulum", "rod_fe", "rod_integrators", "rod_cycle")
+#: The four studies of :func:`gather_runs`, in its order: the workflow's input name of each
+#: and the scene whose data (and ``<name>_timings``) it reads.
+STUDIES = {"pendulum": "pendulum_work_precision", "rod_fe": "rod_fe_convergence",
+           "rod_integrators": "beck_work_precision", "rod_cycle": "beck_limit_cycle"}
 
 
 def _row(family: str, method: str, setting: Any, error: float | None, wall_s: float | None

@@ -2,16 +2,16 @@
 # soon as the four studies are solved), and the wall time and peak memory of every job (from
 # the `benchmark:` files, one table, written once every job has run).
 
-WORK_PRECISION_STUDIES = dict(
-    pendulum="results/data/pendulum_work_precision.json",
-    pendulum_timings="results/benchmarks/pendulum_work_precision.timings.json",
-    rod_fe="results/data/rod_fe_convergence.json",
-    rod_fe_timings="results/benchmarks/rod_fe_convergence.timings.json",
-    rod_integrators="results/data/beck_work_precision.json",
-    rod_integrators_timings="results/benchmarks/beck_work_precision.timings.json",
-    rod_cycle="results/data/beck_limit_cycle.json",
-    rod_cycle_timings="results/benchmarks/beck_limit_cycle.timings.json",
-)
+from flutterfriction.benchmarks import STUDIES
+
+# The four studies' data and timings, by the input names benchmarks.read_studies reads.
+WORK_PRECISION_STUDIES = {
+    **{name: f"results/data/{scene}.json" for name, scene in STUDIES.items()},
+    **{
+        f"{name}_timings": f"results/benchmarks/{scene}.timings.json"
+        for name, scene in STUDIES.items()
+    },
+}
 
 
 rule work_precision_figure:
