@@ -337,6 +337,12 @@ def test_non_finite_result_is_an_error_not_printed(capsys, monkeypatch):
     (["--D", "1e3"], "--D", "eta"), (["--tip-mass", "1e300"], "--tip-mass", "100"),
     (["--kappa", "-1e-3"], "--kappa", ">= 0"), (["--B", "1e-300"], "--B", "1e-12"),
     (["--P", "3.0"], "--P", "2.96454"), (["--P", "3.3"], "--P", "--t-max >="),
+    # outside audit: a tiny viscosity ran past 2 minutes (--D 1e-9) or was diagnosed as "does
+    # not flutter" (--D 1e-20, a long soft rod); a slow approach blamed --P for --t-max
+    (["--D", "1e-9"], "--D", "[0.0001, 1]"), (["--D", "1e-20"], "--D", "[0.0001, 1]"),
+    (["--length", "1e6", "--B", "1e12", "--rho", "1e-12"], "--D", "[0.0001, 1]"),
+    (["--D", "1.5e-6"], "--t-max", "--t-max >= 71"),
+    (["--P", "3.0", "--t-max", "0.001"], "--t-max", "--t-max >="),
 ])
 def test_limit_cycle_beck_refused_up_front(capsys, args, name, text):
     """Issue 12: --D 0, --P 1e6, --elements 200 hung; --P 3.0 said the motion decays (it grows,
@@ -401,3 +407,21 @@ def test_version(capsys):
         main(["--version"])
     assert exc.value.code == 0
     assert capsys.readouterr().out.strip() == f"flutterfriction {__version__}"
+
+
+@pytest.mark.parametrize(("si", "load_unit", "time_scale"), [
+    (["--length", "1", "--B", "1e-200", "--rho", "1e200"], 1e-200, 1e200),  # rho/B overflows
+    (["--length", "1e-160", "--B", "1e-20", "--rho", "1e30"], 1e300, 1e-295),  # l^2 subnormal
+])
+def test_rod_si_units_at_the_ends_of_the_range(capsys, si, load_unit, time_scale):
+    """Outside audit: rho/B = 1e400 overflowed into an internal error after half the text was
+    printed, and l^2 = 1e-320 (a subnormal) gave P_flu_N wrong by 1e-5, silently. The SI units
+    are now formed without overflow or underflow (models.rod.power_product)."""
+    code, out, err = _run(capsys, ["rod", *si, "--json"])
+    assert code == 0 and err == ""
+    r = _strict(out)
+    assert r["P_flu_N"] == pytest.approx(r["p_flu"] * load_unit, rel=1e-14)
+    assert r["p_flu"] == pytest.approx(20.0509536, rel=1e-8)  # the Beck rod
+    assert r["time_scale_s"] == pytest.approx(time_scale, rel=1e-14)
+    code, out, err = _run(capsys, ["rod", *si])
+    assert code == 0 and out.startswith("stable     p in [0, 20.05095362]")

@@ -156,3 +156,17 @@ def test_coalescence_digits_against_mpmath(list47):
         for ours in (P_flu, P_div):
             exact = mp.findroot(disc, mp.mpf(ours))
             assert abs(ours - float(exact)) <= 5e-15 * abs(ours)
+
+
+def test_closed_form_refuses_what_the_numerical_twin_refuses():
+    """Outside audit: k1 = 1e300 raised a raw OverflowError in the closed form, while the
+    numerical twin refused it naming k1, k2."""
+    from flutterfriction.errors import ParameterError
+
+    p = ZieglerPendulum(l1=0.1, l2=0.1, d=0.05, h=0.0, m1=0.3, m2=0.1, m3=0.0, k1=1e300, k2=0.2)
+    with pytest.raises(ParameterError, match=r"^k1, k2: the ratio k1/k2"):
+        cf.critical_loads_closed_form(p)
+    with pytest.raises(ParameterError, match=r"^pendulum must be a ZieglerPendulum"):
+        cf.critical_loads_closed_form("x")
+    with pytest.raises(ParameterError, match=r"^pendulum must be a ZieglerPendulum"):
+        critical_loads("x")

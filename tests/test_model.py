@@ -86,3 +86,17 @@ def test_loads_must_be_finite(list47):
         list47.geometric_matrix(P=math.nan)
     with pytest.raises(ParameterError, match="H"):
         list47.geometric_matrix(H=math.inf)
+
+
+@pytest.mark.parametrize(("state", "P", "name"), [
+    ([math.nan, 0, 0, 0], 1.0, "state"), ([0.1, 0, 0, 0], math.nan, "P"),
+    ([0.1, 0, 0], 1.0, "state"), ([[0.1, 0.2], [0, 0]], 1.0, "state"),
+])
+def test_equations_of_motion_refuse_non_finite_or_misshapen_input(state, P, name):
+    """Outside audit: a NaN state or load gave NaN accelerations silently, a 3-vector a raw
+    unpacking error. (Integrators validate their start once and call it unchecked.)"""
+    p = ZieglerPendulum(**LIST47)
+    with pytest.raises(ParameterError, match=rf"^{name} "):
+        p.equations_of_motion(state, P)
+    unchecked = p.equations_of_motion([0.1, 0, 0, 0], 1.0, check=False)
+    assert np.array_equal(unchecked, p.equations_of_motion([0.1, 0, 0, 0], 1.0))

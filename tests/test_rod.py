@@ -289,3 +289,44 @@ def test_window_narrower_than_the_scan_step():
     div = [iv for iv in c.intervals if iv["regime"] == "divergence"]
     assert len(div) == 1 and 0.06 < div[0]["p_to"] - div[0]["p_from"] < 0.09
     assert c.p_div == pytest.approx(48.8154, abs=1e-3) and c.p_div == div[0]["p_from"]
+
+
+def test_power_product_matches_the_direct_formulas_and_survives_the_ends():
+    """Eq. (106)'s units and groups without overflow or underflow on the way: equal to the
+    direct formulas (few ulps) where those are safe, right where they are not."""
+    import random
+
+    from flutterfriction.models.rod import power_product
+
+    rng = random.Random(7)
+    for _ in range(2000):
+        l, B, rho, D, k, M = (10 ** rng.uniform(-3, 3) for _ in range(6))
+        r = Rod(length=l, B=B, rho=rho, D=D, kappa=k, tip_mass=M)
+        g = r.groups()
+        direct = (l**2 * math.sqrt(rho / B), B / l**2, M / (rho * l),
+                  D / (B * l**2) * math.sqrt(B / rho), k * l**2 / math.sqrt(rho * B))
+        for a, b in zip(direct, (r.time_scale, r.load_unit, g.tan_alpha, g.eta, g.gamma),
+                        strict=True):
+            assert b == pytest.approx(a, rel=4e-15)
+    assert Rod(length=1e-160, B=1e-20, rho=1e30).load_unit == pytest.approx(1e300, rel=1e-15)
+    assert Rod(length=1, B=1e-200, rho=1e200).time_scale == pytest.approx(1e200, rel=1e-15)
+    assert power_product((0.0, 1), (5.0, -2)) == 0.0
+    assert power_product((2.0**-1074, 0.5), (2.0**-1074, 0.5)) == 2.0**-1074
+
+
+@pytest.mark.parametrize(("call", "name"), [
+    (lambda: ar.eigenvalues(float("nan"), RodGroups()), "p"),
+    (lambda: ar.fe_eigenvalues(RodGroups(), float("inf"), 10), "p"),
+    (lambda: ar.branches(RodGroups(), [1.0, float("nan")]), "p_values"),
+    (lambda: ar.branches(RodGroups(), []), "p_values"),
+    (lambda: ar.eigenvalues(10.0, RodGroups(), n_modes=-1), "n_modes"),
+    (lambda: ar.eigenvalues(10.0, RodGroups(), n_modes=0), "n_modes"),
+    (lambda: ar.fe_eigenvalues(RodGroups(), 1.0, 0), "n_elements"),
+    (lambda: ar.eigenvalues(1e4, RodGroups()), "p"),
+    (lambda: ar.critical_loads("x"), "g"),
+])
+def test_eigenvalue_helpers_refuse_bad_arguments(call, name):
+    """Outside audit: NaN loads reached LAPACK ("Array must not contain infs or NaNs"), and
+    n_modes = -1 returned the highest FE modes silently."""
+    with pytest.raises(ParameterError, match=rf"^{name} "):
+        call()

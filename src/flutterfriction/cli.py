@@ -56,6 +56,12 @@ BECK_LOAD_MAX = 3.0  # P / P_flu; at 3 P_flu (8.9 N, list 119) the cycle takes ~
 BECK_T_MAX_SCALES = 2000.0  # t_max / (l^2 sqrt(rho/B))
 BECK_T_MAX_DEFAULT_SCALES = 200.0
 BECK_ETA_MAX, BECK_GAMMA_MAX, BECK_TIP_MASS_RATIO_MAX = 1.0, 100.0, 100.0  # eta: as `rod`
+#: The approach to the cycle is governed by the dissipation: measured on list (119) at 5.5 N
+#: (4 elements, from the straight rod), converged at 14.6 s for eta = 1.36e-3, 35.6 s for
+#: 5.75e-4 and 69 s for 2.9e-4 (tol 1e-5): t ~ 0.13 T/eta, T = l^2 sqrt(rho/B). Below
+#: BECK_ETA_MIN even the largest --t-max (2000 T) is less than twice that estimate's half.
+BECK_ATTRACTION_SCALES = 0.13  # t_need ~ BECK_ATTRACTION_SCALES T / eta
+BECK_ETA_MIN = 1e-4
 BECK_RANGES = {"length": (1e-6, 1e6, "m"), "B": (1e-12, 1e12, "N m^2"),
                "rho": (1e-12, 1e12, "kg/m")}
 BECK_TOL = 1e-5  # the cycle's convergence tolerance (relative)
@@ -173,7 +179,7 @@ def build_parser() -> argparse.ArgumentParser:
             ("B", LIST_119["B"], "bending stiffness [N m^2], 1e-12..1e12"),
             ("rho", LIST_119["rho"], "mass per length [kg/m], 1e-12..1e12"),
             ("D", LIST_119["D"], f"Kelvin-Voigt viscosity [N m^2 s], > 0, with eta = "
-                            f"D/(B l^2) sqrt(B/rho) <= {BECK_ETA_MAX:g}"),
+                            f"D/(B l^2) sqrt(B/rho) in [{BECK_ETA_MIN:g}, {BECK_ETA_MAX:g}]"),
             ("kappa", 0.0, f"external damping [N s/m^2], >= 0, with gamma = kappa l^2/"
                            f"sqrt(rho B) <= {BECK_GAMMA_MAX:g}"),
             ("tip-mass", 0.0, f"tip mass [kg], 0..{BECK_TIP_MASS_RATIO_MAX:g} rho l")):
@@ -225,16 +231,19 @@ def _limit_cycle_beck(args: argparse.Namespace) -> dict:
         raise ParameterError(f"--length, --B, --rho: the time scale l^2 sqrt(rho/B) must be in "
                              f"[1e-4, 1e4] s (the integrator's absolute tolerances are in SI "
                              f"units), got {T:.3g} s")
-    L, B, rho = rod.length, rod.B, rod.rho  # eq. (106)'s groups, each an overflow-free product
+    groups = rod.groups()  # eq. (106), formed without overflow or underflow
     for option, value, limit, text in (
-            ("--D", rod.D * (math.sqrt(B / rho) / (B * L * L)), BECK_ETA_MAX,
-             "eta = D/(B l^2) sqrt(B/rho)"),
-            ("--kappa", rod.kappa * (L * L / math.sqrt(rho * B)), BECK_GAMMA_MAX,
-             "gamma = kappa l^2/sqrt(rho B)"),
-            ("--tip-mass", rod.tip_mass * (1 / (rho * L)), BECK_TIP_MASS_RATIO_MAX,
-             "M/(rho l)")):
+            ("--D", groups.eta, BECK_ETA_MAX, "eta = D/(B l^2) sqrt(B/rho)"),
+            ("--kappa", groups.gamma, BECK_GAMMA_MAX, "gamma = kappa l^2/sqrt(rho B)"),
+            ("--tip-mass", groups.tan_alpha, BECK_TIP_MASS_RATIO_MAX, "M/(rho l)")):
         if not value <= limit:
             raise ParameterError(f"{option}: {text} must be <= {limit:g}, got {value:.4g}")
+    if not groups.eta >= BECK_ETA_MIN:  # before the linearised rod: its onset is then unresolved
+        raise ParameterError(
+            f"--D: eta = D/(B l^2) sqrt(B/rho) must be in [{BECK_ETA_MIN:g}, {BECK_ETA_MAX:g}], "
+            f"got {groups.eta:.4g}: the cycle attracts at a rate ~ eta (it needs ~"
+            f"{BECK_ATTRACTION_SCALES:g}/eta time scales l^2 sqrt(rho/B), measured), beyond the "
+            f"largest --t-max below {BECK_ETA_MIN:g}")
     t_limit = BECK_T_MAX_SCALES * T
     t_max = BECK_T_MAX_DEFAULT_SCALES * T if args.t_max is None else args.t_max
     if not 0 < t_max <= t_limit:
@@ -242,6 +251,13 @@ def _limit_cycle_beck(args: argparse.Namespace) -> dict:
                              f"time scales l^2 sqrt(rho/B) = {T:.4g} s), got {t_max!r}")
     if not args.P > 0:
         raise ParameterError(f"--P must be > 0 N, got {args.P!r}")
+    t_need_eta = BECK_ATTRACTION_SCALES * T / groups.eta
+    if t_need_eta / 2 > t_max:
+        raise ParameterError(
+            f"--t-max = {t_max:.4g} s is too short for eta = {groups.eta:.3g}: the cycle attracts "
+            f"at a rate ~ eta and needs roughly {t_need_eta:.3g} s of simulated time "
+            f"({BECK_ATTRACTION_SCALES:g}/eta time scales, measured); give --t-max >= "
+            f"{min(t_need_eta, t_limit):.3g} s (at most {t_limit:.4g} s) or a larger --D")
 
     M, C, K, K1 = NonlinearRod(rod, args.elements).linear_matrices()
     try:
@@ -279,6 +295,13 @@ def _limit_cycle_beck(args: argparse.Namespace) -> dict:
             hints.append(f"--P >= {P_ok:.4g} N")
         if t_need <= t_limit:
             hints.append(f"--t-max >= {t_need:.3g} s")
+        t_need_top = math.log(1e4) / (2 * growth(P_top))
+        if not hints and t_need_top / 2 <= t_limit:  # the user's --t-max is the obstacle
+            raise ParameterError(
+                f"--t-max = {t_max:.4g} s is too short: at --P = {args.P:g} N the cycle needs "
+                f"roughly {t_need:.3g} s of simulated time, and even at {BECK_LOAD_MAX:g} "
+                f"P_flu = {P_top:.4g} N roughly {t_need_top:.3g} s; give a larger --t-max "
+                f"(at most {t_limit:.4g} s) and, if that is not enough, a larger --P")
         if not hints:
             raise ParameterError(
                 f"--P: this rod grows too slowly up to {BECK_LOAD_MAX:g} P_flu = {P_top:.4g} N "
@@ -485,21 +508,19 @@ def _rod(args: argparse.Namespace) -> dict:
              None if lg["kappa"] is None else lg["kappa"] + 2 * ll - 0.5 * lr - 0.5 * lB),
             ("--tip-mass", "tan_alpha", "M/(rho l)",
              None if lg["tip_mass"] is None else lg["tip_mass"] - lr - ll))
-        values = {}
         for option, name, text, lv in log_groups:
             low, high = GROUP_RANGES[name]
             if lv is not None and (lv > math.log10(high) or (low > 0 and lv < math.log10(low))):
                 allowed = f"[0, {high:g}]" if low == 0 else f"0 or [{low:g}, {high:g}]"
                 raise ParameterError(f"{option} (with --length, --B, --rho): {name} = {text} = "
                                      f"10^{lv:.4g} must be {allowed} (eq. 106)")
-            values[name] = 0.0 if lv is None else 10.0**lv
         # The SI units of the answer must be normal floats too (P = p B/l^2, t = T tau).
         for text, lv in (("the load unit B/l^2 [N]", lB - 2 * ll),
                          ("the time scale l^2 sqrt(rho/B) [s]", 2 * ll + 0.5 * (lr - lB))):
             if not -300 <= lv <= 300:
                 raise ParameterError(f"--length, --B, --rho: {text} = 10^{lv:.4g} must be in "
                                      f"[1e-300, 1e300] (double precision)")
-        groups = RodGroups(**values)
+        groups = rod.groups()  # in range (above); formed without overflow or underflow
     else:
         groups = RodGroups(**{k: (0.0 if v is None else check_nonnegative(names[k], v))
                               for k, v in dimless.items()})
@@ -515,13 +536,6 @@ def _rod(args: argparse.Namespace) -> dict:
         out["P_flu_N"] = None if loads.p_flu is None else loads.p_flu * u
         out["P_div_N"] = None if loads.p_div is None else loads.p_div * u
         out["time_scale_s"] = rod.time_scale
-    if not args.json:  # text mode: the intervals first, one a line (the loads follow)
-        lines = [f"{iv['regime']:10s} p in [{iv['p_from']:.10g}, {iv['p_to']:.10g}]"
-                 for iv in loads.intervals]
-        try:
-            print("\n".join(lines))
-        except BrokenPipeError:  # piped into `head`: not an error of ours
-            pass
     return out
 
 
@@ -583,7 +597,9 @@ def _print(result: dict, as_json: bool) -> None:
     elif "g_localization" in result or "period_s" in result:  # acoustic, limit cycles
         for key, value in result.items():
             print(f"{key} = {value}")
-    elif "p_flu" in result:
+    elif "p_flu" in result:  # the rod: the intervals first, one a line, then the loads
+        for iv in result["intervals"]:
+            print(f"{iv['regime']:10s} p in [{iv['p_from']:.10g}, {iv['p_to']:.10g}]")
         for key in ("p_flu", "omega_flu", "p_div", "omega_div", "P_flu_N", "P_div_N"):
             if key in result:
                 value = result[key]

@@ -53,20 +53,28 @@ def jacobian(pendulum: ZieglerPendulum, state: ArrayLike, P: float, H: float = 0
                     dtype=float)
 
 
-def simulate(pendulum: ZieglerPendulum, P: float, state0: ArrayLike, t_end: float,
-             t_eval: ArrayLike | None = None, H: float = 0.0, method: str = "DOP853",
-             rtol: float = 1e-10, atol: float = 1e-12, **kwargs):
-    """Integrate eq. (10) from ``state0 = [alpha1, alpha2, alpha1_dot, alpha2_dot]``."""
+
+def _checked_start(P: float, H: float, state0: ArrayLike) -> tuple[float, float, NDArray]:
+    """The loads and the start state, refused (one line naming them) unless finite; the
+    integrations then call the equations of motion unchecked."""
     P, H = check_real("P", P), check_real("H", H)
     x0 = np.asarray(state0, dtype=float)
     if x0.shape != (4,) or not np.all(np.isfinite(x0)):
         raise ParameterError("state0 must be 4 finite numbers [a1, a2, a1_dot, a2_dot]")
+    return P, H, x0
+
+def simulate(pendulum: ZieglerPendulum, P: float, state0: ArrayLike, t_end: float,
+             t_eval: ArrayLike | None = None, H: float = 0.0, method: str = "DOP853",
+             rtol: float = 1e-10, atol: float = 1e-12, **kwargs):
+    """Integrate eq. (10) from ``state0 = [alpha1, alpha2, alpha1_dot, alpha2_dot]``."""
+    P, H, x0 = _checked_start(P, H, state0)
     if not t_end > 0:
         raise ParameterError(f"t_end must be > 0, got {t_end}")
     if method in ("Radau", "BDF", "LSODA"):  # implicit: give them the analytic Jacobian
         kwargs["jac"] = lambda t, x: jacobian(pendulum, x, P, H)
-    sol = solve_ivp(lambda t, x: pendulum.equations_of_motion(x, P, H), (0.0, t_end), x0,
-                    method=method, t_eval=t_eval, rtol=rtol, atol=atol, **kwargs)
+    sol = solve_ivp(lambda t, x: pendulum.equations_of_motion(x, P, H, check=False),
+                    (0.0, t_end), x0, method=method, t_eval=t_eval, rtol=rtol, atol=atol,
+                    **kwargs)
     if not sol.success:
         raise ConvergenceError(f"time integration failed: {sol.message}")
     return sol
@@ -112,12 +120,17 @@ def limit_cycle(pendulum: ZieglerPendulum, P: float, state0: ArrayLike, H: float
 
     section.direction = -1.0
     runaway.terminal = True
-    x, t0 = np.asarray(state0, dtype=float), 0.0
+    P, H, x = _checked_start(P, H, state0)
+    for name, value in (("tol", tol), ("t_max", t_max), ("rtol", rtol), ("atol", atol)):
+        if not check_real(name, value) > 0:
+            raise ParameterError(f"{name} must be > 0, got {value!r}")
+    t0 = 0.0
     crossings: list[tuple[float, NDArray]] = []
     chunk = 20.0
     steps = 0
     while t0 < t_max:
-        sol = solve_ivp(lambda t, y: pendulum.equations_of_motion(y, P, H), (t0, t0 + chunk), x,
+        sol = solve_ivp(lambda t, y: pendulum.equations_of_motion(y, P, H, check=False),
+                        (t0, t0 + chunk), x,
                         method=method, events=(section, runaway), rtol=rtol, atol=atol)
         if not sol.success:
             raise ConvergenceError(f"time integration failed: {sol.message}")

@@ -25,7 +25,7 @@ from numpy.typing import NDArray
 from scipy.optimize import brentq, linear_sum_assignment, minimize_scalar
 
 from flutterfriction.analysis.stability import Regime, state_eigenvalues
-from flutterfriction.errors import ConvergenceError, ParameterError, check_positive
+from flutterfriction.errors import ConvergenceError, ParameterError, check_positive, check_real
 from flutterfriction.models.rod import RodGroups, characteristic_function
 from flutterfriction.models.rod_fe import assemble
 
@@ -114,9 +114,38 @@ def refine_eigenvalues(p: float, g: RodGroups, guesses: NDArray, tol: float = 1e
     raise ConvergenceError(f"Newton on eq. (118) did not converge at p = {p} from {guesses}")
 
 
+#: Largest FE mesh of the eigenvalue helpers (:func:`eigenvalues`, :func:`branches`,
+#: :func:`fe_eigenvalues`): the figures use 16, the convergence study 48; beyond 200 the dense
+#: eigensolver's cost (~n^3) is minutes per load and nothing gains.
+MAX_ELEMENTS = 200
+
+
+def _check_mesh(n_elements: object, n_modes: object = None) -> None:
+    """Refuse a mesh or a mode count outside its range (one line naming it)."""
+    if isinstance(n_elements, bool) or not isinstance(n_elements, int | np.integer) \
+            or not 1 <= n_elements <= MAX_ELEMENTS:
+        raise ParameterError(f"n_elements must be an integer in [1, {MAX_ELEMENTS}], "
+                             f"got {n_elements!r}")
+    if n_modes is not None and (isinstance(n_modes, bool)
+                                or not isinstance(n_modes, int | np.integer)
+                                or not 1 <= n_modes <= n_elements):
+        raise ParameterError(f"n_modes must be an integer in [1, n_elements] = "
+                             f"[1, {n_elements}], got {n_modes!r}")
+
+
+def _check_load(p: object, name: str = "p") -> float:
+    """A finite load within the solver's range, |p| <= :data:`P_MAX_LIMIT`."""
+    p = check_real(name, p)
+    if abs(p) > P_MAX_LIMIT:
+        raise ParameterError(f"{name} must be in [-{P_MAX_LIMIT:g}, {P_MAX_LIMIT:g}] (the rod "
+                             f"solver's range, analysis.rod.P_MAX_LIMIT), got {p!r}")
+    return p
+
+
 def eigenvalues(p: float, g: RodGroups, n_modes: int = 3, n_elements: int = 16) -> NDArray:
     """The ``2 n_modes`` eigenvalues ``omega~`` of smallest modulus at load ``p``: FE guesses
     refined on the exact characteristic function; sorted by imaginary, then real part."""
+    _check_mesh(n_elements, n_modes)
     fe = fe_eigenvalues(g, p, n_elements)
     guesses = fe[np.argsort(np.abs(fe))][: 2 * n_modes]
     w = refine_eigenvalues(p, g, guesses)
@@ -513,6 +542,8 @@ GROUP_RANGES: dict[str, tuple[float, float]] = {
 def check_groups(g: RodGroups) -> RodGroups:
     """Refuse groups outside :data:`GROUP_RANGES` with a :class:`ParameterError` naming the
     group and its allowed range."""
+    if not isinstance(g, RodGroups):
+        raise ParameterError(f"g must be a RodGroups (eq. 106's groups), got {type(g).__name__}")
     for name, (low, high) in GROUP_RANGES.items():
         v = getattr(g, name)
         if v > high or 0 < v < low:
@@ -772,6 +803,13 @@ def branches(g: RodGroups, p_values: NDArray, n_modes: int = 2,
     ``2 n_modes`` roots of smallest modulus.
     """
     p_values = np.asarray(p_values, dtype=float)
+    if p_values.ndim != 1 or p_values.size == 0:
+        raise ParameterError(f"p_values must be a non-empty 1-d array of loads, got shape "
+                             f"{p_values.shape}")
+    for p in p_values:
+        _check_load(p, "p_values")
+    _check_mesh(n_elements, n_modes)
+    check_groups(g)
     out = np.empty((p_values.size, 2 * n_modes), dtype=complex)
     for i, p in enumerate(p_values):
         truth = eigenvalues(p, g, n_modes, n_elements)
@@ -788,5 +826,8 @@ def branches(g: RodGroups, p_values: NDArray, n_modes: int = 2,
 
 def fe_eigenvalues(g: RodGroups, p: float, n_elements: int, follower: bool = True) -> NDArray:
     """All eigenvalues ``omega~`` of the discretised rod at load ``p`` (first-order form)."""
+    p = _check_load(p)
+    _check_mesh(n_elements)
+    check_groups(g)
     fe = assemble(g, n_elements)
     return state_eigenvalues(fe.M, fe.K_B + p * fe.load_matrix(follower), fe.C)

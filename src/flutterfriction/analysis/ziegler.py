@@ -21,7 +21,7 @@ from flutterfriction.analysis.stability import (
     first_order_matrix,
     state_eigenvalues,
 )
-from flutterfriction.errors import ConvergenceError, check_real
+from flutterfriction.errors import ConvergenceError, ParameterError, check_real
 from flutterfriction.models.ziegler import DimensionlessMatrices, ZieglerPendulum
 from flutterfriction.results import CriticalLoads  # noqa: F401  (re-exported)
 
@@ -32,6 +32,8 @@ def _dimensionless(pendulum: ZieglerPendulum) -> DimensionlessMatrices:
 
     Loads come out in units of ``k2/l1`` (gamma, eta), so no SI scale can overflow; they are
     converted to newtons by one multiplication at the end."""
+    if not isinstance(pendulum, ZieglerPendulum):
+        raise ParameterError(f"pendulum must be a ZieglerPendulum, got {type(pendulum).__name__}")
     pendulum.check_numerical_range()
     return pendulum.dimensionless_matrices()
 

@@ -19,6 +19,7 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from flutterfriction.errors import ParameterError
 from flutterfriction.models.ziegler import PendulumGroups, ZieglerPendulum
 from flutterfriction.results import CriticalLoads, Regime
 
@@ -127,7 +128,12 @@ def optimal_two_mass_loads(l1: float, l2: float, k1: float, k2: float) -> tuple[
 
 
 def critical_loads_closed_form(pendulum: ZieglerPendulum) -> CriticalLoads:
-    """Critical loads [N] of the undamped pendulum from eqs. (22), (39), (41)."""
+    """Critical loads [N] of the undamped pendulum from eqs. (22), (39), (41), after refusing a
+    pendulum outside the model's numerical range, as the numerical twin does
+    (:meth:`ZieglerPendulum.check_numerical_range`: one line naming the parameter)."""
+    if not isinstance(pendulum, ZieglerPendulum):
+        raise ParameterError(f"pendulum must be a ZieglerPendulum, got {type(pendulum).__name__}")
+    pendulum.check_numerical_range()
     g = pendulum.groups()
     g_flu, g_div = flutter_divergence_gammas(g)
     e_cr, e_sup = buckling_etas(g)

@@ -87,19 +87,42 @@ class Rod:
     @property
     def time_scale(self) -> float:
         """``T = l^2 sqrt(rho/B)`` [s]: t = T tau (eq. 106)."""
-        return self.length**2 * math.sqrt(self.rho / self.B)
+        return power_product((self.length, 2), (self.rho, 0.5), (self.B, -0.5))
 
     @property
     def load_unit(self) -> float:
         """``B/l^2`` [N]: P = p B/l^2 (eq. 106)."""
-        return self.B / self.length**2
+        return power_product((self.B, 1), (self.length, -2))
 
     def groups(self) -> RodGroups:
         """Eq. (106)."""
         return RodGroups(
-            tan_alpha=self.tip_mass / (self.rho * self.length),
-            eta=self.D / (self.B * self.length**2) * math.sqrt(self.B / self.rho),
-            gamma=self.kappa * self.length**2 / math.sqrt(self.rho * self.B))
+            tan_alpha=power_product((self.tip_mass, 1), (self.rho, -1), (self.length, -1)),
+            eta=power_product((self.D, 1), (self.B, -0.5), (self.rho, -0.5), (self.length, -2)),
+            gamma=power_product((self.kappa, 1), (self.length, 2), (self.rho, -0.5),
+                                (self.B, -0.5)))
+
+
+def power_product(*factors: tuple[float, float]) -> float:
+    """``prod x**a`` over ``(x, a)``, ``x >= 0``, ``a`` in {±1/2, ±1, ±2}, with no overflow or
+    underflow on the way: each ``x`` is split into its mantissa and binary exponent
+    (``math.frexp``), the mantissas multiplied (a product of numbers in [1/2, 2)) and the
+    exponents added, so that ``l^2 = 1e-320`` (a subnormal: digits lost) or
+    ``rho/B = 1e400`` (an overflow) never occur when the result itself is a normal float
+    (eq. 106's groups and units of extreme SI input). Exact to a few ulps."""
+    mantissa, exponent = 1.0, 0
+    for x, a in factors:
+        if x == 0:
+            if a < 0:
+                raise ZeroDivisionError("power_product: a zero factor with a negative power")
+            return 0.0
+        m, e = math.frexp(x)
+        if abs(a) == 0.5:  # sqrt(m 2^e) = sqrt(m 2^(e mod 2)) 2^(e // 2)
+            m, e = math.sqrt(m * 2.0 ** (e % 2)), e // 2
+            a = math.copysign(1, a)
+        mantissa, shift = math.frexp(mantissa * m ** int(a))
+        exponent += shift + e * int(a)
+    return math.ldexp(mantissa, exponent)
 
 
 def _scaled_even_functions(lam: NDArray, trig: bool) -> tuple[NDArray, NDArray, NDArray]:

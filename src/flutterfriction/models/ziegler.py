@@ -279,15 +279,20 @@ class ZieglerPendulum:
         return {"A": np.zeros_like(B), "D": self.d * u1, "B": B,
                 "E": B + self.h * u2, "C": B + self.l2 * u2}
 
-    def equations_of_motion(self, state: ArrayLike, P: float = 0.0, H: float = 0.0) -> Matrix:
+    def equations_of_motion(self, state: ArrayLike, P: float = 0.0, H: float = 0.0, *,
+                            check: bool = True) -> Matrix:
         """Right-hand side of the nonlinear equations of motion, eq. (10), with hinge viscosity.
 
         Parameters
         ----------
         state : array_like, shape (4,) or (4, n)
-            ``[alpha1, alpha2, alpha1_dot, alpha2_dot]`` [rad, rad/s].
+            ``[alpha1, alpha2, alpha1_dot, alpha2_dot]`` [rad, rad/s], finite.
         P, H : float
-            Follower and dead loads [N], positive when compressive.
+            Follower and dead loads [N], positive when compressive, finite.
+        check : bool
+            Refuse a state of another shape or a non-finite state or load
+            (:class:`ParameterError`). The integrators, which validate their start and loads
+            once and call this ~1e6 times per cycle, pass ``False``.
 
         Returns
         -------
@@ -295,6 +300,14 @@ class ZieglerPendulum:
             ``d(state)/dt``, same shape as ``state``.
         """
         state = np.asarray(state, dtype=float)
+        if check:
+            P, H = check_real("P", P), check_real("H", H)
+            if state.ndim not in (1, 2) or state.shape[0] != 4:
+                raise ParameterError(f"state must have shape (4,) or (4, n) "
+                                     f"[alpha1, alpha2, alpha1_dot, alpha2_dot], got "
+                                     f"{state.shape}")
+            if not np.isfinite(state).all():
+                raise ParameterError("state must be finite (no NaN or inf)")
         # One state (an integrator's call, ~1e6 per limit cycle): Python floats and math's
         # functions, ~3x cheaper than numpy's on scalars; several states: numpy. Same formulas.
         sin, cos = (math.sin, math.cos) if state.ndim == 1 else (np.sin, np.cos)
