@@ -425,3 +425,16 @@ def test_rod_si_units_at_the_ends_of_the_range(capsys, si, load_unit, time_scale
     assert r["time_scale_s"] == pytest.approx(time_scale, rel=1e-14)
     code, out, err = _run(capsys, ["rod", *si])
     assert code == 0 and out.startswith("stable     p in [0, 20.05095362]")
+
+
+@pytest.mark.parametrize("args", [
+    [*_args(), "--k2", "1"],
+    ["rod", "--mass-ratio", "1", "--mass-ratio", "2"],
+    ["rod", "--mass-r", "1", "--mass-ratio", "2"],  # an abbreviation counts as its option
+    [*ACOUSTIC, "--n", "0", "1", "0"],
+])
+def test_an_option_given_twice_is_refused(capsys, args):
+    """Outside audit: argparse kept the last of two values silently (--k2 0.189 ... --k2 1)."""
+    code, out, err = _run_exit(capsys, args)
+    assert code == 2 and out == "" and "given more than once" in err
+    assert len(err.strip().splitlines()) == 1

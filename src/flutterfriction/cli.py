@@ -58,8 +58,9 @@ BECK_T_MAX_DEFAULT_SCALES = 200.0
 BECK_ETA_MAX, BECK_GAMMA_MAX, BECK_TIP_MASS_RATIO_MAX = 1.0, 100.0, 100.0  # eta: as `rod`
 #: The approach to the cycle is governed by the dissipation: measured on list (119) at 5.5 N
 #: (4 elements, from the straight rod), converged at 14.6 s for eta = 1.36e-3, 35.6 s for
-#: 5.75e-4 and 69 s for 2.9e-4 (tol 1e-5): t ~ 0.13 T/eta, T = l^2 sqrt(rho/B). Below
-#: BECK_ETA_MIN even the largest --t-max (2000 T) is less than twice that estimate's half.
+#: 5.75e-4 and 69.9 s for 2.9e-4 (tol 1e-5; 6, 11, 23 s of wall time): t ~ 0.13 T/eta,
+#: T = l^2 sqrt(rho/B). BECK_ETA_MIN keeps a converging run within about a minute of wall
+#: time (1300 T, ~200 s simulated for list 119); the audit's eta ~ 1e-7 ran past two minutes.
 BECK_ATTRACTION_SCALES = 0.13  # t_need ~ BECK_ATTRACTION_SCALES T / eta
 BECK_ETA_MIN = 1e-4
 BECK_RANGES = {"length": (1e-6, 1e6, "m"), "B": (1e-12, 1e12, "N m^2"),
@@ -548,9 +549,35 @@ def _ziegler(args: argparse.Namespace) -> dict:
             "parameters": pendulum.as_dict()}
 
 
+def _refuse_repeated_options(parser: argparse.ArgumentParser, argv: Sequence[str]) -> None:
+    """An option given twice (``--k2 0.189 ... --k2 1``) is refused, naming it: argparse would
+    silently keep the last. Abbreviations count as their option."""
+    options: set[str] = set()
+    stack = [parser]
+    while stack:
+        p = stack.pop()
+        options |= {o for a in p._actions for o in a.option_strings if o.startswith("--")}
+        stack += _subcommands(p).values()
+    seen: set[str] = set()
+    for word in argv:
+        if word == "--":
+            break
+        if not word.startswith("--"):
+            continue
+        name = word.split("=", 1)[0]
+        if name not in options:
+            matches = [o for o in options if o.startswith(name)]
+            name = matches[0] if len(matches) == 1 else name
+        if name in seen:
+            parser.error(f"{name} given more than once")
+        seen.add(name)
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     parser = build_parser()
-    args = parser.parse_args(_numeric_argv(parser, sys.argv[1:] if argv is None else argv))
+    words = _numeric_argv(parser, sys.argv[1:] if argv is None else argv)
+    _refuse_repeated_options(parser, words)
+    args = parser.parse_args(words)
     try:
         if args.command == "limit-cycle" and args.system == "beck":
             result = _limit_cycle_beck(args)
