@@ -226,6 +226,7 @@ def refine_roots(f: Callable[[float], float], grid: NDArray, values: NDArray,
             if floor is not None and -res.fun <= level:
                 raise ConvergenceError(
                     f"the discriminant dips to its round-off floor near load {res.x:.10g} "
+                    f"(in the matrices' load unit) "
                     f"(minimum {res.fun:.3g}, floor {level:.3g}): a flutter interval that "
                     f"narrow is not resolved in double precision")
             roots += [_brent(f, lo, res.x), _brent(f, res.x, hi)]

@@ -56,7 +56,8 @@ def follower_critical_gammas(pendulum: ZieglerPendulum, n_scan: int = 512,
         except ConvergenceError as exc:
             # The eigenvalues' discriminant is at its round-off floor (a flutter interval
             # ~1e-6 wide): the same coalescences as roots of a quadratic, which resolves them.
-            return _coalescence_quadratic(m.K, m.G_follower, m.M, str(exc))
+            return _coalescence_quadratic(m.K, m.G_follower, m.M, f"{exc}; the load unit is "
+                                          f"k2/l1 = {pendulum.load_unit:.4g} N")
         if len(roots) >= 2:
             if len(roots) > 2:
                 raise ConvergenceError(f"expected two coalescence loads, found {roots} "
@@ -92,8 +93,11 @@ def _coalescence_quadratic(K: NDArray, G: NDArray, M: NDArray, why: str = ""
     disc = A1**2 - 4 * A2 * A0
     scale = A1**2 + abs(4 * A2 * A0)
     if not (A2 != 0 and disc > 1e3 * np.finfo(float).eps * scale):
-        raise ConvergenceError(f"{why}; as roots of the discriminant's quadratic too: the two "
-                               "coalescence loads are not separated in double precision")
+        raise ConvergenceError(
+            f"{why}; nor as roots of the discriminant's quadratic: its discriminant, "
+            f"{disc / scale if scale else 0.0:.3g} of its terms, is below 1e3 eps, so the two "
+            f"coalescence loads (relative gap ~1e-6 or less) are not resolved from the rounded "
+            f"matrices")
     q = -0.5 * (A1 + math.copysign(math.sqrt(disc), A1))
     roots = sorted((q / A2, A0 / q))
     if not roots[0] > 0:
