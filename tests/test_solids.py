@@ -198,3 +198,21 @@ def test_cubic_discriminant_is_the_eigenvalues_discriminant():
     scale = np.sum(A**2, axis=(-2, -1)) ** 3
     assert np.max(np.abs(D - exact.real) / scale) < 1e-13
     assert np.all((D < 0) == np.any(np.abs(eta.imag) > 1e-9, axis=-1))
+
+
+def test_contact_path_with_a_large_friction_coefficient_ends():
+    """Outside audit: with mu ~ 1e5 a force on the cone missed it by 1e-7 (round-off of
+    |p_T| ~ mu p_N ~ 1e9, against a tolerance scaled by p_N alone) and the stick step never
+    advanced: the call never returned. It now crosses to the other side and slips; a segment
+    that cannot advance is refused (ConvergenceError), never looped on."""
+    from flutterfriction.models.contact import CoulombContact, integrate_path
+
+    c = CoulombContact(k_N=0.04185891462235094, k_T=624949.6009611808, mu=97854.43813457388)
+    path = integrate_path(c, [[200768.04350896963, -87647.14000025547],
+                              [200768.04350896963, -214401.23991399835]],
+                          p0=(8403.932392138398, 822362082.3536483))
+    assert path.branch == ["start", "stick", "slip"]
+    p_end = path.p[-1]
+    assert p_end[1] == pytest.approx(-c.mu * p_end[0], rel=1e-12)  # on the other side
+    with pytest.raises(ParameterError, match=r"^p0 must be two finite numbers"):
+        integrate_path(c, [[0, 0], [1, 0]], p0=(float("nan"), 0.0))

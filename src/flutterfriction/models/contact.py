@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from flutterfriction.errors import ParameterError, check_positive
+from flutterfriction.errors import ConvergenceError, ParameterError, check_positive
 
 
 @dataclass(frozen=True)
@@ -93,7 +93,15 @@ def integrate_path(contact: CoulombContact, vertices: ArrayLike,
     if V.ndim != 2 or V.shape[1] != 2 or len(V) < 2 or not np.all(np.isfinite(V)):
         raise ParameterError("vertices must be a finite (m >= 2, 2) array of (u_N, u_T)")
     p = np.asarray(p0, dtype=float).copy()
-    if p[0] < 0 or contact.friction_function(p) > 1e-12 * max(1.0, p[0]):
+    if p.shape != (2,) or not np.all(np.isfinite(p)):
+        raise ParameterError(f"p0 must be two finite numbers (p_N, p_T), got {p0!r}")
+
+    def tol_at(p: NDArray) -> float:
+        # the friction function's round-off: its terms |p_T| and mu p_N, not p_N alone (with
+        # mu ~ 1e5 a force on the cone missed it by 1e-7 and the stick step never advanced)
+        return 1e-12 * max(1.0, abs(p[0]), abs(p[1]), contact.mu * abs(p[0]))
+
+    if p[0] < 0 or contact.friction_function(p) > tol_at(p):
         raise ParameterError(f"p0 = {p0} is outside the Coulomb cone |p_T| <= mu p_N")
     E = contact.elastic_matrix()
     us, ps, slips, branches = [V[0].copy()], [p.copy()], [0.0], ["start"]
@@ -101,8 +109,16 @@ def integrate_path(contact: CoulombContact, vertices: ArrayLike,
     for u_a, u_b in zip(V[:-1], V[1:], strict=True):
         du = u_b - u_a
         t = 0.0
+        pieces = 0
         while t < 1.0 - 1e-15:
-            tol = 1e-12 * max(1.0, abs(p[0]))
+            # within one linear segment the branch changes at most a few times (stick, cross
+            # to the other side of the cone, slip): more means no progress (a bound, not a hang)
+            pieces += 1
+            if pieces > 8:
+                raise ConvergenceError(
+                    f"the contact path did not advance on the segment {u_a} -> {u_b} (the force "
+                    f"{p} stays at the cone's edge to round-off)")
+            tol = tol_at(p)
             dp_trial = E @ du
             # The side of the cone: sgn p_T, or at the apex the direction of the trial rate.
             side = np.sign(p[1]) if abs(p[1]) > tol else (np.sign(dp_trial[1]) or 1.0)
