@@ -3,6 +3,8 @@
 import os
 import sys
 
+import yaml
+
 # One BLAS thread per job: the matrices are small and Snakemake already runs jobs in parallel;
 # two threads per job on two cores made small eigenvalue solves up to 100x slower (measured
 # 1.57 s vs 6 ms for one damped rod spectrum). Results do not depend on it (CI's
@@ -13,7 +15,10 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 from snakemake.utils import min_version
 
 from flutterfriction.config import expand_parameter_lists, validate_config
+from flutterfriction.errors import ParameterError
+from flutterfriction.reference import reference_file_problems
 from flutterfriction.registry import SCENES, check_registry
+from flutterfriction.report import load_coverage
 
 min_version("8.0")
 
@@ -27,10 +32,18 @@ report: "workflow/report/workflow.rst"
 
 
 # The whole configuration, every preset as it resolves, before the first job: one line per
-# problem naming the key (the schema, the pendulum and rod geometry, finite numbers, ranges).
-_problems = check_registry() + validate_config(
-    config, "workflow/schemas/config.schema.yaml", scenes=SCENES
+# problem naming the key (the schema, the pendulum and rod geometry, finite numbers, ranges);
+# and the reference and coverage files, which the last jobs read.
+_problems = (
+    check_registry()
+    + validate_config(config, "workflow/schemas/config.schema.yaml", scenes=SCENES)
+    + reference_file_problems("workflow/reference.yaml", scenes=SCENES)
 )
+try:
+    load_coverage("workflow/coverage.yaml")
+except (ParameterError, OSError, yaml.YAMLError) as _exc:
+    _lines = str(_exc).splitlines()
+    _problems += [f"workflow/coverage.yaml: {line.strip()}" for line in _lines[1:] or _lines]
 if _problems:
     sys.exit("invalid configuration:\n  " + "\n  ".join(_problems))
 expand_parameter_lists(config)  # `rod: list119` -> its values (flutterfriction.parameters)

@@ -141,3 +141,54 @@ def test_reference_file_errors_name_the_entry(reference, edit, match):
     edit(bad)
     problems = reference_problems(bad)
     assert any(re.search(match, p) for p in problems), problems
+
+
+def test_reference_problems_refuse_nan_quotes_unknown_scenes_and_wide_tolerances():
+    """Outside audit: a NaN quoted value, an unknown scene and rtol 1e300 (passes anything)
+    were accepted; a non-list section raised a raw TypeError."""
+    import math
+
+    from flutterfriction.reference import reference_problems
+    from flutterfriction.registry import SCENES
+
+    ref = load_reference(ROOT / "workflow" / "reference.yaml")
+    assert reference_problems(ref, scenes=SCENES) == []
+    bad = copy.deepcopy(ref)
+    q = next(e for e in bad["quantities"] if isinstance(e["quoted"], float))
+    q["quoted"], q["scene"] = math.nan, "typo"
+    q["tolerance"] = {**q["tolerance"], "rtol": 1e300}  # (tolerances may be shared anchors)
+    problems = reference_problems(bad, scenes=SCENES)
+    assert any("quoted must be a finite number" in p for p in problems)
+    assert any("'typo' is not a registered scene" in p for p in problems)
+    assert any("rtol must be < 0.5" in p for p in problems)
+    assert all(p.startswith(f"quantities[{bad['quantities'].index(q)}] (id {q['id']})")
+               for p in problems)
+    assert reference_problems({"quantities": 5, "errata": []})  # no TypeError
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(("edit", "expected"), [
+    ({"workflow/reference.yaml": "bogus_top: 1\nquantities: 5\n"}, "unknown key(s) ['bogus_top']"),
+    ({"workflow/coverage.yaml": "- {figure: 1, statuss: x}\n"}, "workflow/coverage.yaml: "),
+    ({}, "must be in [1, 10000], got 0"),  # with --set-scatter sweep=0
+])
+def test_the_workflow_refuses_bad_reference_coverage_and_scatter_before_any_job(
+        tmp_path, edit, expected):
+    """Outside audit: these passed `snakemake -n` and would have failed in the report job, after
+    everything else (or, for sweep=0, planned no sweep part at all)."""
+    import os
+    import shutil
+    import subprocess
+    import sys
+
+    for part in ("src", "workflow", "notebooks"):
+        shutil.copytree(ROOT / part, tmp_path / part,
+                        ignore=shutil.ignore_patterns("__pycache__", "*.egg-info"))
+    shutil.copy(ROOT / "Snakefile", tmp_path / "Snakefile")
+    for path, text in edit.items():
+        (tmp_path / path).write_text(text)
+    extra = [] if edit else ["--set-scatter", "sweep=0"]
+    run = subprocess.run([sys.executable, "-m", "snakemake", "-n", *extra], cwd=tmp_path,
+                         env={**os.environ, "PYTHONPATH": str(tmp_path / "src")},
+                         capture_output=True, text=True)
+    assert run.returncode != 0 and expected in run.stdout + run.stderr

@@ -72,10 +72,17 @@ REFERENCE_SCHEMA = Path(__file__).resolve().parents[2] / "workflow" / "schemas" 
     "reference.schema.yaml"
 
 
-def reference_problems(ref: Any, schema_path: str | Path = REFERENCE_SCHEMA) -> list[str]:
+#: Largest relative tolerance of an entry (the file's largest is 0.05, a quick preset's): a
+#: tolerance of 100 % or more passes any value of the right sign, so it checks nothing.
+MAX_RTOL = 0.5
+
+
+def reference_problems(ref: Any, schema_path: str | Path = REFERENCE_SCHEMA,
+                       scenes: Any = None) -> list[str]:
     """Every problem of a reference file, one line each naming the entry by its id: the schema
     (required keys, no unknown or misspelled key, tolerances with atol, rtol, why), finite
-    non-negative tolerances that are not both zero, unique ids."""
+    non-negative tolerances that are not both zero and rtol below :data:`MAX_RTOL`, a finite
+    quoted number, unique ids and, given ``scenes`` (names), a registered scene."""
     import jsonschema
 
     with open(schema_path, encoding="utf-8") as fh:
@@ -86,7 +93,7 @@ def reference_problems(ref: Any, schema_path: str | Path = REFERENCE_SCHEMA) -> 
     def name(path) -> str:
         path = list(path)
         if len(path) >= 2 and path[0] in ("quantities", "errata") and isinstance(path[1], int):
-            entries = ref.get(path[0]) or []
+            entries = ref.get(path[0]) if isinstance(ref.get(path[0]), list) else []
             entry = entries[path[1]] if path[1] < len(entries) else {}
             ident = entry.get("id", "?") if isinstance(entry, dict) else "?"
             rest = ".".join(map(str, path[2:]))
@@ -103,12 +110,21 @@ def reference_problems(ref: Any, schema_path: str | Path = REFERENCE_SCHEMA) -> 
         problems.append(f"{name(err.path)}: {message}")
     seen: set[str] = set()
     for section in ("quantities", "errata"):
-        for i, entry in enumerate(ref.get(section) or []):
+        entries = ref.get(section)
+        for i, entry in enumerate(entries if isinstance(entries, list) else []):
             if not isinstance(entry, dict):
                 continue
             if entry.get("id") in seen:
                 problems.append(f"{name((section, i))}: duplicate id")
             seen.add(entry.get("id"))
+            quoted = entry.get("quoted")
+            if isinstance(quoted, float) and not math.isfinite(quoted):
+                problems.append(f"{name((section, i))}: quoted must be a finite number, "
+                                f"got {quoted}")
+            if scenes is not None and isinstance(entry.get("scene"), str) \
+                    and entry["scene"] not in scenes:
+                problems.append(f"{name((section, i))}: scene {entry['scene']!r} is not a "
+                                f"registered scene (src/flutterfriction/registry.py)")
             blocks = [("tolerance", entry.get("tolerance")), ("agreement", entry.get("agreement"))]
             blocks += [(f"quick.{k}", v) for k, v in (entry.get("quick") or {}).items()]
             for label, tol in blocks:
@@ -121,7 +137,21 @@ def reference_problems(ref: Any, schema_path: str | Path = REFERENCE_SCHEMA) -> 
                                     f"got {values}")
                 elif not (values[0] > 0 or values[1] > 0):
                     problems.append(f"{name((section, i))}: {label}: needs atol > 0 or rtol > 0")
+                elif values[1] >= MAX_RTOL:
+                    problems.append(f"{name((section, i))}: {label}: rtol must be < "
+                                    f"{MAX_RTOL:g} (a tolerance that wide checks nothing), "
+                                    f"got {values[1]:g}")
     return problems
+
+
+def reference_file_problems(path: str | Path, scenes: Any = None) -> list[str]:
+    """:func:`reference_problems` of the file at ``path`` (a YAML error is one problem)."""
+    try:
+        with open(path, encoding="utf-8") as fh:
+            ref = yaml.safe_load(fh)
+    except (OSError, yaml.YAMLError) as exc:
+        return [f"{path}: {' '.join(str(exc).split())}"]
+    return [f"{path}: {p}" for p in reference_problems(ref, scenes=scenes)]
 
 
 def load_reference(path: str | Path) -> dict[str, Any]:

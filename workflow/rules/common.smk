@@ -92,7 +92,14 @@ clear_interrupted_outputs()
 def sweep_parts(wildcards):
     if wildcards.scene not in SWEEP_SCENES:
         return []
-    return gather.sweep(f"results/data/parts/{wildcards.scene}/{{scatteritem}}.json")
+    parts = gather.sweep(f"results/data/parts/{wildcards.scene}/{{scatteritem}}.json")
+    # `--set-scatter sweep=N` bypasses the config's check of sweep_parts: the same range here
+    if not 1 <= len(parts) <= 10000:
+        raise ValueError(
+            f"sweep parts (sweep_parts or --set-scatter sweep=N) must be in [1, 10000], "
+            f"got {len(parts)}"
+        )
+    return parts
 
 
 def benchmark_files(wildcards=None):
