@@ -186,7 +186,7 @@ def test_negative_vector_entries_as_typed(capsys, P):
 def test_negative_vector_entries_every_vector_option(capsys):
     args = ["acoustic", "--lam", "-0.1", "--mu", "1", "--P", "-1", "0.5", "0.5", "0", "0", "0.8",
             "--Q", "-0.6", "0.3", "0.3", "0", "0", "-0.8", "--n", "-1", "-1e-1", "0", "--g",
-            "-2e-1", "--json"]
+            "2e-1", "--json"]  # (a negative --g is refused: eq. 152, g > 0)
     code, out, _ = _run(capsys, args)
     assert code == 0
     assert _strict(out)["notes"]  # n was normalised
@@ -303,6 +303,7 @@ def test_acoustic_agrees_with_the_tensor(capsys):
         lam = float(mu * rng.uniform(-0.6, 4))
         P, Q, n = rng.normal(size=6), rng.normal(size=6), rng.normal(size=3)
         g = float(rng.choice([-1, 1]) * 10 ** rng.uniform(-2, 2))
+        g = abs(g)  # g > 0 (eq. 152; a negative g is refused), the same random stream
         code, out, _ = _run(capsys, ["acoustic", f"--lam={lam!r}", f"--mu={mu!r}",
                                      "--P=" + ",".join(map(str, P)),
                                      "--Q=" + ",".join(map(str, Q)),

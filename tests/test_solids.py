@@ -216,3 +216,12 @@ def test_contact_path_with_a_large_friction_coefficient_ends():
     assert p_end[1] == pytest.approx(-c.mu * p_end[0], rel=1e-12)  # on the other side
     with pytest.raises(ParameterError, match=r"^p0 must be two finite numbers"):
         integrate_path(c, [[0, 0], [1, 0]], p0=(float("nan"), 0.0))
+
+
+def test_a_non_positive_plastic_modulus_is_refused():
+    """Outside audit: g < 0 gave regime "flutter" with flutter_interval None (the interval of
+    eqs. 187-188 is g > 0's). Eq. (152): g is "assumed strictly positive"."""
+    for g in (-0.5, 0.0):
+        with pytest.raises(ParameterError, match=r"^g must be > 0"):
+            ac.isotropic_acoustic(1.0, 1.0, [1, -0.5, -0.5, 0, 0, 0.8],
+                                  [0.6, -0.3, -0.3, 0, 0, -0.8], [1, 0, 0], g)

@@ -148,7 +148,7 @@ def build_parser() -> argparse.ArgumentParser:
     a.add_argument("--n", type=_vector(3), metavar="NUM", **vector,
                    help="propagation direction: 3 numbers n1 n2 n3, non-zero (normalised)")
     a.add_argument("--g", type=_number, default=None,
-                   help="plastic modulus g [Pa], != 0 (a lower bound on |g| is stated if the "
+                   help="plastic modulus g [Pa], > 0 (eq. 152; a lower bound is stated if the "
                         "eigenvalues would exceed 1e300)")
     a.add_argument("--json", action="store_true", help="print one JSON object")
     lc = sub.add_parser("limit-cycle", help="limit cycles of the nonlinear dynamics (§2.9)")

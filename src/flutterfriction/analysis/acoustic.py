@@ -263,8 +263,9 @@ def isotropic_acoustic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike, n: Arr
     nm = {k: k for k in ("lam", "mu", "P", "Q", "n", "g")} | (names or {})
     if g is not None:
         g = check_real(nm["g"], g)
-        if g == 0:
-            raise ParameterError(f"{nm['g']} must be non-zero (the plastic modulus divides)")
+        if not g > 0:  # eq. (152): "assumed strictly positive"; the flutter interval is g > 0's
+            raise ParameterError(f"{nm['g']} must be > 0 (the plastic modulus of eq. 152, "
+                                 f"assumed strictly positive in §3.3), got {g!r}")
     lam = check_real(nm["lam"], lam)
     mu = check_real(nm["mu"], mu)
     if not RANGE_MIN <= mu <= RANGE_MAX:
