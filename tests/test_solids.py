@@ -225,3 +225,27 @@ def test_a_non_positive_plastic_modulus_is_refused():
         with pytest.raises(ParameterError, match=r"^g must be > 0"):
             ac.isotropic_acoustic(1.0, 1.0, [1, -0.5, -0.5, 0, 0, 0.8],
                                   [0.6, -0.3, -0.3, 0, 0, -0.8], [1, 0, 0], g)
+
+
+@pytest.mark.parametrize(("call", "name"), [
+    (lambda E, P, Q: so.voigt_to_tensor([math.nan] * 6), "a Voigt tensor"),
+    (lambda E, P, Q: so.elastic_acoustic_tensor(E, [1, 0, 0], rho=0), "rho"),
+    (lambda E, P, Q: so.acoustic_tensor(E, P, Q, 0.0, [1, 0, 0]), "g"),
+    (lambda E, P, Q: so.acoustic_tensor(E, P, Q, math.nan, [1, 0, 0]), "g"),
+    (lambda E, P, Q: so.plastic_modulus(1.0, E, np.full((3, 3), math.nan), Q), "P"),
+    (lambda E, P, Q: so.acoustic_eigenvalues_isotropic(1, math.nan, P, Q, 1, [1, 0, 0]), "mu"),
+    (lambda E, P, Q: so.acoustic_eigenvalues_isotropic(1, 1, P, Q, 1, [0, 0, 0]), "n"),
+    (lambda E, P, Q: so.flutter_interval_isotropic(1, 1, np.full((3, 3), math.nan), Q,
+                                                   [1, 0, 0]), "P"),
+    (lambda E, P, Q: so.localization_modulus_isotropic(1, 0, P, Q, [1, 0, 0]), "mu"),
+    (lambda E, P, Q: so.flutter_interval_isotropic(-1, 1, P, Q, [1, 0, 0]), "lam"),
+    (lambda E, P, Q: so.localization_modulus(E, P, Q, [0, 0, 0]), "n"),
+])
+def test_solid_functions_refuse_non_finite_or_degenerate_input(call, name):
+    """Outside audit: NaN in, NaN out (voigt_to_tensor, acoustic tensors at g = 0 or NaN,
+    rho = 0), "no flutter" for a NaN tensor, raw ZeroDivisionError and LinAlgError."""
+    E = so.isotropic_elasticity(1.0, 1.0)
+    P = so.voigt_to_tensor([1, -0.5, -0.5, 0, 0, 0.8])
+    Q = so.voigt_to_tensor([0.6, -0.3, -0.3, 0, 0, -0.8])
+    with pytest.raises(ParameterError, match=rf"^{name} "):
+        call(E, P, Q)

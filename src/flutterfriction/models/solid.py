@@ -19,11 +19,7 @@ I3 = np.eye(3)
 
 def isotropic_elasticity(lam: float, mu: float) -> NDArray:
     """``E = lam I (x) I + 2 mu II^sym``; positive definite iff mu > 0 and 3 lam + 2 mu > 0."""
-    lam = check_real("lam", lam)
-    mu = check_positive("mu", mu)
-    if 3 * lam + 2 * mu <= 0:
-        raise ParameterError(f"lam must be > -2 mu/3 = {-2 * mu / 3:g} for a positive definite "
-                             f"isotropic elasticity, got {lam!r}")
+    lam, mu = _isotropic(lam, mu)
     return (lam * np.einsum("ij,kl->ijkl", I3, I3)
             + mu * (np.einsum("ik,jl->ijkl", I3, I3) + np.einsum("il,jk->ijkl", I3, I3)))
 
@@ -78,11 +74,44 @@ def check_direction(n: ArrayLike, normalise: bool = False) -> NDArray:
     return m / norm_m
 
 
+def _finite(name: str, x: ArrayLike, shape: tuple[int, ...]) -> NDArray:
+    """``x`` as a float array of ``shape``, refused (naming it) unless finite."""
+    a = np.asarray(x, dtype=float)
+    if a.shape != shape or not np.all(np.isfinite(a)):
+        raise ParameterError(f"{name} must be a finite array of shape {shape}, got shape "
+                             f"{a.shape}" + ("" if a.shape != shape else " with NaN or inf"))
+    return a
+
+
+def _nonzero_direction(n: ArrayLike) -> NDArray:
+    n = _finite("n", n, (3,))
+    if not np.any(n):
+        raise ParameterError("n must be a non-zero vector (a propagation direction)")
+    return n
+
+
+def _modulus(g: object) -> float:
+    """The plastic modulus, which divides: finite and non-zero."""
+    g = check_real("g", g)
+    if g == 0:
+        raise ParameterError("g must be non-zero (the plastic modulus divides)")
+    return g
+
+
+def _isotropic(lam: object, mu: object) -> tuple[float, float]:
+    """``(lam, mu)`` of a positive definite isotropic elasticity (mu > 0, 3 lam + 2 mu > 0)."""
+    lam, mu = check_real("lam", lam), check_positive("mu", mu)
+    if 3 * lam + 2 * mu <= 0:
+        raise ParameterError(f"lam must be > -2 mu/3 = {-2 * mu / 3:g} for a positive definite "
+                             f"isotropic elasticity, got {lam!r}")
+    return lam, mu
+
+
 def voigt_to_tensor(v: ArrayLike) -> NDArray:
     """``(a11, a22, a33, a23, a13, a12)`` to the symmetric 3x3 tensor."""
     a = np.asarray(v, dtype=float)
-    if a.shape != (6,):
-        raise ParameterError("a Voigt tensor needs 6 components a11,a22,a33,a23,a13,a12")
+    if a.shape != (6,) or not np.all(np.isfinite(a)):
+        raise ParameterError("a Voigt tensor needs 6 finite components a11,a22,a33,a23,a13,a12")
     return np.array([[a[0], a[5], a[4]], [a[5], a[1], a[3]], [a[4], a[3], a[2]]])
 
 
@@ -108,7 +137,9 @@ def drucker_prager_tensors(sigma: ArrayLike, friction_angle: float,
 
 def plastic_modulus(H: float, E: NDArray, P: ArrayLike, Q: ArrayLike) -> float:
     """``g = H + Q . E[P]`` (eq. 152)."""
-    return float(check_real("H", H) + np.einsum("ij,ij->", np.asarray(Q), apply(E, P)))
+    E = _finite("E", E, (3, 3, 3, 3))
+    P, Q = _finite("P", P, (3, 3)), _finite("Q", Q, (3, 3))
+    return float(check_real("H", H) + np.einsum("ij,ij->", Q, apply(E, P)))
 
 
 def elastoplastic_tangent(E: NDArray, P: ArrayLike, Q: ArrayLike, g: float) -> NDArray:
@@ -122,19 +153,21 @@ def elastoplastic_tangent(E: NDArray, P: ArrayLike, Q: ArrayLike, g: float) -> N
 # ---------------------------------------------------------------------- §3.3–3.4
 def elastic_acoustic_tensor(E: NDArray, n: ArrayLike, rho: float = 1.0) -> NDArray:
     """``A_el(n)`` of eq. (162): ``(A_el)_ik = E_ijkl n_j n_l / rho``."""
-    n = np.asarray(n, dtype=float)
-    return np.einsum("ijkl,j,l->ik", E, n, n) / rho
+    E, n = _finite("E", E, (3, 3, 3, 3)), _nonzero_direction(n)
+    return np.einsum("ijkl,j,l->ik", E, n, n) / check_positive("rho", rho)
 
 
 def acoustic_vectors(E: NDArray, P: ArrayLike, Q: ArrayLike, n: ArrayLike) -> tuple:
     """``p = E[P] n`` and ``q = E^T[Q] n`` (eq. 165)."""
-    n = np.asarray(n, dtype=float)
+    E, n = _finite("E", E, (3, 3, 3, 3)), _nonzero_direction(n)
+    P, Q = _finite("P", P, (3, 3)), _finite("Q", Q, (3, 3))
     return apply(E, P) @ n, apply_transpose(E, Q) @ n
 
 
 def acoustic_tensor(E: NDArray, P: ArrayLike, Q: ArrayLike, g: float, n: ArrayLike,
                     rho: float = 1.0) -> NDArray:
     """``A(n) = A_el(n) - p (x) q / (rho g)`` (eq. 161), general elasticity."""
+    g = _modulus(g)
     p, q = acoustic_vectors(E, P, Q, n)
     return elastic_acoustic_tensor(E, n, rho) - np.outer(p, q) / (rho * g)
 
@@ -149,15 +182,17 @@ def localization_modulus(E: NDArray, P: ArrayLike, Q: ArrayLike, n: ArrayLike) -
 def isotropic_vectors(lam: float, mu: float, P: ArrayLike, Q: ArrayLike,
                       n: ArrayLike) -> tuple[NDArray, NDArray]:
     """``q = lam tr(Q) n + 2 mu Q n``, ``p = lam tr(P) n + 2 mu P n`` (eq. 180)."""
-    P, Q, n = (np.asarray(x, dtype=float) for x in (P, Q, n))
+    lam, mu = _isotropic(lam, mu)
+    P, Q, n = _finite("P", P, (3, 3)), _finite("Q", Q, (3, 3)), _nonzero_direction(n)
     return lam * np.trace(P) * n + 2 * mu * P @ n, lam * np.trace(Q) * n + 2 * mu * Q @ n
 
 
 def acoustic_tensor_isotropic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike, g: float,
                               n: ArrayLike) -> NDArray:
     """Eq. (179): ``(lam + mu) n (x) n + mu I - p (x) q / g``."""
-    n = np.asarray(n, dtype=float)
+    g = _modulus(g)
     p, q = isotropic_vectors(lam, mu, P, Q, n)
+    n = np.asarray(n, dtype=float)
     return (lam + mu) * np.outer(n, n) + mu * I3 - np.outer(p, q) / g
 
 
@@ -166,6 +201,7 @@ def acoustic_eigenvalues_isotropic(lam: float, mu: float, P: ArrayLike, Q: Array
     """``mu`` and the two roots of eq. (184) (complex when flutter), the real ones ascending;
     the smaller real root from the product ``c`` (no cancellation when one root dominates, as
     for small ``|g|``). For inputs at any scale see ``analysis.acoustic.isotropic_acoustic``."""
+    g = _modulus(g)
     p, q = isotropic_vectors(lam, mu, P, Q, n)
     n = np.asarray(n, dtype=float)
     b = float(lam + 3 * mu - p @ q / g)
@@ -218,7 +254,7 @@ def coalescence_modulus(lam: float, mu: float, P: ArrayLike, Q: ArrayLike) -> fl
     """Eq. (194): ``max_i (E[P])_i (E[Q])_i / (lam + mu)`` over principal components, for
     coaxial ``P``, ``Q`` (deviatoric associativity)."""
     E = isotropic_elasticity(lam, mu)
-    EP, EQ = apply(E, P), apply(E, Q)
+    EP, EQ = apply(E, _finite("P", P, (3, 3))), apply(E, _finite("Q", Q, (3, 3)))
     w, V = np.linalg.eigh(EP)
     eq = np.einsum("ji,jk,ki->i", V, EQ, V)  # components of E[Q] on E[P]'s principal axes
     return float(np.max(w * eq) / (lam + mu))
