@@ -3,11 +3,14 @@ linear theory, energy conservation without damping."""
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
 
 from flutterfriction.analysis import rod as ar
+from flutterfriction.analysis import rod_dynamics as rdyn
 from flutterfriction.analysis.stability import discriminant, pencil_eigenvalues, refine_roots
 from flutterfriction.errors import ConvergenceError, ParameterError
 from flutterfriction.models.rod import Rod, RodGroups
@@ -412,3 +415,21 @@ def test_work_precision_periods_start_on_the_section_at_the_quick_preset():
     solved = [r for r in d["runs"] if r["method"] != "generalized-alpha"]
     assert solved and not any(r["failed"] for r in solved)
     assert all(r["period_error"] < 1e-2 for r in solved)
+
+
+@pytest.mark.parametrize(("call", "name"), [
+    (lambda r: NonlinearRod(r, 2.5), "n_elements"),
+    (lambda r: NonlinearRod(r, "4"), "n_elements"),
+    (lambda r: NonlinearRod(r, 4, n_gauss=0), "n_gauss"),
+    (lambda r: NonlinearRod({}, 4), "rod"),
+    (lambda r: rdyn.beck_limit_cycle(r, math.inf), "P"),
+    (lambda r: rdyn.beck_limit_cycle(r, 5.5, method="bogus"), "method"),
+    (lambda r: rdyn.beck_limit_cycle(r, 5.5, rtol=-1.0), "rtol"),
+    (lambda r: rdyn.beck_limit_cycle(r, 5.5, samples_per_period=0), "samples_per_period"),
+])
+def test_nonlinear_rod_entry_points_refuse_bad_arguments(call, name):
+    """Outside audit: NonlinearRod(rod, 2.5) meshed 2 elements and kept 2.5; P = inf, a bogus
+    method, rtol < 0 and samples_per_period = 0 reached scipy or divided by zero."""
+    rod = Rod(length=0.35, B=0.0332, rho=0.0546, D=7.078e-6)
+    with pytest.raises(ParameterError, match=rf"^{name} "):
+        call(rod)

@@ -27,7 +27,7 @@ from flutterfriction.analysis.rod_cycles import (
     tip_lateral,
     variational_flow,
 )
-from flutterfriction.errors import ConvergenceError, ParameterError
+from flutterfriction.errors import ConvergenceError, ParameterError, check_real
 from flutterfriction.models.rod import Rod
 from flutterfriction.models.rod_nonlinear import NonlinearRod
 
@@ -76,6 +76,10 @@ def exact_jacobian(model: NonlinearRod, P: float, method: str) -> dict:
     return {"jac": lambda t, y: model.jacobians(y[:, None], P)[0][0]}
 
 
+#: scipy's integrators (solve_ivp's methods)
+_METHODS = frozenset({"RK23", "RK45", "DOP853", "Radau", "BDF", "LSODA"})
+
+
 def beck_limit_cycle(rod: Rod, P: float, n_elements: int = 8, method: str = "BDF",
                      rtol: float = 1e-7, atol: float = 1e-9, tol: float = 1e-4,
                      t_max: float = 30.0, initial_tip_rotation: float = 0.05,
@@ -95,8 +99,18 @@ def beck_limit_cycle(rod: Rod, P: float, n_elements: int = 8, method: str = "BDF
 
     ``progress(message)``, if given, hears of every section crossing (simulated time, tip
     amplitude, the relative changes tested against ``tol``); it never changes the result."""
-    if not P > 0:
+    if not check_real("P", P) > 0:
         raise ParameterError(f"P must be > 0, got {P}")
+    if method not in _METHODS:
+        raise ParameterError(f"method must be one of {sorted(_METHODS)}, got {method!r}")
+    for name, value in (("rtol", rtol), ("atol", atol), ("tol", tol), ("t_max", t_max)):
+        if not check_real(name, value) > 0:
+            raise ParameterError(f"{name} must be > 0, got {value!r}")
+    check_real("initial_tip_rotation", initial_tip_rotation)
+    if isinstance(samples_per_period, bool) or not isinstance(samples_per_period, int) \
+            or samples_per_period < 2:
+        raise ParameterError(f"samples_per_period must be an integer >= 2, got "
+                             f"{samples_per_period!r}")
     model = NonlinearRod(rod, n_elements)
     n = model.n_dof
     y = np.zeros(2 * n)

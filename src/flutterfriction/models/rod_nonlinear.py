@@ -62,6 +62,10 @@ def _cos_sin(theta: NDArray) -> tuple[NDArray, NDArray]:
     return ca * chb - 1j * (sa * shb), sa * chb + 1j * (ca * shb)
 
 
+#: Largest mesh of the nonlinear rod (the chapter's figures use 16, the linearisation study
+#: 32): the state has 2 x 2N unknowns and the implicit integrators' Jacobians grow as N^2.
+MAX_ELEMENTS = 128
+
 _NOT_POSITIVE = ("the rod's mass matrix is not positive definite at this state (the Cholesky "
                  "factorisation failed)")
 
@@ -75,8 +79,15 @@ class NonlinearRod:
     n_gauss: int = 5
 
     def __post_init__(self) -> None:
-        if isinstance(self.n_elements, bool) or int(self.n_elements) < 1:
-            raise ParameterError(f"n_elements must be >= 1, got {self.n_elements!r}")
+        if not isinstance(self.rod, Rod):
+            raise ParameterError(f"rod must be a Rod (SI parameters), got "
+                                 f"{type(self.rod).__name__}")
+        for name, low, high in (("n_elements", 1, MAX_ELEMENTS), ("n_gauss", 1, 20)):
+            value = getattr(self, name)
+            if isinstance(value, bool) or not isinstance(value, int | np.integer) \
+                    or not low <= value <= high:
+                raise ParameterError(f"{name} must be an integer in [{low}, {high}], "
+                                     f"got {value!r}")
         N, ng = int(self.n_elements), int(self.n_gauss)
         L = self.rod.length
         h = L / N
