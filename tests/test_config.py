@@ -183,3 +183,22 @@ def test_the_config_names_the_lists_and_an_unknown_name_is_refused(config):
         in problems[0]
     raw["scenes"]["fig11"]["rod"] = "list47"  # a pendulum's list where a rod's is expected
     assert "unknown parameter list 'list47'" in validate_config(raw, SCHEMA_PATH)[0]
+
+
+@pytest.mark.parametrize(("scene", "key", "value", "match"), [
+    ("eq25", "n_points", 101.0, "101.0 is not of type 'integer'"),
+    ("fig13", "load_factor", 0.5, "fig13.load_factor: 0.5 is less than or equal to the min"),
+    ("fig11", "P_N", -5.5, "fig11.P_N: -5.5 is less than or equal to the minimum of 0"),
+    ("beck_limit_cycle", "meshes", [16, 8, 4], "meshes: must be strictly increasing"),
+    ("rod_fe_convergence", "elements", [4, 4, 4], "elements: must be strictly increasing"),
+    ("elastica", "part", [0.75, 0.3], "part: must be strictly increasing"),
+])
+def test_values_the_scenes_refuse_are_refused_before_any_job(config, scene, key, value, match):
+    """Outside audit: these passed `snakemake -n` and failed (or computed nonsense) only when
+    their job ran: an integer written 101.0, a cycle below the flutter load, a negative load,
+    meshes not increasing, a part [s1, s2] with s1 > s2."""
+    raw = yaml.safe_load((ROOT / "workflow" / "config.yaml").read_text())
+    raw["scenes"][scene][key] = value
+    problems = validate_config(raw, ROOT / "workflow" / "schemas" / "config.schema.yaml",
+                               scenes=SCENES)
+    assert any(match in p for p in problems), problems

@@ -101,8 +101,14 @@ def _schema_problems(config: dict[str, Any], schema: dict[str, Any], prefix: str
     """One short line per schema violation (the offending instance is not dumped: a whole
     scene section would print hundreds of lines)."""
     import jsonschema
+    from jsonschema import validators
 
-    validator = jsonschema.Draft202012Validator(schema)
+    # An integer is an int: JSON Schema counts 101.0 as one, and the scenes would refuse it.
+    strict = validators.extend(jsonschema.Draft202012Validator,
+                               type_checker=jsonschema.Draft202012Validator.TYPE_CHECKER.redefine(
+                                   "integer", lambda _, x: isinstance(x, int)
+                                   and not isinstance(x, bool)))
+    validator = strict(schema)
     lines = []
     for err in sorted(validator.iter_errors(config), key=lambda e: list(map(str, e.path))):
         if err.validator == "additionalProperties":
@@ -154,6 +160,10 @@ def _physical_problems(scene: str, params: dict[str, Any], prefix: str) -> list[
                 and isinstance(value, list) and len(value) == 2 \
                 and all(isinstance(v, int | float) for v in value) and not value[0] < value[1]:
             lines.append(f"{where}: the range must be increasing, got {value}")
+        if key in ("meshes", "elements", "part") and isinstance(value, list) \
+                and all(isinstance(v, int | float) for v in value) \
+                and not all(a < b for a, b in zip(value, value[1:], strict=False)):
+            lines.append(f"{where}: must be strictly increasing, got {value}")
         if isinstance(key, str) and key.endswith("_min") and isinstance(value, int | float):
             upper = _lookup(params, (*path[:-1], key[:-4] + "_max"))
             if isinstance(upper, int | float) and not value < upper:
