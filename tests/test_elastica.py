@@ -203,3 +203,24 @@ def test_figures_6_to_9_pass_the_figure_check(loads):
         fig = getattr(rp, f"plot_fig{f}")(d)
         assert check_figure(fig) == [], f
         plt.close(fig)
+
+
+def test_elastica_api_refuses_arc_lengths_off_the_rod_and_bad_iteration_counts():
+    """Outside audit: the dense outputs extrapolated silently beyond the rod (theta(-1 m) =
+    3773 rad), a part with s1 > s2 was accepted, NaN arc lengths gave NaN, and max_iter = 0 or
+    load_steps = 0 raised UnboundLocalError or a bare AssertionError."""
+    loads = el.ElasticaLoads(P1=-0.5, P2=0.3, q1=0.1, q2=0.2)
+    sol = el.solve_shooting(0.35, 0.0332, loads)
+    for call, match in [(lambda: sol.theta([-1.0]), "s must be finite arc lengths"),
+                        (lambda: sol.position([10.0]), "s must be finite arc lengths"),
+                        (lambda: el.moment_of_loads_beyond(sol, 2.0), "s_cut must"),
+                        (lambda: el.moment_of_loads_beyond(sol, float("nan")), "s_cut must"),
+                        (lambda: el.part_balances(sol, 0.3, 0.1), "needs s1 < s2"),
+                        (lambda: el.internal_force([float("nan")], 0.35, loads), "s must"),
+                        (lambda: el.solve_shooting(0.35, 0.0332, loads, max_iter=0),
+                         "max_iter must"),
+                        (lambda: el.solve_collocation(0.35, 0.0332, loads, load_steps=0),
+                         "load_steps must")]:
+        with pytest.raises(ParameterError, match=match):
+            call()
+    assert sol.theta([0.0, 0.35]).shape == (2,)  # the ends themselves are on the rod

@@ -97,10 +97,20 @@ def _check_rod(length: object, B: object) -> tuple[float, float]:
     return check_positive("length", length, "m"), check_positive("B", B, "N m^2")
 
 
+def _arclengths(s: ArrayLike, length: float, name: str = "s") -> NDArray:
+    """``s`` as an array of arc lengths on the rod, refused (naming it) unless finite and in
+    ``[0, l]``: the solutions' dense outputs would extrapolate silently beyond the rod."""
+    s = np.asarray(s, dtype=float)
+    if not np.all(np.isfinite(s)) or (s.size and (s.min() < -1e-12 * length
+                                                  or s.max() > length * (1 + 1e-12))):
+        raise ParameterError(f"{name} must be finite arc lengths in [0, l] = [0, {length:g}] m")
+    return s
+
+
 def internal_force(s: ArrayLike, length: float, loads: ElasticaLoads) -> NDArray:
     """``a(s) = P + (l - s) q`` [N], shape ``(..., 2)``: eq. (77) integrated from ``a(l) = P``
     (eq. 97), the resultant of the loads on the part beyond the cut (eq. 74)."""
-    s = np.asarray(s, dtype=float)
+    s = _arclengths(s, check_positive("length", length, "m"))
     return loads.tip_force() + (length - s)[..., None] * loads.distributed()
 
 
@@ -135,7 +145,7 @@ class ElasticaSolution:
     _force: Any = None  # s -> a(s) rows, when the internal force is a state (collocation)
 
     def state(self, s: ArrayLike) -> NDArray:
-        s = np.atleast_1d(np.asarray(s, dtype=float))
+        s = np.atleast_1d(_arclengths(s, self.length))
         return np.asarray(self._dense(s)).T
 
     def theta(self, s: ArrayLike) -> NDArray:
@@ -152,7 +162,7 @@ class ElasticaSolution:
     def force(self, s: ArrayLike) -> NDArray:
         """``a(s)`` [N], rows: the collocation's state where it is one, else eq. (77)
         integrated in closed form (:func:`internal_force`)."""
-        s = np.atleast_1d(np.asarray(s, dtype=float))
+        s = np.atleast_1d(_arclengths(s, self.length))
         if self._force is not None:
             return np.asarray(self._force(s)).T
         return internal_force(s, self.length, self.loads)
@@ -226,6 +236,8 @@ def solve_shooting(length: float, B: float, loads: ElasticaLoads, *, load_steps:
         raise ParameterError(f"loads must be ElasticaLoads, got {type(loads).__name__}")
     if isinstance(load_steps, bool) or not isinstance(load_steps, int) or load_steps < 1:
         raise ParameterError(f"load_steps must be an integer >= 1, got {load_steps!r}")
+    if isinstance(max_iter, bool) or not isinstance(max_iter, int) or max_iter < 1:
+        raise ParameterError(f"max_iter must be an integer >= 1, got {max_iter!r}")
     rtol = check_positive("rtol", rtol)
     tol = check_positive("tol", tol, "rad")
     fP1, g1 = _dimensionless(length, B, loads)
@@ -275,6 +287,9 @@ def solve_collocation(length: float, B: float, loads: ElasticaLoads, *, load_ste
     length, B = _check_rod(length, B)
     if not isinstance(loads, ElasticaLoads):
         raise ParameterError(f"loads must be ElasticaLoads, got {type(loads).__name__}")
+    for name, value in (("load_steps", load_steps), ("max_nodes", max_nodes)):
+        if isinstance(value, bool) or not isinstance(value, int) or value < 1:
+            raise ParameterError(f"{name} must be an integer >= 1, got {value!r}")
     tol = check_positive("tol", tol)
     fP1, g1 = _dimensionless(length, B, loads)
 
@@ -449,7 +464,7 @@ def moment_of_loads_beyond(sol: ElasticaSolution, s_cut: float) -> float:
     """Eq. (89) at rest: the moment about ``x(s_cut)`` of the loads on the part beyond the cut,
     ``(x(l) - x_c) x P + int_{s_cut}^l (x(sigma) - x_c) x q dsigma`` [N m] (e3 component), by
     Gauss–Legendre quadrature over the computed deformed shape."""
-    xc = sol.position(s_cut)[0]
+    xc = sol.position(_arclengths(s_cut, sol.length, "s_cut"))[0]
     P, q = sol.loads.tip_force(), sol.loads.distributed()
     arm_P = sol.position(sol.length)[0] - xc
     integral = gauss_integral(lambda s: sol.position(s) - xc, s_cut, sol.length)
@@ -465,6 +480,9 @@ def part_balances(sol: ElasticaSolution, s1: float, s2: float) -> dict[str, floa
     - ``eq87``: ``[N + M^2/(2B)]_{s1}^{s2} + int q . t ds`` (eq. 87), with
       ``int q . t ds`` by quadrature of ``q . t(theta(s))``.
     """
+    s1, s2 = (float(_arclengths(x, sol.length, name)) for x, name in ((s1, "s1"), (s2, "s2")))
+    if not s1 < s2:
+        raise ParameterError(f"the part [s1, s2] needs s1 < s2, got [{s1:g}, {s2:g}]")
     q = sol.loads.distributed()
     a1, a2 = sol.force(s1)[0], sol.force(s2)[0]
     Q = gauss_integral(lambda s: np.broadcast_to(q, (np.size(s), 2)), s1, s2)
