@@ -249,3 +249,18 @@ def test_solid_functions_refuse_non_finite_or_degenerate_input(call, name):
     Q = so.voigt_to_tensor([0.6, -0.3, -0.3, 0, 0, -0.8])
     with pytest.raises(ParameterError, match=rf"^{name} "):
         call(E, P, Q)
+
+
+def test_contact_rate_and_planar_equilibrium_refuse_non_finite_input():
+    """Outside audit: rate([nan, 0], ...) returned [2, 0]; planar_equilibrium returned NaN for
+    a NaN force and accepted 3-component points."""
+    from flutterfriction.analysis.statics import planar_equilibrium
+
+    with pytest.raises(ParameterError, match=r"^p must be two finite numbers"):
+        CoulombContact(k_N=1.0, k_T=1.0, mu=0.5).rate([math.nan, 0.0], [1.0, 0.0])
+    supports = [((0, 0), (1, 0)), ((0, 0), (0, 1)), ((1, 0), (0, 1))]
+    with pytest.raises(ParameterError, match=r"^known\[0\] force must be two finite"):
+        planar_equilibrium([((0, 0), (math.nan, 1.0))], supports)
+    with pytest.raises(ParameterError, match=r"^known\[0\] point must be two finite"):
+        planar_equilibrium([((0, 0, 0), (1.0, 1.0))], supports)
+    assert planar_equilibrium([((0, 0), (0, -1.0))], supports) == pytest.approx([0, 1, 0])

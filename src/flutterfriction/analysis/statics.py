@@ -36,13 +36,19 @@ def planar_equilibrium(known: Sequence[tuple[ArrayLike, ArrayLike]],
     if len(unknown) != 3:
         raise ParameterError(f"a planar rigid body has 3 equilibrium equations: give 3 unknown "
                              f"forces, got {len(unknown)}")
+    def planar(name: str, x: ArrayLike) -> NDArray:
+        a = np.asarray(x, dtype=float)
+        if a.shape != (2,) or not np.all(np.isfinite(a)):
+            raise ParameterError(f"{name} must be two finite numbers (x, y), got {x!r}")
+        return a
+
     A = np.empty((3, 3))
     for k, (r, d) in enumerate(unknown):
-        r, d = np.asarray(r, dtype=float), np.asarray(d, dtype=float)
+        r, d = planar(f"unknown[{k}] point", r), planar(f"unknown[{k}] direction", d)
         A[:, k] = [d[0], d[1], _cross(r, d)]
     rhs = np.zeros(3)
-    for r, f in known:
-        r, f = np.asarray(r, dtype=float), np.asarray(f, dtype=float)
+    for j, (r, f) in enumerate(known):
+        r, f = planar(f"known[{j}] point", r), planar(f"known[{j}] force", f)
         rhs -= [f[0], f[1], _cross(r, f)]
     if abs(np.linalg.det(A)) <= 1e-12 * max(1.0, float(np.abs(A).max())) ** 3:
         raise ParameterError("the unknown forces are statically indeterminate or a mechanism "

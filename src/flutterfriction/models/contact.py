@@ -63,8 +63,12 @@ class CoulombContact:
     def rate(self, p: ArrayLike, u_dot: ArrayLike) -> NDArray:
         """``p_dot`` of eq. (140) at the force ``p`` for the displacement rate ``u_dot``."""
         p, u_dot = np.asarray(p, dtype=float), np.asarray(u_dot, dtype=float)
+        for name, x in (("p", p), ("u_dot", u_dot)):
+            if x.shape != (2,) or not np.all(np.isfinite(x)):
+                raise ParameterError(f"{name} must be two finite numbers (normal, tangential)")
         E = self.elastic_matrix()
-        if self.friction_function(p) < -1e-12 * max(1.0, abs(p[0])):
+        if self.friction_function(p) < -1e-12 * max(1.0, abs(p[0]), abs(p[1]),
+                                                     self.mu * abs(p[0])):
             return E @ u_dot
         a, b = self.gradient(p), self.slip_direction(p)
         lam = max(a @ E @ u_dot, 0.0) / (a @ E @ b)  # Macaulay bracket: slip only if > 0
