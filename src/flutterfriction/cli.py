@@ -387,8 +387,10 @@ class _VectorAction(argparse.Action):
         flat = [x for word in values for x in word]
         size = self.type.vector_size
         if len(flat) != size:
+            short = " (a word that is not a number ends the list)" if len(flat) < size else ""
             raise argparse.ArgumentError(
-                self, f"needs {size} numbers (separated by spaces or commas), got {len(flat)}")
+                self, f"needs {size} numbers (separated by spaces or commas), got "
+                      f"{len(flat)}{short}")
         setattr(namespace, self.dest, flat)
 
 
