@@ -8,6 +8,7 @@ import math
 
 import numpy as np
 import pytest
+from conftest import ROOT
 
 from flutterfriction.analysis import elastica as el
 from flutterfriction.errors import ParameterError
@@ -224,3 +225,15 @@ def test_elastica_api_refuses_arc_lengths_off_the_rod_and_bad_iteration_counts()
         with pytest.raises(ParameterError, match=match):
             call()
     assert sol.theta([0.0, 0.35]).shape == (2,)  # the ends themselves are on the rod
+
+
+def test_a_failed_elastica_scene_names_its_loads():
+    """Outside audit: elastica.P1 = 100 N (150 Euler loads) failed with "solve_bvp failed ...
+    mesh nodes", naming no parameter; the message now names the loads and the Euler load."""
+    from flutterfriction.config import load_config, scene_params
+    from flutterfriction.errors import ConvergenceError
+    from flutterfriction.scenes.rod_statics import elastica
+
+    params = scene_params(load_config(ROOT / "workflow" / "config.yaml"), "elastica")
+    with pytest.raises(ConvergenceError, match=r"P1, P2, q1, q2 = 100 N.*Euler load"):
+        elastica({**params, "P1": 100.0})

@@ -15,7 +15,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from flutterfriction.analysis import elastica as el
-from flutterfriction.errors import ParameterError, check_real
+from flutterfriction.errors import ConvergenceError, ParameterError, check_real
 from flutterfriction.models.rod import Rod
 from flutterfriction.scenes.common import n_points, quantity, take
 
@@ -111,14 +111,24 @@ def elastica(params: dict[str, Any]) -> dict[str, Any]:
     """
     rod, loads, o = _inputs(params)
     l, B = rod.length, rod.B
-    shoot = el.solve_shooting(l, B, loads, load_steps=o["load_steps"])
-    colloc = el.solve_collocation(l, B, loads)
+    tip_loads = el.ElasticaLoads(P1=loads.P1, P2=loads.P2)
+    try:
+        shoot = el.solve_shooting(l, B, loads, load_steps=o["load_steps"])
+        colloc = el.solve_collocation(l, B, loads)
+        tip_shoot = el.solve_shooting(l, B, tip_loads, load_steps=o["load_steps"])
+        tip_colloc = el.solve_collocation(l, B, tip_loads)
+    except ConvergenceError as exc:  # name the config's loads (a config run shows only this)
+        euler = math.pi**2 * B / (4 * l * l)
+        raise ConvergenceError(
+            f"{exc}; elastica: P1, P2, q1, q2 = {loads.P1:g} N, {loads.P2:g} N, {loads.q1:g} "
+            f"N/m, {loads.q2:g} N/m: the axial compression at the clamp, P1 - q1 l = "
+            f"{loads.P1 - loads.q1 * l:.4g} N, against the Euler load pi^2 B/(4 l^2) = "
+            f"{euler:.4g} N (far above it the continuation from the straight rod may not "
+            f"follow the branch: smaller loads)"
+        ) from None
     s = np.linspace(0.0, l, o["n"])
 
     # -- the end forces alone: shooting against the closed form
-    tip_loads = el.ElasticaLoads(P1=loads.P1, P2=loads.P2)
-    tip_shoot = el.solve_shooting(l, B, tip_loads, load_steps=o["load_steps"])
-    tip_colloc = el.solve_collocation(l, B, tip_loads)
     closed = el.tip_force_closed_form(l, B, loads.P1, loads.P2)
     x_closed = closed.position(s)
     tip_curve_err = float(np.max(np.linalg.norm(tip_shoot.position(s) - x_closed, axis=1)) / l)
