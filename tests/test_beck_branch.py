@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+from conftest import ROOT
 
 from flutterfriction.analysis.rod_cycles import cycle_branch
 from flutterfriction.errors import ParameterError
@@ -79,3 +80,19 @@ def test_plot_draws_stability_and_the_chapter_cycle():
     labels = [t.get_text() for ax in fig.axes for t in ax.get_legend().get_texts()]
     assert any("unstable" in s for s in labels) and any("Figs. 15" in s for s in labels)
     assert all(ax.get_xlabel() and ax.get_ylabel() for ax in fig.axes)
+
+
+@pytest.mark.parametrize(("over", "match"), [
+    ({"check_loads": [1.0]}, r"^check load 1.0 N is outside the branch \(2\.94"),
+    ({"P_max": 1.0}, r"^P_max = 1.0 N must be above the damped flutter load 2\.94"),
+])
+def test_loads_off_the_branch_are_refused_before_it_is_computed(over, match):
+    """Outside audit: check_loads = [1.0] was refused only after the whole branch had been
+    computed. Both are now refused after the linear flutter load alone (~0.1 s)."""
+    from flutterfriction.config import load_config, scene_params
+    from flutterfriction.scenes.beck_branch import beck_branch
+
+    cfg = load_config(ROOT / "workflow" / "config.yaml")
+    cfg["fidelity"] = "quick"
+    with pytest.raises(ParameterError, match=match):
+        beck_branch({**scene_params(cfg, "beck_branch"), **over})

@@ -71,6 +71,19 @@ def beck_branch(params: dict[str, Any]) -> dict[str, Any]:
     P_cycle = check_positive("P_cycle", params.get("P_cycle", 5.5), "N")
     A_scale = check_positive("A_scale", params.get("A_scale", 0.3), "m")
     rtol = float(params.get("rtol", 1e-9))
+    # The loads the branch must reach, checked before it is computed: the damped flutter load
+    # of the linearised rod, as cycle_branch computes it (a few small eigenproblems).
+    from flutterfriction.analysis.damped import flutter_onset
+
+    M0, C0, K0, K1 = NonlinearRod(rod, n_el).linear_matrices()
+    P_flu = float(flutter_onset(M0, C0, K0, K1, load_max=40 * rod.load_unit, n_scan=64))
+    if not P_max > P_flu:
+        raise ParameterError(f"P_max = {P_max} N must be above the damped flutter load "
+                             f"{P_flu:.4f} N, where the branch starts")
+    for L in [float(x) for x in params.get("check_loads", [])]:
+        if not P_flu < L <= P_max:
+            raise ParameterError(f"check load {L} N is outside the branch "
+                                 f"({P_flu:.4f}, {P_max}] N")
     land = (P_cycle,) if P_cycle < P_max else ()
     b = cycle_branch(rod, n_elements=n_el, A_first=float(params.get("A_first", 0.01)),
                      A_max=A_scale, rtol=rtol, max_points=int(params.get("max_points", 80)),
