@@ -202,3 +202,17 @@ def test_values_the_scenes_refuse_are_refused_before_any_job(config, scene, key,
     problems = validate_config(raw, ROOT / "workflow" / "schemas" / "config.schema.yaml",
                                scenes=SCENES)
     assert any(match in p for p in problems), problems
+
+
+def test_an_unknown_list_name_does_not_hide_the_other_problems():
+    """Outside audit: an unknown parameter-list name returned at once, hiding every other
+    problem of the file (3 problems, 1 line)."""
+    raw = yaml.safe_load((ROOT / "workflow" / "config.yaml").read_text())
+    raw["scenes"]["eq47"]["pendulum"] = "list99"
+    raw["scenes"]["eq25"]["n_pts"] = 3
+    raw["scenes"]["fig05"]["n_points"] = -1
+    problems = validate_config(raw, ROOT / "workflow" / "schemas" / "config.schema.yaml",
+                               scenes=SCENES)
+    assert len(problems) == 3, problems
+    assert "unknown parameter list 'list99'" in problems[0]
+    assert any("n_pts" in p for p in problems) and any("fig05.n_points" in p for p in problems)

@@ -191,10 +191,12 @@ def validate_config(config: dict[str, Any], schema_path: str | Path,
     with open(schema_path, encoding="utf-8") as fh:
         schema = yaml.safe_load(fh)
     config = copy.deepcopy(config)
+    # An unknown list name is one problem among the others (it hid them all); the schema's
+    # complaint about the same key (a string where a mapping belongs) is left out.
     problems = expand_parameter_lists(config)
-    if problems:
-        return problems
-    problems = _schema_problems(config, schema, "config: ")
+    unresolved = {line.split(": ", 2)[1] for line in problems}
+    problems += [line for line in _schema_problems(config, schema, "config: ")
+                 if line.split(": ", 2)[1] not in unresolved]
     if scenes is not None:
         known = set(scenes)
         problems += [f"config: scenes.{name}: no such scene; registered scenes: {sorted(known)}"
