@@ -192,6 +192,7 @@ def test_the_config_names_the_lists_and_an_unknown_name_is_refused(config):
     ("beck_limit_cycle", "meshes", [16, 8, 4], "meshes: must be strictly increasing"),
     ("rod_fe_convergence", "elements", [4, 4, 4], "elements: must be strictly increasing"),
     ("elastica", "part", [0.75, 0.3], "part: must be strictly increasing"),
+    ("acoustic_eigenvalues", "n", [0, 0, 0], "n: must be a non-zero direction"),
 ])
 def test_values_the_scenes_refuse_are_refused_before_any_job(config, scene, key, value, match):
     """Outside audit: these passed `snakemake -n` and failed (or computed nonsense) only when

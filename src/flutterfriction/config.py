@@ -160,6 +160,9 @@ def _physical_problems(scene: str, params: dict[str, Any], prefix: str) -> list[
                 and isinstance(value, list) and len(value) == 2 \
                 and all(isinstance(v, int | float) for v in value) and not value[0] < value[1]:
             lines.append(f"{where}: the range must be increasing, got {value}")
+        if key == "n" and isinstance(value, list) and value \
+                and all(isinstance(v, int | float) for v in value) and not any(value):
+            lines.append(f"{where}: must be a non-zero direction, got {value}")
         if key in ("meshes", "elements", "part") and isinstance(value, list) \
                 and all(isinstance(v, int | float) for v in value) \
                 and not all(a < b for a, b in zip(value, value[1:], strict=False)):
