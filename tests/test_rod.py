@@ -312,6 +312,9 @@ def test_power_product_matches_the_direct_formulas_and_survives_the_ends():
     assert Rod(length=1, B=1e-200, rho=1e200).time_scale == pytest.approx(1e200, rel=1e-15)
     assert power_product((0.0, 1), (5.0, -2)) == 0.0
     assert power_product((2.0**-1074, 0.5), (2.0**-1074, 0.5)) == 2.0**-1074
+    assert power_product((2.0**1023, 1), (1.5, 1)) == 1.5 * 2.0**1023  # the largest decade
+    with pytest.raises(ParameterError, match="exceeds the double range"):
+        _ = Rod(length=1e200, B=1e-300, rho=1.0).time_scale  # was inf
 
 
 @pytest.mark.parametrize(("call", "name"), [

@@ -25,12 +25,13 @@ Note on eq. (113)-(114): for ``sin(lambda2 xi)`` to solve eq. (109), ``lambda2^2
 from __future__ import annotations
 
 import math
+import sys
 from dataclasses import dataclass, fields
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from flutterfriction.errors import check_nonnegative, check_positive
+from flutterfriction.errors import ParameterError, check_nonnegative, check_positive
 
 
 @dataclass(frozen=True)
@@ -122,6 +123,9 @@ def power_product(*factors: tuple[float, float]) -> float:
             a = math.copysign(1, a)
         mantissa, shift = math.frexp(mantissa * m ** int(a))
         exponent += shift + e * int(a)
+    if exponent > sys.float_info.max_exp:
+        raise ParameterError(f"the product of {[x for x, _ in factors]} to the powers "
+                             f"{[a for _, a in factors]} exceeds the double range (2^{exponent})")
     return math.ldexp(mantissa, exponent)
 
 
