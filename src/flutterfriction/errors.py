@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 from numbers import Real
+from typing import Any
 
 
 class ParameterError(ValueError):
@@ -38,6 +39,33 @@ def check_nonnegative(name: str, value: object, unit: str = "") -> float:
     if x < 0.0:
         raise ParameterError(f"{name} must be >= 0{_unit(unit)}, got {x!r}")
     return x
+
+
+def check_integer(name: str, value: object, low: int, high: int | None = None) -> int:
+    """An integer (not a bool, not 4.0 or "4") in ``[low, high]`` (``[low, inf)`` without
+    ``high``), or a :class:`ParameterError` naming ``name`` and the range."""
+    import numpy as np
+
+    if isinstance(value, bool) or not isinstance(value, int | np.integer) or value < low \
+            or (high is not None and value > high):
+        allowed = f">= {low}" if high is None else f"in [{low}, {high}]"
+        raise ParameterError(f"{name} must be an integer {allowed}, got {value!r}")
+    return int(value)
+
+
+def check_finite_array(name: str, value: object, shape: tuple[int, ...],
+                       what: str | None = None) -> Any:
+    """``value`` as a float array of ``shape`` with finite entries, or a
+    :class:`ParameterError` ``"<name> must be <what>"`` (default: a finite array of the
+    shape)."""
+    import numpy as np
+
+    a = np.asarray(value, dtype=float)
+    if a.shape != shape or not np.all(np.isfinite(a)):
+        got = f"got {value!r}" if a.size <= 6 else f"got shape {a.shape}"
+        raise ParameterError(f"{name} must be {what or f'a finite array of shape {shape}'}, "
+                             f"{got}")
+    return a
 
 
 def _unit(unit: str) -> str:

@@ -17,7 +17,7 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import root
 
 from flutterfriction.analysis.events import from_the_section
-from flutterfriction.errors import ConvergenceError, ParameterError, check_real
+from flutterfriction.errors import ConvergenceError, ParameterError, check_finite_array, check_real
 from flutterfriction.models.ziegler import ZieglerPendulum
 
 _PARAM_NAMES = "l1 l2 d h m1 m2 m3 k1 k2 c1 c2 P H"
@@ -58,10 +58,8 @@ def _checked_start(P: float, H: float, state0: ArrayLike) -> tuple[float, float,
     """The loads and the start state, refused (one line naming them) unless finite; the
     integrations then call the equations of motion unchecked."""
     P, H = check_real("P", P), check_real("H", H)
-    x0 = np.asarray(state0, dtype=float)
-    if x0.shape != (4,) or not np.all(np.isfinite(x0)):
-        raise ParameterError("state0 must be 4 finite numbers [a1, a2, a1_dot, a2_dot]")
-    return P, H, x0
+    return P, H, check_finite_array("state0", state0, (4,),
+                                    "4 finite numbers [a1, a2, a1_dot, a2_dot]")
 
 def simulate(pendulum: ZieglerPendulum, P: float, state0: ArrayLike, t_end: float,
              t_eval: ArrayLike | None = None, H: float = 0.0, method: str = "DOP853",

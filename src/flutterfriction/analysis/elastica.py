@@ -47,6 +47,7 @@ from scipy.special import ellipeinc, ellipj, ellipkinc, ellipkm1
 from flutterfriction.errors import (
     ConvergenceError,
     ParameterError,
+    check_integer,
     check_positive,
     check_real,
 )
@@ -234,10 +235,8 @@ def solve_shooting(length: float, B: float, loads: ElasticaLoads, *, load_steps:
     length, B = _check_rod(length, B)
     if not isinstance(loads, ElasticaLoads):
         raise ParameterError(f"loads must be ElasticaLoads, got {type(loads).__name__}")
-    if isinstance(load_steps, bool) or not isinstance(load_steps, int) or load_steps < 1:
-        raise ParameterError(f"load_steps must be an integer >= 1, got {load_steps!r}")
-    if isinstance(max_iter, bool) or not isinstance(max_iter, int) or max_iter < 1:
-        raise ParameterError(f"max_iter must be an integer >= 1, got {max_iter!r}")
+    check_integer("load_steps", load_steps, 1)
+    check_integer("max_iter", max_iter, 1)
     rtol = check_positive("rtol", rtol)
     tol = check_positive("tol", tol, "rad")
     fP1, g1 = _dimensionless(length, B, loads)
@@ -287,9 +286,8 @@ def solve_collocation(length: float, B: float, loads: ElasticaLoads, *, load_ste
     length, B = _check_rod(length, B)
     if not isinstance(loads, ElasticaLoads):
         raise ParameterError(f"loads must be ElasticaLoads, got {type(loads).__name__}")
-    for name, value in (("load_steps", load_steps), ("max_nodes", max_nodes)):
-        if isinstance(value, bool) or not isinstance(value, int) or value < 1:
-            raise ParameterError(f"{name} must be an integer >= 1, got {value!r}")
+    check_integer("load_steps", load_steps, 1)
+    check_integer("max_nodes", max_nodes, 1)
     tol = check_positive("tol", tol)
     fP1, g1 = _dimensionless(length, B, loads)
 

@@ -25,7 +25,13 @@ from numpy.typing import NDArray
 from scipy.optimize import brentq, linear_sum_assignment, minimize_scalar
 
 from flutterfriction.analysis.stability import Regime, state_eigenvalues
-from flutterfriction.errors import ConvergenceError, ParameterError, check_positive, check_real
+from flutterfriction.errors import (
+    ConvergenceError,
+    ParameterError,
+    check_integer,
+    check_positive,
+    check_real,
+)
 from flutterfriction.models.rod import RodGroups, characteristic_function
 from flutterfriction.models.rod_fe import assemble
 
@@ -121,16 +127,10 @@ MAX_ELEMENTS = 200
 
 
 def _check_mesh(n_elements: object, n_modes: object = None) -> None:
-    """Refuse a mesh or a mode count outside its range (one line naming it)."""
-    if isinstance(n_elements, bool) or not isinstance(n_elements, int | np.integer) \
-            or not 1 <= n_elements <= MAX_ELEMENTS:
-        raise ParameterError(f"n_elements must be an integer in [1, {MAX_ELEMENTS}], "
-                             f"got {n_elements!r}")
-    if n_modes is not None and (isinstance(n_modes, bool)
-                                or not isinstance(n_modes, int | np.integer)
-                                or not 1 <= n_modes <= n_elements):
-        raise ParameterError(f"n_modes must be an integer in [1, n_elements] = "
-                             f"[1, {n_elements}], got {n_modes!r}")
+    """Refuse a mesh or a mode count (at most n_elements) outside its range."""
+    n_elements = check_integer("n_elements", n_elements, 1, MAX_ELEMENTS)
+    if n_modes is not None:
+        check_integer("n_modes", n_modes, 1, n_elements)
 
 
 def _check_load(p: object, name: str = "p") -> float:

@@ -27,7 +27,7 @@ from flutterfriction.analysis.rod_cycles import (
     tip_lateral,
     variational_flow,
 )
-from flutterfriction.errors import ConvergenceError, ParameterError, check_real
+from flutterfriction.errors import ConvergenceError, ParameterError, check_integer, check_real
 from flutterfriction.models.rod import Rod
 from flutterfriction.models.rod_nonlinear import NonlinearRod
 
@@ -107,10 +107,7 @@ def beck_limit_cycle(rod: Rod, P: float, n_elements: int = 8, method: str = "BDF
         if not check_real(name, value) > 0:
             raise ParameterError(f"{name} must be > 0, got {value!r}")
     check_real("initial_tip_rotation", initial_tip_rotation)
-    if isinstance(samples_per_period, bool) or not isinstance(samples_per_period, int) \
-            or samples_per_period < 2:
-        raise ParameterError(f"samples_per_period must be an integer >= 2, got "
-                             f"{samples_per_period!r}")
+    check_integer("samples_per_period", samples_per_period, 2)
     model = NonlinearRod(rod, n_elements)
     n = model.n_dof
     y = np.zeros(2 * n)

@@ -8,7 +8,7 @@ from collections.abc import Sequence
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from flutterfriction.errors import ParameterError
+from flutterfriction.errors import ParameterError, check_finite_array
 
 
 def _cross(r: NDArray, f: NDArray) -> float:
@@ -37,10 +37,7 @@ def planar_equilibrium(known: Sequence[tuple[ArrayLike, ArrayLike]],
         raise ParameterError(f"a planar rigid body has 3 equilibrium equations: give 3 unknown "
                              f"forces, got {len(unknown)}")
     def planar(name: str, x: ArrayLike) -> NDArray:
-        a = np.asarray(x, dtype=float)
-        if a.shape != (2,) or not np.all(np.isfinite(a)):
-            raise ParameterError(f"{name} must be two finite numbers (x, y), got {x!r}")
-        return a
+        return check_finite_array(name, x, (2,), "two finite numbers (x, y)")
 
     A = np.empty((3, 3))
     for k, (r, d) in enumerate(unknown):

@@ -15,7 +15,12 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from flutterfriction.errors import ConvergenceError, ParameterError, check_positive
+from flutterfriction.errors import (
+    ConvergenceError,
+    ParameterError,
+    check_finite_array,
+    check_positive,
+)
 
 
 @dataclass(frozen=True)
@@ -60,15 +65,18 @@ class CoulombContact:
         E, a, b = self.elastic_matrix(), self.gradient(p, side), self.slip_direction(p, side)
         return E - np.outer(E @ b, E.T @ a) / (a @ E @ b)
 
+    def cone_tolerance(self, p: NDArray) -> float:
+        """Round-off of the friction function at ``p``: relative to its terms ``|p_T|`` and
+        ``mu p_N``, not to ``p_N`` alone (with ``mu ~ 1e5`` a force on the cone missed it by
+        1e-7 and a stick step never advanced)."""
+        return 1e-12 * max(1.0, abs(p[0]), abs(p[1]), self.mu * abs(p[0]))
+
     def rate(self, p: ArrayLike, u_dot: ArrayLike) -> NDArray:
         """``p_dot`` of eq. (140) at the force ``p`` for the displacement rate ``u_dot``."""
-        p, u_dot = np.asarray(p, dtype=float), np.asarray(u_dot, dtype=float)
-        for name, x in (("p", p), ("u_dot", u_dot)):
-            if x.shape != (2,) or not np.all(np.isfinite(x)):
-                raise ParameterError(f"{name} must be two finite numbers (normal, tangential)")
+        p, u_dot = (check_finite_array(name, x, (2,), "two finite numbers (normal, tangential)")
+                    for name, x in (("p", p), ("u_dot", u_dot)))
         E = self.elastic_matrix()
-        if self.friction_function(p) < -1e-12 * max(1.0, abs(p[0]), abs(p[1]),
-                                                     self.mu * abs(p[0])):
+        if self.friction_function(p) < -self.cone_tolerance(p):
             return E @ u_dot
         a, b = self.gradient(p), self.slip_direction(p)
         lam = max(a @ E @ u_dot, 0.0) / (a @ E @ b)  # Macaulay bracket: slip only if > 0
@@ -96,16 +104,8 @@ def integrate_path(contact: CoulombContact, vertices: ArrayLike,
     V = np.asarray(vertices, dtype=float)
     if V.ndim != 2 or V.shape[1] != 2 or len(V) < 2 or not np.all(np.isfinite(V)):
         raise ParameterError("vertices must be a finite (m >= 2, 2) array of (u_N, u_T)")
-    p = np.asarray(p0, dtype=float).copy()
-    if p.shape != (2,) or not np.all(np.isfinite(p)):
-        raise ParameterError(f"p0 must be two finite numbers (p_N, p_T), got {p0!r}")
-
-    def tol_at(p: NDArray) -> float:
-        # the friction function's round-off: its terms |p_T| and mu p_N, not p_N alone (with
-        # mu ~ 1e5 a force on the cone missed it by 1e-7 and the stick step never advanced)
-        return 1e-12 * max(1.0, abs(p[0]), abs(p[1]), contact.mu * abs(p[0]))
-
-    if p[0] < 0 or contact.friction_function(p) > tol_at(p):
+    p = check_finite_array("p0", p0, (2,), "two finite numbers (p_N, p_T)").copy()
+    if p[0] < 0 or contact.friction_function(p) > contact.cone_tolerance(p):
         raise ParameterError(f"p0 = {p0} is outside the Coulomb cone |p_T| <= mu p_N")
     E = contact.elastic_matrix()
     us, ps, slips, branches = [V[0].copy()], [p.copy()], [0.0], ["start"]
@@ -122,7 +122,7 @@ def integrate_path(contact: CoulombContact, vertices: ArrayLike,
                 raise ConvergenceError(
                     f"the contact path did not advance on the segment {u_a} -> {u_b} (the force "
                     f"{p} stays at the cone's edge to round-off)")
-            tol = tol_at(p)
+            tol = contact.cone_tolerance(p)
             dp_trial = E @ du
             # The side of the cone: sgn p_T, or at the apex the direction of the trial rate.
             side = np.sign(p[1]) if abs(p[1]) > tol else (np.sign(dp_trial[1]) or 1.0)

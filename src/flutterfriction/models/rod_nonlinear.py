@@ -30,7 +30,7 @@ import numpy as np
 from numpy.polynomial import legendre
 from numpy.typing import NDArray
 
-from flutterfriction.errors import ConvergenceError, ParameterError
+from flutterfriction.errors import ConvergenceError, ParameterError, check_integer
 from flutterfriction.models.rod import Rod
 from flutterfriction.models.rod_kernel import jacobians, rhs_one
 
@@ -82,12 +82,8 @@ class NonlinearRod:
         if not isinstance(self.rod, Rod):
             raise ParameterError(f"rod must be a Rod (SI parameters), got "
                                  f"{type(self.rod).__name__}")
-        for name, low, high in (("n_elements", 1, MAX_ELEMENTS), ("n_gauss", 1, 20)):
-            value = getattr(self, name)
-            if isinstance(value, bool) or not isinstance(value, int | np.integer) \
-                    or not low <= value <= high:
-                raise ParameterError(f"{name} must be an integer in [{low}, {high}], "
-                                     f"got {value!r}")
+        check_integer("n_elements", self.n_elements, 1, MAX_ELEMENTS)
+        check_integer("n_gauss", self.n_gauss, 1, 20)
         N, ng = int(self.n_elements), int(self.n_gauss)
         L = self.rod.length
         h = L / N

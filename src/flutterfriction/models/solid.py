@@ -12,7 +12,12 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from flutterfriction.errors import ParameterError, check_positive, check_real
+from flutterfriction.errors import (
+    ParameterError,
+    check_finite_array,
+    check_positive,
+    check_real,
+)
 
 I3 = np.eye(3)
 
@@ -74,20 +79,16 @@ def check_direction(n: ArrayLike, normalise: bool = False) -> NDArray:
     return m / norm_m
 
 
-def _finite(name: str, x: ArrayLike, shape: tuple[int, ...]) -> NDArray:
-    """``x`` as a float array of ``shape``, refused (naming it) unless finite."""
-    a = np.asarray(x, dtype=float)
-    if a.shape != shape or not np.all(np.isfinite(a)):
-        raise ParameterError(f"{name} must be a finite array of shape {shape}, got shape "
-                             f"{a.shape}" + ("" if a.shape != shape else " with NaN or inf"))
-    return a
-
-
 def _nonzero_direction(n: ArrayLike) -> NDArray:
-    n = _finite("n", n, (3,))
+    n = check_finite_array("n", n, (3,))
     if not np.any(n):
         raise ParameterError("n must be a non-zero vector (a propagation direction)")
     return n
+
+
+def _tensors(P: ArrayLike, Q: ArrayLike) -> tuple[NDArray, NDArray]:
+    """The flow-rule tensors ``P``, ``Q`` as finite 3x3 arrays (refused, naming them)."""
+    return check_finite_array("P", P, (3, 3)), check_finite_array("Q", Q, (3, 3))
 
 
 def _modulus(g: object) -> float:
@@ -137,8 +138,8 @@ def drucker_prager_tensors(sigma: ArrayLike, friction_angle: float,
 
 def plastic_modulus(H: float, E: NDArray, P: ArrayLike, Q: ArrayLike) -> float:
     """``g = H + Q . E[P]`` (eq. 152)."""
-    E = _finite("E", E, (3, 3, 3, 3))
-    P, Q = _finite("P", P, (3, 3)), _finite("Q", Q, (3, 3))
+    E = check_finite_array("E", E, (3, 3, 3, 3))
+    P, Q = _tensors(P, Q)
     return float(check_real("H", H) + np.einsum("ij,ij->", Q, apply(E, P)))
 
 
@@ -153,14 +154,14 @@ def elastoplastic_tangent(E: NDArray, P: ArrayLike, Q: ArrayLike, g: float) -> N
 # ---------------------------------------------------------------------- §3.3–3.4
 def elastic_acoustic_tensor(E: NDArray, n: ArrayLike, rho: float = 1.0) -> NDArray:
     """``A_el(n)`` of eq. (162): ``(A_el)_ik = E_ijkl n_j n_l / rho``."""
-    E, n = _finite("E", E, (3, 3, 3, 3)), _nonzero_direction(n)
+    E, n = check_finite_array("E", E, (3, 3, 3, 3)), _nonzero_direction(n)
     return np.einsum("ijkl,j,l->ik", E, n, n) / check_positive("rho", rho)
 
 
 def acoustic_vectors(E: NDArray, P: ArrayLike, Q: ArrayLike, n: ArrayLike) -> tuple:
     """``p = E[P] n`` and ``q = E^T[Q] n`` (eq. 165)."""
-    E, n = _finite("E", E, (3, 3, 3, 3)), _nonzero_direction(n)
-    P, Q = _finite("P", P, (3, 3)), _finite("Q", Q, (3, 3))
+    E, n = check_finite_array("E", E, (3, 3, 3, 3)), _nonzero_direction(n)
+    P, Q = _tensors(P, Q)
     return apply(E, P) @ n, apply_transpose(E, Q) @ n
 
 
@@ -183,7 +184,7 @@ def isotropic_vectors(lam: float, mu: float, P: ArrayLike, Q: ArrayLike,
                       n: ArrayLike) -> tuple[NDArray, NDArray]:
     """``q = lam tr(Q) n + 2 mu Q n``, ``p = lam tr(P) n + 2 mu P n`` (eq. 180)."""
     lam, mu = _isotropic(lam, mu)
-    P, Q, n = _finite("P", P, (3, 3)), _finite("Q", Q, (3, 3)), _nonzero_direction(n)
+    (P, Q), n = _tensors(P, Q), _nonzero_direction(n)
     return lam * np.trace(P) * n + 2 * mu * P @ n, lam * np.trace(Q) * n + 2 * mu * Q @ n
 
 
@@ -254,7 +255,7 @@ def coalescence_modulus(lam: float, mu: float, P: ArrayLike, Q: ArrayLike) -> fl
     """Eq. (194): ``max_i (E[P])_i (E[Q])_i / (lam + mu)`` over principal components, for
     coaxial ``P``, ``Q`` (deviatoric associativity)."""
     E = isotropic_elasticity(lam, mu)
-    EP, EQ = apply(E, _finite("P", P, (3, 3))), apply(E, _finite("Q", Q, (3, 3)))
+    EP, EQ = (apply(E, T) for T in _tensors(P, Q))
     w, V = np.linalg.eigh(EP)
     eq = np.einsum("ji,jk,ki->i", V, EQ, V)  # components of E[Q] on E[P]'s principal axes
     return float(np.max(w * eq) / (lam + mu))
