@@ -73,7 +73,7 @@ display(Markdown(f"$h_{{cr}}$: search {q['value']:.15f}, Rudnicki–Rice {q['ind
 # ## §3.5 Flutter
 #
 # For isotropic elasticity the eigenvalues are $\mu$ and the roots of eq. (184); flutter (a
-# complex pair of $c^2$) happens iff $N = (\mathbf n\cdot\mathbf p)(\mathbf n\cdot\mathbf q) > 0$,
+# complex pair of eigenvalues $\eta = \rho c^2$) happens iff $N = (\mathbf n\cdot\mathbf p)(\mathbf n\cdot\mathbf q) > 0$,
 # $N - \mathbf p\cdot\mathbf q > 0$ and $g_1 < g < g_2$ with
 # $g_{1,2} = (\sqrt{N} \mp \sqrt{N - \mathbf p\cdot\mathbf q})^2/(\lambda+\mu)$.
 # **Erratum**: eq. (188) prints $(\mathbf n\cdot\mathbf p)(\mathbf n\cdot\mathbf p)$ in the second
@@ -96,12 +96,12 @@ display(Markdown(quantities_table(scene("solids_statements")["quantities"], digi
 # %% [markdown]
 # ### Which directions flutter, and anisotropy
 #
-# Left: for the nonassociative case, the band of $g$ in which each direction of a principal
-# plane flutters, above the localization modulus as the theory requires. Right: a
+# (a) For the nonassociative case, the band of $g$ in which each direction of a principal
+# plane flutters, above the localization modulus as the theory requires. (b) A
 # deviatoric-associative Drucker–Prager material at the coalescence modulus (194) cannot flutter
 # with isotropic elasticity; adding a small generic elastic anisotropy (a random tensor with the
 # major and minor symmetries, size ε relative to μ) makes a thin set of directions near the
-# coalescence direction flutter, growing with ε (Bigoni and Loret 1999).
+# coalescence direction flutter; (c) that set grows with ε (Bigoni and Loret 1999).
 
 # %%
 show("flutter_map", width=900)
@@ -111,7 +111,9 @@ display(Markdown("| ε | % of the ±20° patch that flutters |\n|---|---|\n" + "
 
 # %% [markdown]
 # ## Your own material
-# `flutterfriction acoustic --lam L --mu M --P ... --Q ... --n ... --g G --json`:
+# `flutterfriction acoustic --lam L --mu M --P ... --Q ... --n ... --g G --json`; here the
+# parameters of the figures above (P, Q as given: eq. 152 defines g with them, so these are the
+# checked $g_1$, $g_2$ and $g^E_{cr}$):
 
 # %%
 P = so.voigt_to_tensor([1, -0.5, -0.5, 0, 0, 0.8])

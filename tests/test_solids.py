@@ -264,3 +264,25 @@ def test_contact_rate_and_planar_equilibrium_refuse_non_finite_input():
     with pytest.raises(ParameterError, match=r"^known\[0\] point must be two finite"):
         planar_equilibrium([((0, 0, 0), (1.0, 1.0))], supports)
     assert planar_equilibrium([((0, 0), (0, -1.0))], supports) == pytest.approx([0, 1, 0])
+
+
+def test_acoustic_scene_uses_the_listed_flow_rule_as_given():
+    """Outside review: the scene normalised P and Q to unit norm, so its g1, g2 and g_loc were
+    those of other tensors than the listed ones (the CLI and the notebook gave 2.25x larger
+    moduli for the same parameters). Eq. (152) defines g with P and Q as given; the API on the
+    listed values is the reference, and a scaled flow rule scales every modulus."""
+    from flutterfriction.scenes.solids import acoustic_eigenvalues
+
+    params = {"lam": 1.0, "mu": 1.0, "P": [1.0, -0.5, -0.5, 0.0, 0.0, 0.8],
+              "Q": [0.6, -0.3, -0.3, 0.0, 0.0, -0.8], "n": [1.0, 0.0, 0.0],
+              "g_min": 1e-4, "g_max": 100.0, "n_points": 21}
+    d = acoustic_eigenvalues(params)
+    P, Q = so.voigt_to_tensor(params["P"]), so.voigt_to_tensor(params["Q"])
+    n = np.array(params["n"])
+    assert d["flutter_interval"] == pytest.approx(
+        so.flutter_interval_isotropic(1.0, 1.0, P, Q, n), rel=1e-12)
+    assert d["g_localization"] == pytest.approx(
+        so.localization_modulus_isotropic(1.0, 1.0, P, Q, n), rel=1e-12)
+    doubled = acoustic_eigenvalues({**params, "P": [2 * x for x in params["P"]]})
+    assert doubled["flutter_interval"] == pytest.approx(
+        [2 * g for g in d["flutter_interval"]], rel=1e-12)

@@ -240,8 +240,9 @@ def plot_acoustic_eigenvalues(data: dict[str, Any]) -> Figure:
                   f"$g^E_{{cr}}(n)$ = {gE:.4g} < 0: localization not reached for g > 0",
                   fontsize=8, pad=14)
     ax1.set_yscale("symlog", linthresh=1.0)
-    ax1.set_ylabel(r"Re $c^2$ [Pa]")
-    ax2.set_ylabel(r"Im $c^2$ [Pa]")
+    # eta, the eigenvalue of A(n) (eq. 183): rho c^2 of a plane wave, a stress (unit density)
+    ax1.set_ylabel(r"Re $\eta = \rho c^2$ [Pa]")
+    ax2.set_ylabel(r"Im $\eta$ [Pa]")
     ax2.set_xlabel("plastic modulus g [Pa]")
     # In the empty Re < 0 band (no eigenvalue goes there for g > 0).
     ax1.legend(*ax2.get_legend_handles_labels(), fontsize=7, loc="lower right", ncol=2)

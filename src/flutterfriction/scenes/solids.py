@@ -16,12 +16,19 @@ from flutterfriction.models.contact import CoulombContact, integrate_path
 from flutterfriction.scenes.common import n_points, quantity, take
 
 
-def _unit(t: Any) -> np.ndarray:
+def _tensor(name: str, t: Any) -> np.ndarray:
+    """The flow mode ``P`` or yield gradient ``Q`` as given (Voigt or 3x3), not rescaled: the
+    plastic modulus g of eq. (152) is defined with them, and scaling P, Q by a, b scales every
+    critical g (g1, g2, the localization modulus) by a b, so a silent normalisation would
+    report other moduli than the listed parameters give (the CLI and the notebooks use them as
+    given too)."""
     t = np.asarray(t, dtype=float)
     if t.shape == (6,):
         t = so.voigt_to_tensor(t)
-    t = so.check_symmetric("tensor", t)
-    return t / np.linalg.norm(t)
+    t = so.check_symmetric(name, t)
+    if not np.any(t):
+        raise ParameterError(f"{name} must be non-zero (a flow mode / yield gradient)")
+    return t
 
 
 def _direction_in_plane(theta: np.ndarray) -> np.ndarray:
@@ -91,7 +98,7 @@ def _unloaded_point(r: Any, onset: int) -> dict[str, float]:
 # ---------------------------------------------------------------------- acoustic eigenvalues
 def _nonassociative_case(params: dict[str, Any]):
     lam, mu = float(params["lam"]), check_positive("mu", params["mu"])
-    P, Q = _unit(params["P"]), _unit(params["Q"])
+    P, Q = _tensor("P", params["P"]), _tensor("Q", params["Q"])
     n = so.check_direction(params["n"], normalise=True)
     return lam, mu, P, Q, n
 
