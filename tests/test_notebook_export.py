@@ -30,6 +30,13 @@ def test_quantities_table_rounds_and_states_units():
     assert fmt(1 / 3, 3) == "0.333" and fmt("x") == "x"
 
 
+def test_quantities_table_gives_an_absolute_difference_against_an_exact_zero():
+    # a residual of 8.7e-16 against its exact 0: the relative difference would always be 1
+    q = {"triple_coalescence": {"value": 8.7e-16, "independent": 0.0, "unit": "",
+                                "method": "a", "independent_method": "exact"}}
+    assert quantities_table(q).endswith("| 8.7e-16 (abs.) |")
+
+
 def test_a_notebook_exports_offline_with_code_folded_and_figures_linked(tmp_path):
     pytest.importorskip("latex2mathml")
     pytest.importorskip("nbconvert")

@@ -144,7 +144,7 @@ def quantities_table(quantities: dict[str, dict[str, Any]], digits: int = 7,
     markdown table for a notebook: ``digits`` significant digits, the unit, and the relative
     difference of the two methods; for the quantities named in ``absolute`` (residuals, whose
     quoted value is 0, so that a relative difference of two round-offs means nothing) the
-    absolute difference, marked "(abs.)"."""
+    absolute difference, marked "(abs.)"; also wherever one of the two is exactly 0."""
     absolute = set(absolute)
     lines = ["| quantity | value | unit | method | independent | independent method | "
              "rel. difference |", "|---|---|---|---|---|---|---|"]
@@ -153,8 +153,10 @@ def quantities_table(quantities: dict[str, dict[str, Any]], digits: int = 7,
         diff = ""
         if all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in (v, w)):
             scale = max(abs(v), abs(w))
-            diff = "0" if v == w else (f"{abs(v - w):.1e} (abs.)" if k in absolute else
-                                       f"{abs(v - w) / scale:.1e}" if scale else "")
+            # against an exact 0 (a residual) a relative difference is always 1: absolute then
+            relative = k not in absolute and v != 0 and w != 0
+            diff = "0" if v == w else (f"{abs(v - w) / scale:.1e}" if relative else
+                                       f"{abs(v - w):.1e} (abs.)")
         cells = [k, fmt(v, digits), q.get("unit", ""), q.get("method", ""), fmt(w, digits),
                  q.get("independent_method", ""), diff]
         lines.append("| " + " | ".join(str(c).replace("|", "\\|") for c in cells) + " |")
