@@ -72,7 +72,7 @@ def test_every_link_of_a_built_report_resolves(tmp_path):
     assert broken_links(page) == []
     text = page.read_text()
     assert "caption &lt;B&gt; &amp; more" in text  # captions are escaped
-    assert "sympy says so" in text and "1 of 1 quoted values" in text
+    assert "sympy says so" in text and "1 of 1 checked values" in text
     assert 'id="coverage"' in text and 'id="lists"' in text and "built from commit abc" in text
 
 

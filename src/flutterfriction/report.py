@@ -483,7 +483,9 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
                 "what is wrong:<ul>" + "".join(f"<li>{html.escape(p)}</li>" for p in problems)
                 + "</ul></div>"] if problems else []),
              f'<p class="summary{"" if ok else " bad"}"><b>Check</b>: {n_pass} of {n_q} '
-             f"quoted values reproduced within tolerance; {n_ver} of {n_err} errata verified by "
+             f"checked values (the chapter's quoted numbers, and values beyond it: each row "
+             f"names its source) reproduced within tolerance; {n_ver} of {n_err} errata "
+             "verified by "
              'an independent computation. <a href="#check">Check table</a> · '
              '<a href="../checks/summary.md">summary.md</a> · '
              '<a href="../checks/summary.json">summary.json</a></p>',

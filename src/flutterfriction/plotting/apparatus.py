@@ -50,7 +50,8 @@ def _top_view(ax: Axes, data: dict[str, Any], s: float) -> None:
         _force(ax, (b + 0.055, y), (b + 0.055 + 0.05 * v_hat[0], y), "0.35", lw=1.2)
     ax.annotate(f"plate, v = {1e3 * np.linalg.norm(v):.0f} mm/s", ((x0 + x1) / 2, -0.06),
                 xytext=(0, -3), textcoords="offset points", ha="center", va="top", fontsize=8)
-    draw_pendulum(ax, top["points"], top["masses"], 0.5 * b, labels=True)
+    # C is labelled below, clear of the wheel drawn over it
+    draw_pendulum(ax, top["points"], top["masses"], 0.5 * b, labels="ABDE")
     t = (C - B) / np.linalg.norm(C - B)
     n = np.array([-t[1], t[0]])
     ax.plot(*np.array([C - r * n, C + r * n]).T, color="k", lw=4.5, solid_capstyle="butt",
@@ -61,8 +62,9 @@ def _top_view(ax: Axes, data: dict[str, Any], s: float) -> None:
     ax.add_patch(Circle(C, r_C, fc=MASS, ec="black", lw=0.5, zorder=10))
     f = np.array(top["force_direction"])
     _force(ax, C - top["P"] * s * f, C, FORCE["P"])
-    ax.annotate(rf"$P = \mu R$ = {top['P']:.2f} N, along CB", C - top["P"] * s * f,
-                xytext=(4, 6), textcoords="offset points", fontsize=8, color=FORCE["P"],
+    # two lines, so that the label stays on the plate (one line ran across its edge)
+    ax.annotate(rf"$P = \mu R$ = {top['P']:.2f} N,""\nalong CB", C - top["P"] * s * f,
+                xytext=(3, 5), textcoords="offset points", fontsize=8, color=FORCE["P"],
                 ha="left", va="bottom")
     ax.annotate("wheel: axle along BC,\nrolls freely normal to BC", C + r * n,
                 xytext=(x0 - 0.008, 0.045), textcoords="data", fontsize=7.5, ha="right",

@@ -34,7 +34,7 @@ def _spiral(ax: Axes, at: np.ndarray, size: float, turns: float = 2.2) -> None:
 
 def draw_pendulum(ax: Axes, points: dict[str, Any], masses: dict[str, float],
                   scale: float, *, springs: bool = True, loads: dict[str, float] | None = None,
-                  labels: bool = False, ground_angle: float = np.pi, offset=(0.0, 0.0),
+                  labels: bool | str = False, ground_angle: float = np.pi, offset=(0.0, 0.0),
                   transform=None) -> None:
     """Draw one configuration.
 
@@ -49,6 +49,9 @@ def draw_pendulum(ax: Axes, points: dict[str, Any], masses: dict[str, float],
         Drawing size unit (e.g. the rod length), for hinges, springs and arrows.
     loads : dict, optional
         ``{"P": length, "H": length}`` to draw the follower and dead loads at C.
+    labels : bool or str, optional
+        Name the points (and the loads): True for all, or the names to write (e.g. ``"ABDE"``
+        where a figure labels C itself).
     transform : callable, optional
         Maps an (n, 2) array of model coordinates to drawing coordinates (e.g. a rotation).
     """
@@ -90,5 +93,8 @@ def draw_pendulum(ax: Axes, points: dict[str, Any], masses: dict[str, float],
     if labels:
         n = np.array([-(B - A)[1], (B - A)[0]]) / np.linalg.norm(B - A)
         n2 = np.array([-(C - B)[1], (C - B)[0]]) / np.linalg.norm(C - B)
+        names = "ABCDE" if labels is True else labels
         for name, p, nn in (("A", A, n), ("B", B, n), ("C", C, n2), ("D", D, n), ("E", E, n2)):
+            if name not in names:
+                continue
             ax.annotate(name, p + 0.13 * scale * nn, ha="center", va="center", fontsize=10)

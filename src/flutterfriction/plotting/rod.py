@@ -53,6 +53,12 @@ def _zoom_crossing(ax, p: np.ndarray, re: np.ndarray, p_flu: float) -> None:
     ins.set_ylabel(rf"max Re $\tilde\omega$" "\n" rf"[$10^{{{exp}}}$]", fontsize=6,
                    labelpad=2)
     ins.set_facecolor("white")
+    # The panel's own p_f line runs under the inset: the inset (zorder 5) covers it, and its
+    # tick and axis labels, outside the inset's box, get a white ground so the line does not
+    # strike through them.
+    for text in (*ins.get_xticklabels(), *ins.get_yticklabels(), ins.xaxis.label,
+                 ins.yaxis.label):
+        text.set_bbox({"facecolor": "white", "edgecolor": "none", "pad": 0.6})
 
 
 def _draw_branch_case(ax_re, ax_im, p: np.ndarray, case: dict[str, Any], title: str,
@@ -83,18 +89,27 @@ def _draw_branch_case(ax_re, ax_im, p: np.ndarray, case: dict[str, Any], title: 
         _zoom_crossing(ax_re, p, re, crit["p_flu"])
 
 
-def _branch_legend(fig: Figure, n_modes: int) -> None:
+def _branch_legend(fig: Figure, n_modes: int, divergence: bool) -> None:
+    """The figure's legend; divergence is named only where a panel shows it (not the Beck
+    rod's Fig. 11)."""
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
     ordinal = ["1st", "2nd", "3rd", "4th"]
     handles = [Line2D([], [], color=f"C{m}", lw=1.3,
                       label=f"branches from the {ordinal[m]} mode at p = 0 (± Im)")
                for m in range(n_modes)]
-    handles += [Patch(color=REGIME_COLOURS[r], alpha=0.7, label=r)
-                for r in ("stable", "flutter", "divergence")]
+    regimes = ("stable", "flutter", "divergence") if divergence else ("stable", "flutter")
+    handles += [Patch(color=REGIME_COLOURS[r], alpha=0.7, label=r) for r in regimes]
     handles.append(Line2D([], [], color="k", ls="--", lw=0.8,
-                          label=r"critical loads $p_f$ (flutter), $p_d$ (divergence)"))
+                          label=r"critical loads $p_f$ (flutter), $p_d$ (divergence)"
+                          if divergence else r"critical load $p_f$ (flutter)"))
     fig.legend(handles=handles, loc="lower center", ncol=3, fontsize=7, frameon=False)
+
+
+def _shows_divergence(cases: Any, p: np.ndarray) -> bool:
+    """Whether any case has a divergence load within the drawn range (as drawn above)."""
+    return any(c["critical"]["p_div"] is not None and c["critical"]["p_div"] < p[-1]
+               for c in cases)
 
 
 def _damping_titles(eta: float) -> dict[str, str]:
@@ -115,7 +130,8 @@ def plot_branches(data: dict[str, Any], title: str) -> Figure:
         ax.set_xlabel(r"$p = P l^2 / B$ [-]")
     fig.suptitle(title, fontsize=9)
     fig.tight_layout(rect=(0, 0.07, 1, 1))
-    _branch_legend(fig, len(data["cases"]["undamped"]["re"]) // 2)
+    _branch_legend(fig, len(data["cases"]["undamped"]["re"]) // 2,
+                   _shows_divergence(data["cases"].values(), p))
     return fig
 
 
@@ -399,5 +415,7 @@ def plot_fig12(data: dict[str, Any]) -> Figure:
                  f"the chapter quotes are those at tan α = {t_fit:.4g}: {loads(fitted)}",
                  fontsize=8.5)
     fig.tight_layout(rect=(0, 0.04, 1, 0.985), h_pad=1.6)
-    _branch_legend(fig, len(fitted["undamped"]["re"]) // 2)
+    _branch_legend(fig, len(fitted["undamped"]["re"]) // 2,
+                   _shows_divergence(stated.values(), p_st)
+                   or _shows_divergence(fitted.values(), p))
     return fig

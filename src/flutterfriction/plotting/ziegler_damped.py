@@ -138,6 +138,8 @@ def plot_fig19_theory(data: dict[str, Any]) -> Figure:
     ax2.set_ylabel("damped / undamped critical load [-]")
     ax2.legend(loc="upper left", fontsize=7)
     ax2.set_title("Ratios against viscosity", fontsize=8)
+    fig.suptitle("Fig. 19, theory only: the experimental spots of the printed figure are "
+                 "measurements, not reproduced", fontsize=8)
     fig.tight_layout()
     return fig
 

@@ -99,8 +99,9 @@ def fig20(params: dict[str, Any]) -> dict[str, Any]:
     acc_li = p.l1 * acc_ang[0] + p.l2 * acc_ang[1]  # linearised transverse acceleration of C
     late = t > T_nl - 1.0
     return {
-        "P": P, "P_flu": P_flu, "P_div": P_div, "t": t.tolist(), "acc_nonlinear": acc_nl[:, 1]
-        .tolist(), "t_linear": t_li.tolist(), "acc_linear": acc_li.tolist(),
+        "P": P, "P_flu": P_flu, "P_div": P_div, "alpha0_deg": math.degrees(a0), "t": t.tolist(),
+        "acc_nonlinear": acc_nl[:, 1].tolist(), "t_linear": t_li.tolist(),
+        "acc_linear": acc_li.tolist(),
         "quantities": {
             "nonlinear_saturates": quantity(
                 "saturates" if np.max(np.abs(acc_nl[late, 1])) < 10 * np.max(
@@ -126,8 +127,8 @@ def fig21(params: dict[str, Any]) -> dict[str, Any]:
     # The plate slides under the wheel along -e1 (the friction on the wheel, -P t, points to A):
     # in the plate's frame the wheel moves by +v t along e1.
     scratch = C + np.stack([v * t, np.zeros_like(t)], axis=-1)
-    return {"P": P, "P_flu": P_flu, "P_div": P_div, "t": t.tolist(), "C": C.tolist(),
-            "scratch": scratch.tolist(), "plate_speed": v}
+    return {"P": P, "P_flu": P_flu, "P_div": P_div, "omega0": w0, "duration": T,
+            "t": t.tolist(), "C": C.tolist(), "scratch": scratch.tolist(), "plate_speed": v}
 
 
 def _amplitude_points(params: dict[str, Any]) -> list[list[Any]]:
