@@ -36,9 +36,14 @@ h1 { font-size: 1.6em; } h2 { border-bottom: 1px solid #ccc; padding-bottom: .2e
 figure { margin: 0; border: 1px solid #ddd; border-radius: 4px; padding: .5em; background: #fff; }
 figure img { width: 100%; height: 190px; object-fit: contain; }
 figcaption { font-size: .85em; } figcaption a { margin-right: .6em; }
-figure.big { margin: 1.5em 0; padding: .8em; }
-figure.big img { height: auto; max-height: none; display: block; }
-figure.big figcaption { font-size: .95em; }
+figure.big { margin: 1.5em 0; padding: .8em; box-sizing: border-box;
+             /* wider than the text column (up to 1800 px), so that wide figures' 7-pt
+                labels show near their print size; centred on the column */
+             width: min(1800px, 96vw); position: relative; left: 50%;
+             transform: translateX(-50%); }
+figure.big img { height: auto; max-height: none; display: block; width: auto; max-width: 100%;
+                 margin: 0 auto; }
+figure.big figcaption { font-size: .95em; max-width: 1150px; margin: 0 auto; }
 figure.big .links { font-size: .85em; }
 figure.big table { width: auto; margin-top: .4em; } figure.big th { position: static; }
 table.coverage td:first-child { min-width: 0; }
