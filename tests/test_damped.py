@@ -16,6 +16,7 @@ from flutterfriction import ZieglerPendulum
 from flutterfriction.analysis.polynomial import characteristic_polynomial
 from flutterfriction.analysis.ziegler import (
     _damped_args,
+    critical_loads,
     damped_dead_load_onset,
     damped_divergence_load,
     damped_flutter_load,
@@ -168,3 +169,21 @@ def test_eq31_printed_coefficients_disagree_only_with_interior_m3():
         g2 = cf.PendulumGroups(rho1=12.0, rho2=rho2, y1=1 / 3, y2=y2, lam=1.3, k=0.7)
         assert np.allclose(cfd.coefficients_as_printed_eq31(g2, 0.5, 2.0, 0.4),
                            cfd.characteristic_coefficients(g2, 0.5, 2.0, eta=0.4), rtol=1e-13)
+
+
+def test_extreme_length_ratio_damped_loads_are_exact_or_refused():
+    """Outside audit (independent 60-digit roots of the exact determinant): the §2.9 pendulum
+    with l1 = d = 1.3e-7 m, c1 = 0.06 N m s. The eigenvalue methods returned P_div 5.108e6 N
+    (true 1.5335521716e7) and P_flu 2.8377e6 N (true 2.83846128e6) silently; the exact default
+    methods give the references, the eigenvalue methods now refuse."""
+    from flutterfriction.errors import ConvergenceError
+    from flutterfriction.parameters import SEC_29
+
+    p = ZieglerPendulum(**{**SEC_29, "l1": 1.3e-7, "d": 1.3e-7, "c1": 0.06})
+    assert damped_divergence_load(p) == pytest.approx(15335521.716, rel=1e-9)
+    assert damped_flutter_load(p) == pytest.approx(2838461.28, rel=1e-8)
+    assert critical_loads(p).P_div == pytest.approx(15335521.716, rel=1e-9)
+    for call in (lambda: damped_divergence_load(p, "eigenvalues"),
+                 lambda: damped_flutter_load(p, "eigenvalues")):
+        with pytest.raises(ConvergenceError, match="not confirmed"):
+            call()
