@@ -180,7 +180,10 @@ def test_damped_loads_tend_smoothly_to_the_paradox_limit():
 def test_paradox_stress_cases_have_no_wrong_answer():
     results = paradox_limit_cases()
     assert all(r.outcome != WRONG for r in results), [r for r in results if r.outcome == WRONG]
-    assert sum(r.outcome == REFUSED for r in results) <= 2  # the eigenvalue crossing only
+    # only the eigenvalue crossing refuses (at eps = 1e-10 it was 1.1e-6 off: not confirmed
+    # by the exact verdicts; below, its growth rate is at round-off)
+    refused = [r for r in results if r.outcome == REFUSED]
+    assert refused and all(r.case.endswith("eigenvalues") for r in refused), refused
 
 
 def test_extreme_input_stress_cases_have_no_wrong_answer():

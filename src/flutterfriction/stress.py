@@ -529,7 +529,7 @@ def paradox_limit_cases() -> list[StressResult]:
                           lambda eps=eps: eq54_flutter_gamma(eps),
                           lambda g, r: _rel(g, r) < 1e-14, lambda x: f"{x:.16g} K/L"))
         out.append(_judge("vanishing viscosity", f"eq. (54) pendulum, eps = {eps:g}, divergence",
-                          "damped divergence load (eigenvalues, scan from Routh's P_flu) vs "
+                          "damped divergence load (exact algebraic, scan from Routh's P_flu) vs "
                           "the undamped 4 K/L",
                           lambda p=p: damped_divergence_load(p),
                           lambda: p_div0,
