@@ -219,6 +219,9 @@ P_MAX_LIMIT = 1000.0
 #: are >= 10x above that. Below it the loads are within O(1e-6) of their vanishing-damping
 #: limits, a start Newton converges from.
 DAMPING_FLOOR = 1e-6
+#: Where each interval's claimed regime is checked against the exact roots of eq. (118), as
+#: fractions of the interval (the midpoint first, as before; then both sides).
+REGIME_CHECK_POINTS = (0.5, 0.125, 0.25, 0.375, 0.625, 0.75, 0.875)
 #: Relative imaginary part above which an FE eigenvalue counts as complex (and a pencil
 #: eigenvalue ``Omega^2`` as a flutter pair): near a coalescence the pair splits like
 #: ``sqrt(p - p_c)``, so this locates the FE coalescence to ~1e-12 relative, while round-off
@@ -759,8 +762,19 @@ def _solve_on(g: RodGroups, g_scan: RodGroups, n_el: int, p_max: float, step: fl
                                "(two changes of regime closer than the FE twin resolves)")
     intervals = _intervals(exact, first, p_max)
     for iv in intervals:
-        mid = 0.5 * (iv["p_from"] + iv["p_to"])
-        r = _exact_regime(mid, g)
+        # Not the midpoint alone: at tan(alpha) = 0 with a small external damping gamma only,
+        # the scan missed the flutter from p = 20.05 and a midpoint of [0, 40] (p = 20) found
+        # the claimed "stable" true (outside audit). Seven interior points of each interval.
+        for frac in REGIME_CHECK_POINTS:
+            mid = iv["p_from"] + frac * (iv["p_to"] - iv["p_from"])
+            try:
+                r = _exact_regime(mid, g)
+            except ConvergenceError:
+                if frac == REGIME_CHECK_POINTS[0]:
+                    raise
+                r = None  # an extra point next to a coalescence: no verdict there
+            if r is not None and r != iv["regime"]:
+                break
         if r is not None and r != iv["regime"]:
             raise ConvergenceError(
                 f"regime check failed at p = {mid:.6g}: the exact roots of eq. (118) give "
