@@ -170,3 +170,14 @@ def test_closed_form_refuses_what_the_numerical_twin_refuses():
         cf.critical_loads_closed_form("x")
     with pytest.raises(ParameterError, match=r"^pendulum must be a ZieglerPendulum"):
         critical_loads("x")
+
+
+def test_eq22_buckling_load_keeps_its_digits_at_extreme_ratios():
+    """Outside audit: eq. (22) as (s - root)/2 cancelled to 4.8e-6 relative at k1/k2 = 1.6e-5,
+    l1/l2 = 1.3e-6; from the roots' product k lam it agrees with the eigenvalue twin."""
+    p = ZieglerPendulum(l1=1.3e-7, l2=0.1, d=1.3e-7, h=0.0, m1=0.2, m2=0.2, m3=0.0,
+                        k1=0.189 * 1.6e-5, k2=0.189)
+    H_cr, H_sup = dead_critical_loads(p)
+    e_cr, e_sup = cf.buckling_etas(p.groups())
+    assert e_cr * p.load_unit == pytest.approx(H_cr, rel=1e-12)
+    assert e_sup * p.load_unit == pytest.approx(H_sup, rel=1e-12)
