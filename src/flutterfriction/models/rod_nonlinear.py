@@ -297,7 +297,7 @@ class NonlinearRod:
 def compile_kernels() -> dict[str, float]:
     """Compile the rod's kernels (:mod:`flutterfriction.models.rod_kernel`) into numba's cache
     by one call each on a one-element rod, with the argument types every caller uses: the
-    seconds each took (~4 s each when compiled, ~0.2 s when loaded from the cache). The
+    seconds each took (~4-5 s each when compiled, ~0.2 s when loaded from the cache). The
     workflow runs this once, before the jobs that integrate the rod, so that they load the
     kernels instead of compiling them side by side."""
     import time
