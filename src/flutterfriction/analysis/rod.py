@@ -451,7 +451,16 @@ def _fe_boundary(scan: _FEScan, e: _Event, polish: _FEScan | None = None) -> _Bo
     d_uc, d_ur = e.after[0] - e.before[0], e.after[1] - e.before[1]
     if scan.damped and d_ur == 0:  # a pair crossing the imaginary axis (Hopf)
         cand = z[z.imag > 0]
-        z0 = complex(cand[np.argmin(np.abs(cand.real))])
+        # The pair whose growth rate changes sign across the bracket; the one nearest the axis
+        # at the midpoint only where none is found. (Nearest alone picked a high mode when the
+        # crossing is abrupt: tan(alpha) = 0 with a tiny mass-proportional damping gamma puts
+        # every mode at Re s = -gamma/2 while the flutter pair, just past its coalescence, is
+        # already far right: outside audit, guesses of 290-708 for a pulsation of 11.)
+        za, zb = scan.spectra(np.array([e.a, e.b]))
+        flips = [c for c in cand
+                 if za[np.argmin(np.abs(za - c))].real * zb[np.argmin(np.abs(zb - c))].real <= 0]
+        pool = np.array(flips) if flips else cand
+        z0 = complex(pool[np.argmin(np.abs(pool.real))])
 
         def fun(p: float) -> float:
             s = model.spectra(np.array([p]))[0]
