@@ -154,8 +154,10 @@ def confirm_onset(M: ArrayLike, C: ArrayLike, K0: ArrayLike, K1: ArrayLike, load
     Why: where the spectrum spans many decades (extreme length or stiffness ratios), the
     computed eigenvalues' round-off can move the crossing far from the true one without any
     sign (measured by an outside audit: 1.2e-5 to 0.67 relative errors). The exact verdicts on
-    the polynomial do not depend on the eigenvalues. ``rel`` = 1e-6 is ~1e4 times the
-    eigenvalue methods' error where they are reliable (<= 1e-10 on the chapter's systems)."""
+    the polynomial do not depend on the eigenvalues (used for the pendulum's quartic; the
+    rod's high-degree FE polynomials are checked against eq. 118 instead). ``rel`` = 1e-6 is
+    ~1e4 times the eigenvalue methods' error where they are reliable (<= 1e-10 on the
+    chapter's systems)."""
     sys_ = _System(M, C, K0, K1)
     below, above = load * (1 - rel), load * (1 + rel)
     if kind == "flutter":

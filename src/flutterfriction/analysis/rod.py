@@ -781,13 +781,12 @@ def _solve_on(g: RodGroups, g_scan: RodGroups, n_el: int, p_max: float, step: fl
             except ConvergenceError:
                 if frac == REGIME_CHECK_POINTS[0]:
                     raise
-                r = None  # an extra point next to a coalescence: no verdict there
+                continue  # an extra point next to a coalescence: no verdict there
             if r is not None and r != iv["regime"]:
-                break
-        if r is not None and r != iv["regime"]:
-            raise ConvergenceError(
-                f"regime check failed at p = {mid:.6g}: the exact roots of eq. (118) give "
-                f"{r}, the FE bracketing {iv['regime']} (a change of regime the scan missed)")
+                raise ConvergenceError(
+                    f"regime check failed at p = {mid:.6g}: the exact roots of eq. (118) give "
+                    f"{r}, the FE bracketing {iv['regime']} (a change of regime the scan "
+                    "missed)")
     out = _loads_from(intervals, {b.p: b.omega for b in exact})
     return RodCriticalLoads(**out, intervals=intervals)
 
