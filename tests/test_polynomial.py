@@ -82,3 +82,31 @@ def test_discriminant_vanishes_at_double_roots():
     assert abs(discriminant_from_coefficients(np.poly([1.0, 2.0, -2.0]))) > 1e-3
     assert regime_from_coefficients(np.poly([2.0, -1.0])) == Regime.DIVERGENCE
     assert regime_from_coefficients(np.poly([1 + 1j, 1 - 1j]).real) == Regime.FLUTTER
+
+
+@given(st.lists(st.floats(-1e3, 1e3, allow_nan=False).filter(lambda x: x != 0.0),
+                min_size=3, max_size=9),
+       st.lists(st.integers(-40, 40), min_size=9, max_size=9))
+def test_integer_root_counts_equal_their_fraction_twins(mantissas, exponents):
+    """The integer (fraction-free) Routh and Sturm counts against the same algorithms in
+    Fractions, on coefficients spanning up to 80 decades (the extreme devices' spread)."""
+    from fractions import Fraction
+
+    from flutterfriction.analysis.polynomial import (
+        _count_positive_real_roots_fractions,
+        _fractions,
+        _routh_first_column,
+        _routh_signs_integer,
+    )
+    coeffs = [m * 10.0 ** e for m, e in zip(mantissas, exponents, strict=False)]
+    a = _fractions(coeffs)
+    assert count_positive_real_roots(coeffs) == _count_positive_real_roots_fractions(coeffs)
+    signs = _routh_signs_integer(a)
+    try:
+        first = _routh_first_column(a, Fraction(0))
+    except ZeroDivisionError:  # a zero pivot
+        first = None
+    if signs is None:  # a zero pivot: the integer path declines, the Fraction one sees it too
+        assert first is None or any(x == 0 for x in first)
+    else:
+        assert first is not None and signs == [x > 0 for x in first]

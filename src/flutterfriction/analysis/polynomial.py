@@ -13,6 +13,7 @@ These are the algebraic twins of the eigenvalue computations in :mod:`.stability
 
 from __future__ import annotations
 
+import math
 from fractions import Fraction
 
 import numpy as np
@@ -35,11 +36,22 @@ def characteristic_polynomial(M: ArrayLike, C: ArrayLike, K: ArrayLike) -> NDArr
     if n <= 2:
         # Expand exactly: every coefficient keeps its own relative precision (the FFT's error is
         # relative to the largest coefficient, which spoils the O(damping) ones at small damping).
-        entry = [[np.array([M[i, j], C[i, j], K[i, j]]) for j in range(n)] for i in range(n)]
         if n == 1:
-            return entry[0][0]
-        return np.polysub(np.polymul(entry[0][0], entry[1][1]),
-                          np.polymul(entry[0][1], entry[1][0]))
+            return np.array([M[0, 0], C[0, 0], K[0, 0]])
+        # (a2 s^2 + a1 s + a0)(b2 s^2 + b1 s + b0) - (c2 s^2 + ...)(d2 s^2 + ...), term by term
+        # (np.polymul's convolution in scalars, equal to it to the last bit or two: this runs
+        # thousands of times in a load scan)
+        a = (M[0, 0], C[0, 0], K[0, 0])
+        b = (M[1, 1], C[1, 1], K[1, 1])
+        c = (M[0, 1], C[0, 1], K[0, 1])
+        d = (M[1, 0], C[1, 0], K[1, 0])
+        return np.array([
+            a[0] * b[0] - c[0] * d[0],
+            (a[0] * b[1] + a[1] * b[0]) - (c[0] * d[1] + c[1] * d[0]),
+            (a[0] * b[2] + a[1] * b[1] + a[2] * b[0]) - (c[0] * d[2] + c[1] * d[1] + c[2] * d[0]),
+            (a[1] * b[2] + a[2] * b[1]) - (c[1] * d[2] + c[2] * d[1]),
+            a[2] * b[2] - c[2] * d[2],
+        ])
     N = 2 * n + 1
     r = float(np.sqrt(np.linalg.norm(K) / np.linalg.norm(M))) or 1.0
     s = r * np.exp(2j * np.pi * np.arange(N) / N)
@@ -79,6 +91,47 @@ def _routh_first_column(a: list[Fraction], eps: Fraction) -> list[Fraction] | No
     return [r[0] for r in rows]
 
 
+def _integers(a: list[Fraction]) -> list[int]:
+    """The coefficients times their common denominator (a power of two for floats): integers
+    with the same roots. Integer arithmetic is ~10x cheaper than ``Fraction``'s, which reduces
+    by a gcd at every operation."""
+    D = math.lcm(*(x.denominator for x in a))
+    return [x.numerator * (D // x.denominator) for x in a]
+
+
+def _primitive(row: list[int]) -> list[int]:
+    """``row`` divided by the gcd of its entries (a positive factor: signs are kept)."""
+    g = math.gcd(*row)
+    return [x // g for x in row] if g > 1 else row
+
+
+def _routh_signs_integer(a: list[Fraction]) -> list[bool] | None:
+    """Signs (True: positive) of the first column of Routh's array, fraction-free in integers.
+
+    Row ``k`` is kept as ``R_k = c_k T_k`` (``T_k`` the true row): then
+    ``R_{k+1}[j] = R_k[0] R_{k-1}[j+1] - R_{k-1}[0] R_k[j+1] = c_k c_{k-1} T_k[0] T_{k+1}[j]``,
+    so only the sign of ``c_{k+1} = c_k c_{k-1} T_k[0]`` is tracked (dividing a row by the gcd
+    of its entries keeps it). None at a zero pivot: the epsilon method is left to
+    :func:`_routh_first_column`, in ``Fraction``s."""
+    c = _integers(a)
+    r0, r1 = c[0::2], c[1::2]
+    width = len(r0)
+    rows = [r0, r1 + [0] * (width - len(r1))]
+    positive = [True, True]  # sign(c_k) > 0
+    if rows[1][0] == 0:
+        return None
+    for _ in range(len(c) - 2):
+        R0, R1 = rows[-2], rows[-1]
+        new = [R1[0] * R0[j + 1] - R0[0] * R1[j + 1] for j in range(width - 1)] + [0]
+        if new[0] == 0:
+            return None
+        t1_positive = (R1[0] > 0) == positive[-1]  # sign(T_k[0])
+        positive.append(positive[-1] == positive[-2] if t1_positive
+                        else positive[-1] != positive[-2])
+        rows.append(_primitive(new))
+    return [(R[0] > 0) == pos for R, pos in zip(rows, positive, strict=True)]
+
+
 def count_right_half_plane_roots(coeffs: ArrayLike) -> int:
     """Number of roots with Re s > 0, from the sign changes of the first column of Routh's
     array (exact arithmetic).
@@ -90,6 +143,9 @@ def count_right_half_plane_roots(coeffs: ArrayLike) -> int:
     and callers step off that point.
     """
     a = _fractions(coeffs)
+    signs = _routh_signs_integer(a)
+    if signs is not None:  # no zero pivot: the exact count without any epsilon
+        return sum(x != y for x, y in zip(signs[:-1], signs[1:], strict=True))
     scale = max(abs(x) for x in a)
     counts = set()
     for exponent in (40, 80):
@@ -115,8 +171,47 @@ def _poly_rem(num: list[Fraction], den: list[Fraction]) -> list[Fraction]:
     return num
 
 
+def _sturm_next(num: list[int], den: list[int]) -> list[int]:
+    """The next member of Sturm's sequence, ``-rem(num, den)``, times a positive integer (the
+    sequence is used only through signs), by pseudo-division in integers: each step
+    ``num <- lc(den) num - num[0] x^k den`` multiplies the remainder by ``lc(den)``."""
+    num = list(num)
+    lead = den[0]
+    steps = 0
+    while len(num) >= len(den):
+        f = num[0]
+        num = [lead * x - f * den[i] if i < len(den) else lead * x
+               for i, x in enumerate(num)][1:]
+        steps += 1
+    negate = not (lead < 0 and steps % 2 == 1)  # -rem = -sign(lead)^steps * pseudo-remainder
+    while num and num[0] == 0:
+        num.pop(0)
+    return _primitive([-x for x in num] if negate else num) if num else []
+
+
 def count_positive_real_roots(coeffs: ArrayLike) -> int:
-    """Number of distinct real roots in (0, inf), by Sturm's theorem (exact arithmetic)."""
+    """Number of distinct real roots in (0, inf), by Sturm's theorem (exact arithmetic, in
+    integers: :func:`_sturm_next`; :func:`_count_positive_real_roots_fractions` is its twin in
+    ``Fraction``s)."""
+    p = _integers(_fractions(coeffs))
+    n = len(p) - 1
+    seq = [p, [c * (n - i) for i, c in enumerate(p[:-1])]]
+    while True:
+        r = _sturm_next(seq[-2], seq[-1])
+        if not r:
+            break
+        seq.append(r)
+    return _sign_changes([q[-1] for q in seq]) - _sign_changes([q[0] for q in seq])
+
+
+def _sign_changes(values: list) -> int:
+    v = [x for x in values if x != 0]
+    return sum((x > 0) != (y > 0) for x, y in zip(v[:-1], v[1:], strict=True))
+
+
+def _count_positive_real_roots_fractions(coeffs: ArrayLike) -> int:
+    """:func:`count_positive_real_roots` with the Sturm sequence in ``Fraction``s (the test's
+    independent twin of the integer pseudo-division)."""
     p = _fractions(coeffs)
     n = len(p) - 1
     dp = [c * (n - i) for i, c in enumerate(p[:-1])]
@@ -126,14 +221,9 @@ def count_positive_real_roots(coeffs: ArrayLike) -> int:
         if not r:
             break
         seq.append([-c for c in r])
-
-    def changes(values: list[Fraction]) -> int:
-        v = [x for x in values if x != 0]
-        return sum((x > 0) != (y > 0) for x, y in zip(v[:-1], v[1:], strict=True))
-
     at_zero = [q[-1] for q in seq]
     at_inf = [q[0] for q in seq]  # sign of the leading coefficient
-    return changes(at_zero) - changes(at_inf)
+    return _sign_changes(at_zero) - _sign_changes(at_inf)
 
 
 def regime_from_coefficients(coeffs: ArrayLike) -> Regime:
