@@ -70,14 +70,20 @@ class _System:
 
 
 def _scan(regime_of: Callable[[float], Regime | None], target: Callable[[Regime], bool],
-          start: float, load_max: float, n_scan: int, max_doublings: int) -> tuple[float, float]:
-    """First bracket ``[a, b]`` with ``not target(regime(a))`` and ``target(regime(b))``."""
+          start: float, load_max: float, n_scan: int, max_doublings: int,
+          regimes_of: Callable[[NDArray], list[Regime | None]] | None = None,
+          ) -> tuple[float, float]:
+    """First bracket ``[a, b]`` with ``not target(regime(a))`` and ``target(regime(b))``.
+    ``regimes_of``: the same verdicts for a whole grid at once (one batched eigenvalue call),
+    else ``regime_of`` point by point (the exact verdicts stop at the first target)."""
     lo = start
     hi = load_max
     for _ in range(max_doublings):
         previous = lo
-        for p in np.linspace(lo, hi, n_scan + 1)[1:]:
-            r = regime_of(float(p))
+        grid = np.linspace(lo, hi, n_scan + 1)[1:]
+        verdicts = regimes_of(grid) if regimes_of is not None else None
+        for i, p in enumerate(grid):
+            r = verdicts[i] if verdicts is not None else regime_of(float(p))
             if r is None:
                 continue
             if target(r):
@@ -182,8 +188,12 @@ def divergence_onset(M: ArrayLike, C: ArrayLike, K0: ArrayLike, K1: ArrayLike, *
                      n_scan: int = 256, max_doublings: int = 60) -> float:
     """Smallest load above ``start`` where the motion is divergence (unstable roots all real)."""
     sys_ = _System(M, C, K0, K1)
+    regimes_of = None
     if method == "eigenvalues":
         regime_of = sys_.regime_eigen
+
+        def regimes_of(loads: NDArray) -> list[Regime | None]:
+            return [classify(s) for s in sys_.spectra(loads)]
 
         def disc(p: float) -> float:
             # Only the eigenvalues nearest the unstable ones: a product over all pairs of a
@@ -199,7 +209,7 @@ def divergence_onset(M: ArrayLike, C: ArrayLike, K0: ArrayLike, K1: ArrayLike, *
     else:
         raise ParameterError(f"method must be 'eigenvalues' or 'algebraic', got {method!r}")
     a, b = _scan(regime_of, lambda r: r == Regime.DIVERGENCE, start, load_max, n_scan,
-                 max_doublings)
+                 max_doublings, regimes_of=regimes_of)
     # Narrow the bracket on the verdict first, so that it holds this one coalescence only.
     for _ in range(20):
         mid = 0.5 * (a + b)
