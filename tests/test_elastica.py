@@ -237,3 +237,17 @@ def test_a_failed_elastica_scene_names_its_loads():
     params = scene_params(load_config(ROOT / "workflow" / "config.yaml"), "elastica")
     with pytest.raises(ConvergenceError, match=r"P1, P2, q1, q2 = 100 N.*Euler load"):
         elastica({**params, "P1": 100.0})
+
+
+def test_linear_and_perturbation_deflections_refuse_overflow():
+    """An outside audit: l = 1e300 m, B = 1e-300 N m^2 raised a bare OverflowError."""
+    from flutterfriction.analysis import elastica as el
+    from flutterfriction.errors import ParameterError
+
+    loads = el.ElasticaLoads(P2=1e300)
+    for f in (el.linear_tip_deflection, el.perturbation_tip_deflection):
+        with pytest.raises(ParameterError, match="overflows the double range"):
+            f(1e300, 1e-300, loads)
+    # eq. (95): -P2 l^3 / (3 B)
+    assert el.linear_tip_deflection(0.35, 0.0332, el.ElasticaLoads(P2=1.0)) == pytest.approx(
+        -0.35**3 / (3 * 0.0332), rel=1e-15)

@@ -267,3 +267,47 @@ def test_flutter_interval_at_the_eigenvalues_noise_floor_is_resolved(over):
     assert P_flu < P_div
     assert P_flu == pytest.approx(ref.P_flu, rel=1e-8)
     assert P_div == pytest.approx(ref.P_div, rel=1e-8)
+
+
+def test_api_refuses_what_it_cannot_compute_instead_of_nan_or_tracebacks():
+    """An outside audit's findings: each was a NaN array, a wrong load or a bare numpy /
+    Python exception; each is now a ParameterError naming the parameter."""
+    from flutterfriction.analysis import ziegler as az
+
+    p = ZieglerPendulum(**LIST47)
+    cases = [
+        (lambda: az.linear_response(p, 3.0, 0.0, [0.1, 0, 0, 0], [1e300]), "times"),
+        (lambda: az.regime(p, 1e308), "P = 1e[+]308"),
+        (lambda: az.follower_critical_loads(p, n_scan=-5), "n_scan"),
+        (lambda: az.follower_critical_loads(p, n_scan=2.5), "n_scan"),
+        (lambda: az.follower_critical_loads(p, max_doublings=0), "max_doublings"),
+        (lambda: az.flutter_load_multiprecision(p, dps=0), "dps"),  # it returned P_div
+        (lambda: ZieglerPendulum(**{**LIST47, "k1": 10**400}), "k1 must be finite"),
+    ]
+    for call, match in cases:
+        with pytest.raises(ParameterError, match=match):
+            call()
+    # and what they do compute is unchanged
+    assert az.regime(p, 6.8).value == "flutter"
+    assert az.linear_response(p, 3.0, 0.0, [0.1, 0, 0, 0], [0.0])[0] == pytest.approx(
+        [0.1, 0, 0, 0])
+
+
+def test_limit_cycle_does_not_depend_on_the_unit_of_time():
+    """An outside audit: the same dimensionless pendulum with masses of 1e-8 kg (time unit
+    1e-4 s) never returned (20 s chunks of 27000 periods), and with 100 kg it was refused.
+    Masses x s^2 and viscosities x s scale time by s: periods and transients scale by s,
+    amplitudes and loads do not."""
+    def cycle(m, c):
+        p = ZieglerPendulum(l1=1.0, l2=1.0, d=1.0, h=0.5, m1=m, m2=m, m3=0.0, k1=1.0, k2=1.0,
+                            c1=c, c2=c)
+        return dy.ziegler_limit_cycle(p, 3.0, 0.1)
+
+    ref = cycle(1.0, 0.1)
+    for s in (1e-4, 10.0):
+        got = cycle(s**2, 0.1 * s)
+        assert got["method"] == ref["method"]
+        assert got["period_s"] == pytest.approx(s * ref["period_s"], rel=1e-12)
+        assert got["transient_s"] == pytest.approx(s * ref["transient_s"], rel=1e-12)
+        assert got["alpha1_amplitude_rad"] == pytest.approx(ref["alpha1_amplitude_rad"],
+                                                            rel=1e-12)

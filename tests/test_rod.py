@@ -311,7 +311,10 @@ def test_power_product_matches_the_direct_formulas_and_survives_the_ends():
     assert Rod(length=1e-160, B=1e-20, rho=1e30).load_unit == pytest.approx(1e300, rel=1e-15)
     assert Rod(length=1, B=1e-200, rho=1e200).time_scale == pytest.approx(1e200, rel=1e-15)
     assert power_product((0.0, 1), (5.0, -2)) == 0.0
-    assert power_product((2.0**-1074, 0.5), (2.0**-1074, 0.5)) == 2.0**-1074
+    assert power_product((2.0**-1022, 0.5), (2.0**-1022, 0.5)) == pytest.approx(
+        2.0**-1022, rel=1e-15)  # the smallest normal double
+    with pytest.raises(ParameterError, match="below the normal double range"):
+        power_product((2.0**-1074, 0.5), (2.0**-1074, 0.5))  # subnormal: digits lost, refused
     assert power_product((2.0**1023, 1), (1.5, 1)) == 1.5 * 2.0**1023  # the largest decade
     with pytest.raises(ParameterError, match="exceeds the double range"):
         _ = Rod(length=1e200, B=1e-300, rho=1.0).time_scale  # was inf
@@ -347,3 +350,21 @@ def test_beck_rod_with_small_external_damping_never_misses_its_flutter(gamma, p_
     assert c.p_flu == pytest.approx(20.05095362, rel=1e-9)
     assert c.omega_flu == pytest.approx(11.0155576, rel=1e-7)
     assert [iv["regime"] for iv in c.intervals] == ["stable", "flutter"]
+
+
+@pytest.mark.parametrize("kw", [dict(eta=1e-12), dict(tan_alpha=4.59, eta=2.39e-10),
+                                dict(gamma=1e-9)])
+def test_fe_critical_loads_refuses_damping_below_its_floor(kw):
+    """Below DAMPING_FLOOR the FE twin's crossing is round-off (an outside audit: 9.808 for the
+    exact 10.93885 at eta = 1e-12; a hang at 1e-20): refused, while the exact solver answers."""
+    with pytest.raises(ParameterError, match="damping max"):
+        ar.fe_critical_loads(RodGroups(**kw), 20)
+
+
+def test_rod_groups_refuse_underflow_instead_of_zero_damping():
+    """eta = D/(l^2 sqrt(rho B)) below the normal range rounded to 0, and the undamped Beck
+    load 20.05 came out where any damping gives 10.94 (an outside audit)."""
+    with pytest.raises(ParameterError, match="below the normal double range"):
+        Rod(length=1e100, B=1.0, rho=1.0, D=1e-150).groups()
+    with pytest.raises(ParameterError, match="below the normal double range"):
+        Rod(length=1e300, B=1e-300, rho=1e300).load_unit  # noqa: B018

@@ -286,3 +286,25 @@ def test_acoustic_scene_uses_the_listed_flow_rule_as_given():
     doubled = acoustic_eigenvalues({**params, "P": [2 * x for x in params["P"]]})
     assert doubled["flutter_interval"] == pytest.approx(
         [2 * g for g in d["flutter_interval"]], rel=1e-12)
+
+
+def test_non_unit_direction_is_refused_not_answered():
+    """An outside audit: n = (2, 0, 0) was accepted and eq. (184) answered divergence
+    ([1, -2.84, 17.24]) for a direction that is stable ([1, 1, 4.6] at n = (1, 0, 0))."""
+    P, Q = np.diag([-1.0, 0.5, 0.5]), np.diag([0.0, 0.0, 0.8])
+    E = so.isotropic_elasticity(1.0, 1.0)
+    for call in (lambda n: so.acoustic_eigenvalues_isotropic(1.0, 1.0, P, Q, 1.0, n),
+                 lambda n: so.localization_modulus_isotropic(1.0, 1.0, P, Q, n),
+                 lambda n: so.acoustic_tensor(E, P, Q, 1.0, n)):
+        with pytest.raises(ParameterError, match=r"unit vector, \|n\| = 2"):
+            call([2.0, 0.0, 0.0])
+    general = np.sort(np.linalg.eigvals(so.acoustic_tensor(E, P, Q, 1.0, [1.0, 0.0, 0.0])))
+    assert np.allclose(so.acoustic_eigenvalues_isotropic(1.0, 1.0, P, Q, 1.0, [1, 0, 0]),
+                       general, rtol=1e-12)
+
+
+def test_overflowing_results_are_refused():
+    with pytest.raises(ParameterError, match="overflows"):
+        so.isotropic_elasticity(1e308, 1e308)
+    with pytest.raises(ParameterError, match="overflows"):
+        so.elastoplastic_tangent(so.isotropic_elasticity(1.0, 1.0), np.eye(3), np.eye(3), 1e-320)

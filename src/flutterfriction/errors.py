@@ -19,7 +19,12 @@ def check_real(name: str, value: object) -> float:
     """Return ``value`` as a finite float, or raise :class:`ParameterError` naming ``name``."""
     if isinstance(value, bool) or not isinstance(value, Real):
         raise ParameterError(f"{name} must be a real number, got {value!r}")
-    x = float(value)
+    try:
+        x = float(value)
+    except OverflowError:  # an int beyond the double range, e.g. 10**400
+        raise ParameterError(f"{name} must be finite (within the double range, |x| < "
+                             f"1.8e308), got an integer of {len(str(abs(value)))} digits"
+                             ) from None
     if not math.isfinite(x):
         raise ParameterError(f"{name} must be finite, got {value!r}")
     return x

@@ -9,7 +9,8 @@ its Jacobian is derived once with sympy from the same equations (analytic, exact
 from __future__ import annotations
 
 import functools
-from dataclasses import asdict, dataclass
+import math
+from dataclasses import asdict, dataclass, replace
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -102,13 +103,14 @@ def _amplitudes(pendulum, P, H, x0, T, method, rtol, atol, n=2001):
 def limit_cycle(pendulum: ZieglerPendulum, P: float, state0: ArrayLike, H: float = 0.0,
                 tol: float = 1e-8, t_max: float = 600.0, method: str = "DOP853",
                 rtol: float = 1e-11, atol: float = 1e-13,
-                max_steps: int = 2_000_000) -> LimitCycle:
+                max_steps: int = 2_000_000, chunk: float = 20.0) -> LimitCycle:
     """Integrate until successive crossings of the Poincaré section ``alpha1_dot = 0``
     (downwards: ``alpha1`` at a maximum) agree to ``tol`` (relative) in ``alpha1``, ``alpha2``,
     ``alpha2_dot`` and in the time between crossings (the period).
 
     Bounded by simulated time (``t_max`` [s]) and by the number of integration steps
-    (``max_steps``, counted per 20 s chunk), never by the wall clock; a rotation beyond
+    (``max_steps``, counted per ``chunk`` [s] of simulated time), never by the wall clock; a
+    rotation beyond
     ``50 pi`` stops the integration at once (terminal event: the motion runs away)."""
     def section(t, x):
         return x[2]
@@ -119,12 +121,12 @@ def limit_cycle(pendulum: ZieglerPendulum, P: float, state0: ArrayLike, H: float
     section.direction = -1.0
     runaway.terminal = True
     P, H, x = _checked_start(P, H, state0)
-    for name, value in (("tol", tol), ("t_max", t_max), ("rtol", rtol), ("atol", atol)):
+    for name, value in (("tol", tol), ("t_max", t_max), ("rtol", rtol), ("atol", atol),
+                        ("chunk", chunk)):
         if not check_real(name, value) > 0:
             raise ParameterError(f"{name} must be > 0, got {value!r}")
     t0 = 0.0
     crossings: list[tuple[float, NDArray]] = []
-    chunk = 20.0
     steps = 0
     while t0 < t_max:
         sol = solve_ivp(lambda t, y: pendulum.equations_of_motion(y, P, H, check=False),
@@ -302,13 +304,35 @@ def section_return(pendulum: ZieglerPendulum, P: float, state: ArrayLike, period
     return hits[0]
 
 
-#: Simulated-time budget [s] above which the transient is not attempted (the continuation
-#: from the flutter mode is used instead): the transient needs about
-#: ``(ln(1/alpha0) + ln(1/tol)/2) / Re s(P)`` to grow from ``alpha0`` and settle (the cycle
-#: attracts at about ``2 Re s`` near the Hopf point); measured on the §2.9 pendulum at
-#: 1.5 P*_flu: estimate 13 s, actual 39 s, 4 s wall. 100 s keeps the transient under about
-#: a minute of wall time on this machine; nearer onset the continuation takes 3-10 s.
-TRANSIENT_BUDGET_S = 100.0
+#: Simulated-time budget, in the pendulum's time unit ``tau = l2 sqrt(m2/k2)``, above which
+#: the transient is not attempted (the continuation from the flutter mode is used instead):
+#: the transient needs about ``(ln(1/alpha0) + ln(1/tol)/2) / Re s(P)`` to grow from
+#: ``alpha0`` and settle (the cycle attracts at about ``2 Re s`` near the Hopf point);
+#: measured on the §2.9 pendulum (tau = 0.049 s) at 1.5 P*_flu: estimate 13 s = 264 tau,
+#: actual 39 s, 4 s wall. 2000 tau (100 s there) keeps the transient under about a minute of
+#: wall time on this machine; nearer onset the continuation takes 3-10 s. In units of tau, so
+#: that the work does not depend on the unit of time: in seconds, a pendulum of 1e-8 kg
+#: (tau = 1e-4 s) integrated 20 s chunks of 27000 periods each and never returned (an
+#: outside audit), and one of 100 kg was refused what the same pendulum in grams answers.
+TRANSIENT_BUDGET = 2000.0
+#: The transient's bound and the chunk between convergence checks, in units of tau (600 s and
+#: 20 s on the §2.9 pendulum).
+TRANSIENT_T_MAX, TRANSIENT_CHUNK = 12000.0, 400.0
+
+
+def time_unit(pendulum: ZieglerPendulum) -> float:
+    """``tau = l2 sqrt(m2/k2)`` [s]: the time unit of eq. (17), ``omega^2 = m2 l2^2 Omega^2/k2``."""
+    return pendulum.l2 * math.sqrt(pendulum.m2 / pendulum.k2)
+
+
+def in_time_unit(pendulum: ZieglerPendulum) -> ZieglerPendulum:
+    """The same pendulum with time measured in ``tau`` (masses / tau^2, viscosities / tau):
+    eq. (10) is ``M a_tt + C a_t + F(a, P) = 0`` with every inertial term linear in the masses
+    and quadratic in d/dt, so its motions are the original's at ``t = tau t'``; loads and
+    angles are unchanged, times and periods are divided by ``tau``."""
+    tau = time_unit(pendulum)
+    return replace(pendulum, m1=pendulum.m1 / tau**2, m2=pendulum.m2 / tau**2,
+                   m3=pendulum.m3 / tau**2, c1=pendulum.c1 / tau, c2=pendulum.c2 / tau)
 
 
 def ziegler_limit_cycle(pendulum: ZieglerPendulum, P: float, alpha0: float, *,
@@ -325,10 +349,12 @@ def ziegler_limit_cycle(pendulum: ZieglerPendulum, P: float, alpha0: float, *,
 
     Far enough above ``P_flu`` the transient from ``alpha0`` is integrated until the Poincaré
     section converges (:func:`limit_cycle`; the cycle attracts) and checked by shooting. Near
-    ``P_flu`` (estimated transient longer than :data:`TRANSIENT_BUDGET_S`) or if the transient
-    does not converge, the cycle is continued from the linear flutter mode
+    ``P_flu`` (estimated transient longer than :data:`TRANSIENT_BUDGET` time units) or if the
+    transient does not converge, the cycle is continued from the linear flutter mode
     (:func:`limit_cycle_by_continuation`) and checked by a section return with Radau. All
-    integrations are bounded by simulated time or step counts."""
+    integrations are bounded by simulated time or step counts, and run in the pendulum's time
+    unit (:func:`in_time_unit`): the work and the answer do not depend on the unit of time.
+    Times in the result are in seconds."""
     from flutterfriction.analysis.ziegler import (
         damped_divergence_load,
         damped_flutter_load,
@@ -350,34 +376,39 @@ def ziegler_limit_cycle(pendulum: ZieglerPendulum, P: float, alpha0: float, *,
         raise ParameterError(
             f"{P_name} must lie in the damped flutter interval ({P_flu:.10g}, {P_div:.10g}) N "
             f"(flutter load P_flu, divergence load P_div), got {P:g}")
-    growth = float(spectrum(pendulum, P).real.max())
+    tau = time_unit(pendulum)
+    unit = in_time_unit(pendulum)  # every integration below in units of tau
+    growth = float(spectrum(unit, P).real.max())
     estimate = (np.log(1 / abs(alpha0)) + 0.5 * np.log(1 / tol)) / growth
     notes = []
-    if estimate <= TRANSIENT_BUDGET_S:
+    if estimate <= TRANSIENT_BUDGET:
         try:
-            cycle = limit_cycle(pendulum, P, [alpha0, alpha0, 0.0, 0.0], tol=tol)
-            check = shoot_periodic_orbit(pendulum, P, cycle)
+            cycle = limit_cycle(unit, P, [alpha0, alpha0, 0.0, 0.0], tol=tol,
+                                t_max=TRANSIENT_T_MAX, chunk=TRANSIENT_CHUNK)
+            check = shoot_periodic_orbit(unit, P, cycle)
             return {"method": "transient on the Poincare section (DOP853)",
                     "alpha1_amplitude_rad": cycle.alpha1_amplitude_rad,
                     "alpha2_amplitude_rad": cycle.alpha2_amplitude_rad,
-                    "period_s": cycle.period_s, "transient_s": cycle.transient_s,
+                    "period_s": cycle.period_s * tau, "transient_s": cycle.transient_s * tau,
                     "P_flu": P_flu, "P_div": P_div,
-                    "shooting_check": {"period_s": check.period_s,
+                    "shooting_check": {"period_s": check.period_s * tau,
                                        "alpha1_amplitude_rad": check.alpha1_amplitude_rad}}
         except ConvergenceError as exc:
-            notes.append(f"transient: {exc}")
+            notes.append(f"transient: {exc} (times in units of tau = {tau:.4g} s)")
     else:
-        notes.append(f"transient skipped: estimated {estimate:.3g} s simulated "
-                     f"> {TRANSIENT_BUDGET_S:g} s (Re s = {growth:.3g} 1/s)")
+        notes.append(f"transient skipped: estimated {estimate * tau:.3g} s simulated "
+                     f"> {TRANSIENT_BUDGET * tau:.3g} s = {TRANSIENT_BUDGET:g} tau "
+                     f"(tau = l2 sqrt(m2/k2) = {tau:.3g} s; Re s = {growth / tau:.3g} 1/s)")
     try:
-        cycle = limit_cycle_by_continuation(pendulum, P, P_flu)
+        cycle = limit_cycle_by_continuation(unit, P, P_flu)
     except ConvergenceError as exc:
         raise ConvergenceError("; ".join([*notes, f"continuation: {exc}"])) from None
-    t_ret, x_ret = section_return(pendulum, P, cycle.section_state, cycle.period_s)
+    t_ret, x_ret = section_return(unit, P, cycle.section_state, cycle.period_s)
     return {"method": "continuation from the linear flutter mode (amplitude-parametrised "
                       "shooting)",
             "alpha1_amplitude_rad": cycle.alpha1_amplitude_rad,
-            "alpha2_amplitude_rad": cycle.alpha2_amplitude_rad, "period_s": cycle.period_s,
+            "alpha2_amplitude_rad": cycle.alpha2_amplitude_rad,
+            "period_s": cycle.period_s * tau,
             "transient_s": None, "P_flu": P_flu, "P_div": P_div, "notes": notes,
-            "section_check": {"period_s": t_ret, "alpha1_rad": float(x_ret[0]),
+            "section_check": {"period_s": t_ret * tau, "alpha1_rad": float(x_ret[0]),
                               "method": "one return to the section (Radau, rtol 1e-10)"}}

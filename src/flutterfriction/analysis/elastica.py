@@ -421,7 +421,20 @@ def linear_tip_deflection(length: float, B: float, loads: ElasticaLoads) -> floa
     loads): ``-P2 l^3/(3B) + q2 l^4/(8B)``. (The axial loads ``P1, q1`` enter eq. 95 only
     multiplied by the deflection: second order in the loads.)"""
     length, B = _check_rod(length, B)
-    return -loads.P2 * length**3 / (3 * B) + loads.q2 * length**4 / (8 * B)
+    try:
+        u = -loads.P2 * length**3 / (3 * B) + loads.q2 * length**4 / (8 * B)
+    except OverflowError:
+        u = math.inf
+    return _finite_deflection(u, length, B)
+
+
+def _finite_deflection(u: float, length: float, B: float) -> float:
+    """``u`` if finite, else ParameterError: a deflection beyond the double range (an outside
+    audit: l = 1e300, B = 1e-300 raised a bare OverflowError) is refused, naming the inputs."""
+    if not math.isfinite(u):
+        raise ParameterError(f"the deflection of length = {length:g} m, B = {B:g} N m^2 under "
+                             f"these loads overflows the double range: rescale the input")
+    return u
 
 
 def perturbation_tip_deflection(length: float, B: float, loads: ElasticaLoads
@@ -436,6 +449,19 @@ def perturbation_tip_deflection(length: float, B: float, loads: ElasticaLoads
     Every term is a polynomial in ``xi``: integrated exactly (``numpy.polynomial``), so the
     coefficients are exact to round-off; ``c1`` is :func:`linear_tip_deflection`."""
     length, B = _check_rod(length, B)
+    try:
+        with np.errstate(over="ignore", invalid="ignore"):
+            c = _perturbation_coefficients(length, B, loads)
+    except OverflowError:
+        c = (math.inf,) * 3
+    for x in c:
+        _finite_deflection(x, length, B)
+    return c
+
+
+def _perturbation_coefficients(length: float, B: float, loads: ElasticaLoads
+                               ) -> tuple[float, float, float]:
+    """The expansion of :func:`perturbation_tip_deflection` (checked inputs, unchecked result)."""
     Poly = np.polynomial.Polynomial
     one_minus_xi = Poly([1.0, -1.0])
     alpha = (loads.P1 - length * loads.q1 * one_minus_xi) * (length**2 / B)

@@ -609,6 +609,14 @@ def fe_critical_loads(g: RodGroups, n_elements: int, p_max: float = 80.0,
     p_max = _check_p_max(p_max)
     step = _check_step(step, p_max)
     check_groups(g)
+    if g.damped and _damping(g) < DAMPING_FLOOR:
+        # Below the floor the crossing's growth rate is round-off of the FE spectrum (measured
+        # by an outside audit: 9.808 for the exact 10.93885 at eta = 1e-12, no convergence with
+        # the mesh, and no end at eta = 1e-20): refused, never answered.
+        raise ParameterError(
+            f"fe_critical_loads: the damping max(eta, gamma) = {_damping(g):.3g} must be 0 or "
+            f">= {DAMPING_FLOOR:g} (below, the FE spectrum cannot resolve the crossing); "
+            f"critical_loads solves eq. (118) exactly at any damping")
     # Damped: scanned on the modal reduction (fast), each boundary polished on the full model.
     n_modes = _modes_coupled(p_max) if g.damped else None
     _, first, bounds = _fe_scan(g, n_elements, p_max, step, n_modes, polish_full=True)

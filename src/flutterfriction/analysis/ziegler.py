@@ -21,7 +21,13 @@ from flutterfriction.analysis.stability import (
     first_order_matrix,
     state_eigenvalues,
 )
-from flutterfriction.errors import ConvergenceError, ParameterError, check_real
+from flutterfriction.errors import (
+    ConvergenceError,
+    ParameterError,
+    check_finite_array,
+    check_integer,
+    check_real,
+)
 from flutterfriction.models.ziegler import DimensionlessMatrices, ZieglerPendulum
 from flutterfriction.results import CriticalLoads  # noqa: F401  (re-exported)
 
@@ -47,6 +53,8 @@ def follower_critical_gammas(pendulum: ZieglerPendulum, n_scan: int = 512,
     (to ``4e12`` load units with 40: far above any coalescence in the model's numerical range,
     where ``gamma_div`` stays below ``~1e8``). A discriminant at its round-off floor is refused
     (:class:`ConvergenceError`), never minimised."""
+    n_scan = check_integer("n_scan", n_scan, 8, 10**6)
+    max_doublings = check_integer("max_doublings", max_doublings, 1, 1000)
     m = _dimensionless(pendulum)
     load_max = 4.0 * max(1.0, pendulum.k1 / pendulum.k2)
     for _ in range(max_doublings):
@@ -219,8 +227,26 @@ def critical_loads(pendulum: ZieglerPendulum) -> CriticalLoads:
 
 def spectrum(pendulum: ZieglerPendulum, P: float = 0.0, H: float = 0.0) -> NDArray:
     """Eigenvalues ``s = -i Omega`` [1/s] of the first-order form of eq. (11) plus eq. (26)."""
-    K = pendulum.stiffness_matrix() + pendulum.geometric_matrix(P, H)
-    return state_eigenvalues(pendulum.mass_matrix(), K, pendulum.viscosity_matrix())
+    K = _finite_stiffness(pendulum, P, H)
+    try:
+        with np.errstate(over="ignore", invalid="ignore"):
+            s = state_eigenvalues(pendulum.mass_matrix(), K, pendulum.viscosity_matrix())
+    except np.linalg.LinAlgError:
+        s = np.full(4, np.nan)
+    if not np.all(np.isfinite(s)):
+        raise ParameterError(f"the loads P = {P!r}, H = {H!r} N overflow the first-order "
+                             f"matrix (load unit k2/l1 = {pendulum.load_unit:.3g} N)")
+    return s
+
+
+def _finite_stiffness(pendulum: ZieglerPendulum, P: float, H: float) -> NDArray:
+    """``K + G(P, H)`` of eqs. (11), (26), refused (naming the loads) if it overflowed."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        K = pendulum.stiffness_matrix() + pendulum.geometric_matrix(P, H)
+    if not np.all(np.isfinite(K)):
+        raise ParameterError(f"the loads P = {P!r}, H = {H!r} overflow the stiffness matrix "
+                             f"(its scale is k2/l1 = {pendulum.load_unit:.3g} N)")
+    return K
 
 
 def regime(pendulum: ZieglerPendulum, P: float = 0.0, H: float = 0.0) -> Regime:
@@ -248,16 +274,22 @@ def linear_response(pendulum: ZieglerPendulum, P: float, H: float, state0: Array
     """
     P = check_real("P", P)
     H = check_real("H", H)
-    x0 = np.asarray(state0, dtype=float)
-    if x0.shape != (4,) or not np.all(np.isfinite(x0)):
-        raise ValueError(f"state0 must be 4 finite numbers, got {state0!r}")
-    t = np.asarray(times, dtype=float)
-    if not np.all(np.isfinite(t)):
-        raise ValueError("times must be finite")
-    A = first_order_matrix(pendulum.mass_matrix(),
-                           pendulum.stiffness_matrix() + pendulum.geometric_matrix(P, H),
+    x0 = check_finite_array("state0", state0, (4,), "4 finite numbers [a1, a2, a1_dot, a2_dot]")
+    t = np.atleast_1d(np.asarray(times, dtype=float))
+    if t.ndim != 1 or not np.all(np.isfinite(t)):
+        raise ParameterError(f"times must be a 1-D array of finite instants [s], got shape "
+                             f"{t.shape}")
+    A = first_order_matrix(pendulum.mass_matrix(), _finite_stiffness(pendulum, P, H),
                            pendulum.viscosity_matrix())
-    return np.array([sla.expm(A * ti) @ x0 for ti in t])
+    with np.errstate(over="ignore", invalid="ignore"):
+        x = np.array([sla.expm(A * ti) @ x0 for ti in t])
+    if not np.all(np.isfinite(x)):
+        # exp(s t) beyond the double range (an outside audit: t = 1e300 returned all NaN)
+        bad = t[~np.all(np.isfinite(x), axis=-1)]
+        raise ParameterError(f"times: the linear response overflows the double range at "
+                             f"t = {bad[0]:.3g} s (growth rate max Re s = "
+                             f"{np.linalg.eigvals(A).real.max():.3g} 1/s)")
+    return x
 
 
 def flutter_load_multiprecision(pendulum: ZieglerPendulum, dps: int = 50) -> Any:
@@ -267,6 +299,9 @@ def flutter_load_multiprecision(pendulum: ZieglerPendulum, dps: int = 50) -> Any
     used). The reference of the stress tests and the pendulum's work-precision scene."""
     import mpmath as mp
 
+    # Fewer digits than a double's and the reference is no reference (an outside audit: dps 0
+    # returned P_div for P_flu).
+    dps = check_integer("dps", dps, 20, 10_000)
     with mp.workdps(dps):
         M = mp.matrix(pendulum.mass_matrix().tolist())
         K0 = mp.matrix(pendulum.stiffness_matrix().tolist())

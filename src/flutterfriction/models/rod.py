@@ -126,6 +126,13 @@ def power_product(*factors: tuple[float, float]) -> float:
     if exponent > sys.float_info.max_exp:
         raise ParameterError(f"the product of {[x for x, _ in factors]} to the powers "
                              f"{[a for _, a in factors]} exceeds the double range (2^{exponent})")
+    if exponent < sys.float_info.min_exp:
+        # A non-zero product below the normal range would round to a subnormal or to 0: a
+        # damping group of 0 turns the vanishing-damping answer (10.94) into the undamped one
+        # (20.05) without a sign.
+        raise ParameterError(f"the product of {[x for x, _ in factors]} to the powers "
+                             f"{[a for _, a in factors]} is below the normal double range "
+                             f"(2^{exponent}): rescale the input")
     return math.ldexp(mantissa, exponent)
 
 

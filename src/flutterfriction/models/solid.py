@@ -25,8 +25,19 @@ I3 = np.eye(3)
 def isotropic_elasticity(lam: float, mu: float) -> NDArray:
     """``E = lam I (x) I + 2 mu II^sym``; positive definite iff mu > 0 and 3 lam + 2 mu > 0."""
     lam, mu = _isotropic(lam, mu)
-    return (lam * np.einsum("ij,kl->ijkl", I3, I3)
-            + mu * (np.einsum("ik,jl->ijkl", I3, I3) + np.einsum("il,jk->ijkl", I3, I3)))
+    with np.errstate(over="ignore", invalid="ignore"):  # an overflow is refused just below
+        E = (lam * np.einsum("ij,kl->ijkl", I3, I3)
+             + mu * (np.einsum("ik,jl->ijkl", I3, I3) + np.einsum("il,jk->ijkl", I3, I3)))
+    return _finite_result(
+        E, f"E with lam = {lam:g}, mu = {mu:g} overflows the double range: rescale the moduli")
+
+
+def _finite_result(value: NDArray, why: str) -> NDArray:
+    """``value`` if every entry is finite, else ParameterError(why): a result that overflowed
+    is refused, never returned as inf or NaN."""
+    if not np.all(np.isfinite(value)):
+        raise ParameterError(why)
+    return value
 
 
 def random_elasticity_perturbation(rng: np.random.Generator) -> NDArray:
@@ -80,10 +91,14 @@ def check_direction(n: ArrayLike, normalise: bool = False) -> NDArray:
 
 
 def _nonzero_direction(n: ArrayLike) -> NDArray:
+    """The propagation direction: a unit vector (eqs. 161, 179 and 185 hold for ``|n| = 1``;
+    an outside audit found ``n = (2, 0, 0)`` accepted and the isotropic forms then answering
+    divergence for a stable direction). Refused unless ``|n| = 1`` to 1e-9; returned
+    normalised, so that the last ulps of a computed direction do not matter."""
     n = check_finite_array("n", n, (3,))
     if not np.any(n):
         raise ParameterError("n must be a non-zero vector (a propagation direction)")
-    return n
+    return check_direction(n)
 
 
 def _tensors(P: ArrayLike, Q: ArrayLike) -> tuple[NDArray, NDArray]:
@@ -145,10 +160,12 @@ def plastic_modulus(H: float, E: NDArray, P: ArrayLike, Q: ArrayLike) -> float:
 
 def elastoplastic_tangent(E: NDArray, P: ArrayLike, Q: ArrayLike, g: float) -> NDArray:
     """``C = E - E[P] (x) E^T[Q] / g`` (eq. 153), the plastic branch."""
-    g = check_real("g", g)
-    if g == 0:
-        raise ParameterError("g must be non-zero")
-    return E - np.einsum("ij,kl->ijkl", apply(E, P), apply_transpose(E, Q)) / g
+    g = _modulus(g)
+    with np.errstate(over="ignore", invalid="ignore"):  # an overflow is refused just below
+        C = E - np.einsum("ij,kl->ijkl", apply(E, P), apply_transpose(E, Q)) / g
+    return _finite_result(
+        C, f"the tangent with g = {g:g} overflows the double range: |g| is too small for the "
+        f"scale of E[P] and E[Q]")
 
 
 # ---------------------------------------------------------------------- §3.3–3.4
@@ -192,8 +209,8 @@ def acoustic_tensor_isotropic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike,
                               n: ArrayLike) -> NDArray:
     """Eq. (179): ``(lam + mu) n (x) n + mu I - p (x) q / g``."""
     g = _modulus(g)
+    n = _nonzero_direction(n)
     p, q = isotropic_vectors(lam, mu, P, Q, n)
-    n = np.asarray(n, dtype=float)
     return (lam + mu) * np.outer(n, n) + mu * I3 - np.outer(p, q) / g
 
 
@@ -203,8 +220,8 @@ def acoustic_eigenvalues_isotropic(lam: float, mu: float, P: ArrayLike, Q: Array
     the smaller real root from the product ``c`` (no cancellation when one root dominates, as
     for small ``|g|``). For inputs at any scale see ``analysis.acoustic.isotropic_acoustic``."""
     g = _modulus(g)
+    n = _nonzero_direction(n)
     p, q = isotropic_vectors(lam, mu, P, Q, n)
-    n = np.asarray(n, dtype=float)
     b = float(lam + 3 * mu - p @ q / g)
     c = float((lam + 2 * mu) * (mu - p @ q / g) + (lam + mu) * (p @ n) * (q @ n) / g)
     disc = b * b - 4 * c
@@ -219,7 +236,7 @@ def acoustic_eigenvalues_isotropic(lam: float, mu: float, P: ArrayLike, Q: Array
 def localization_modulus_isotropic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike,
                                    n: ArrayLike) -> float:
     """Eq. (185)."""
-    n = np.asarray(n, dtype=float)
+    n = _nonzero_direction(n)
     p, q = isotropic_vectors(lam, mu, P, Q, n)
     return float(-(lam + mu) / (mu * (lam + 2 * mu)) * (p @ n) * (q @ n) + p @ q / mu)
 
@@ -229,7 +246,7 @@ def flutter_interval_isotropic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike
     """``(g1, g2)`` of eqs. (187)–(188), corrected: flutter iff ``N = (n.p)(n.q) > 0``,
     ``N - p.q > 0`` and ``g1 < g < g2`` with ``g = (sqrt N -/+ sqrt(N - p.q))^2/(lam + mu)``.
     (Eq. 188 as printed has ``(n.p)(n.p)`` in the second root.) ``None`` when no flutter."""
-    n = np.asarray(n, dtype=float)
+    n = _nonzero_direction(n)
     p, q = isotropic_vectors(lam, mu, P, Q, n)
     N, pq = (n @ p) * (n @ q), p @ q
     if not (N > 0 and N - pq > 0):
@@ -241,7 +258,7 @@ def flutter_interval_isotropic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike
 def flutter_interval_as_printed(lam: float, mu: float, P: ArrayLike, Q: ArrayLike,
                                 n: ArrayLike) -> tuple[float, float] | None:
     """Eq. (188) exactly as printed (erratum evidence only)."""
-    n = np.asarray(n, dtype=float)
+    n = _nonzero_direction(n)
     p, q = isotropic_vectors(lam, mu, P, Q, n)
     N, pq = (n @ p) * (n @ q), p @ q
     printed = (n @ p) * (n @ p) - pq
