@@ -116,3 +116,34 @@ def test_an_integration_started_on_the_section_never_trips_the_event_search():
                         method="LSODA", rtol=1e-8, atol=1e-10, events=event)
         later = [t for t in sol.t_events[0] if t > 1.0]
         assert later and abs(later[0] - math.pi) < 1e-6
+
+
+# An outside audit's independent references (its own Lagrange equations, transients and
+# Newton shooting with the variational equations, closed to 5e-13).
+_D5 = dict(l1=0.2, l2=0.4, d=0.05, h=0.2, m1=3, m2=0.05, m3=0, k1=0.5, k2=0.3, c1=0.01,
+           c2=0.02)
+_D8 = dict(l1=1, l2=1, d=1, h=0, m1=1, m2=1, m3=0, k1=1, k2=1, c1=0.5, c2=0.05)
+
+
+def test_limit_cycle_with_several_maxima_of_alpha1_per_period():
+    """D8 at 2.3 P_flu: a stable cycle with more than one maximum of alpha1 per period was
+    refused (only consecutive section crossings were compared); the section-return check took
+    the first crossing after half a period (27 % short on D8 at 1.5 P_flu)."""
+    p = ZieglerPendulum(**_D8)
+    r = dy.ziegler_limit_cycle(p, 4.517234848484848, 0.1)
+    assert r["period_s"] == pytest.approx(5.431477299, rel=1e-9)
+    assert r["alpha1_amplitude_rad"] == pytest.approx(0.3488657891, rel=1e-9)
+    assert r["alpha2_amplitude_rad"] == pytest.approx(2.704009697, rel=1e-9)
+    lc = dy.limit_cycle(p, 2.9460227272727275, [0.1, 0.1, 0.0, 0.0])
+    t, _ = dy.section_return(p, 2.9460227272727275, lc.section_state, lc.period_s)
+    assert lc.period_s == pytest.approx(6.2622976, rel=1e-7)
+    assert t == pytest.approx(lc.period_s, rel=1e-8)
+
+
+def test_limit_cycle_stops_on_the_distance_left_not_on_the_last_step():
+    """Near the Hopf point the cycle attracts slowly (ratio 0.983 per period at 1.01 P_flu):
+    stopping when successive crossings differ by tol left 60 tol (4.6e-6 at tol 1e-7)."""
+    p = ZieglerPendulum(**_D5)
+    lc = dy.limit_cycle(p, 1.01 * damped_flutter_load(p), [0.3, 0.3, 0.0, 0.0], tol=1e-7,
+                        t_max=5000.0)
+    assert lc.alpha1_amplitude_rad == pytest.approx(0.1138763729, rel=5e-7)
