@@ -14,7 +14,11 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 
 from snakemake.utils import min_version
 
-from flutterfriction.config import expand_parameter_lists, validate_config
+from flutterfriction.config import (
+    duplicate_key_problems,
+    expand_parameter_lists,
+    validate_config,
+)
 from flutterfriction.errors import ParameterError
 from flutterfriction.reference import reference_file_problems
 from flutterfriction.registry import SCENES, check_registry
@@ -32,12 +36,20 @@ report: "workflow/report/workflow.rst"
 
 
 # The whole configuration, every preset as it resolves, before the first job: one line per
-# problem naming the key (the schema, the pendulum and rod geometry, finite numbers, ranges);
-# and the reference and coverage files, which the last jobs read.
+# problem naming the key (the schema, the pendulum and rod geometry, the models' numerical
+# ranges, finite numbers, ranges); a key written twice in workflow/config.yaml or in any
+# --configfile (Snakemake keeps the last silently); and the reference and coverage files,
+# which the last jobs read.
 _problems = (
     check_registry()
+    + [
+        line
+        for path in dict.fromkeys(map(str, workflow.configfiles))
+        for line in duplicate_key_problems(path)
+    ]
     + validate_config(config, "workflow/schemas/config.schema.yaml", scenes=SCENES)
     + reference_file_problems("workflow/reference.yaml", scenes=SCENES)
+    + duplicate_key_problems("workflow/coverage.yaml")
 )
 try:
     load_coverage("workflow/coverage.yaml")

@@ -439,3 +439,90 @@ def test_an_option_given_twice_is_refused(capsys, args):
     code, out, err = _run_exit(capsys, args)
     assert code == 2 and out == "" and "given more than once" in err
     assert len(err.strip().splitlines()) == 1
+
+
+@pytest.mark.parametrize(("args", "name", "text"), [
+    # an empty field was dropped (--n 1,,0,0 read as 1 0 0)
+    (["acoustic", "--lam", "1", "--mu", "1", "--P=-1,0.5,0.5,0,0,0.8",
+      "--Q=0.6,-0.3,-0.3,0,0,-0.8", "--n", "1,,0,0", "--json"], "--n",
+     "empty entry in '1,,0,0' (two commas in a row, or a leading or trailing comma): give 3 "
+     "numbers separated by commas or spaces"),
+    # a trailing comma gave argparse's "expected at least one argument"
+    ([*ACOUSTIC, "--P", "-1,0.5,0.5,0,0,0.8,"], "--P", "empty entry in '-1,0.5,0.5,0,0,0.8,'"),
+    ([*ACOUSTIC, "--P", ",-1,0.5,0.5,0,0,0.8"], "--P", "empty entry"),
+    # Python's float() reads 1_000 as 1000: refused, plain decimal numbers only
+    (_args(k1="1_000"), "--k1", "not a number: '1_000' (no '_' digit separators"),
+    (["ziegler", *_args()[1:-1], "--k2", "-1_000"], "--k2", "not a number: '-1_000'"),
+    (_args(k1="１"), "--k1", "not a number"),  # a full-width digit
+    (["limit-cycle", "beck", "--elements", "1_6"], "--elements", "not an integer: '1_6'"),
+])
+def test_numbers_are_plain_and_lists_have_no_empty_entries(capsys, args, name, text):
+    """Outside audit: `--n 1,,0,0` was accepted as 1 0 0, a trailing comma said "expected at
+    least one argument", `--k1 1_000` was accepted as 1000."""
+    code, out, err = _run_exit(capsys, args)
+    assert code == 2 and out == "" and "Traceback" not in err
+    assert f"argument {name}: {text}" in err and len(err.strip().splitlines()) == 1
+
+
+def test_exponents_and_signs_still_read(capsys):
+    code, out, _ = _run(capsys, [*_args(k1="1.89E-1", k2="+0.189"), "--json"])
+    assert code == 0
+    assert _strict(out)["P_flu"] == pytest.approx(4.8038120088, rel=1e-10)
+
+
+def _no_integration(monkeypatch):
+    import flutterfriction.analysis.rod_dynamics as rd
+
+    class Accepted(Exception):
+        pass
+
+    def stub(rod, P, **kw):
+        raise Accepted(kw)
+
+    monkeypatch.setattr(rd, "beck_limit_cycle", stub)
+    return Accepted
+
+
+def test_limit_cycle_beck_refuses_a_run_beyond_its_cost_budget(capsys, monkeypatch):
+    """Outside audit: `--D 5.3e-7 --t-max 314 --P 8.89` (eta = 1e-4, 3 P_flu, each inside its
+    range) ran for 7 minutes (127 s simulated, 3.9 million right-hand sides, 1346 periods of
+    history); the help promised about a minute. Refused up front, naming the options."""
+    _no_integration(monkeypatch)
+    code, out, err = _run_exit(capsys, ["limit-cycle", "beck", "--D", "5.3e-7", "--t-max",
+                                        "314", "--P", "8.89", "--quiet", "--json"])
+    assert code == 2 and out == "" and len(err.strip().splitlines()) == 1
+    assert err.startswith("flutterfriction: error: --D, --P, --elements: this run is estimated "
+                          "at 623 s of wall time, beyond the 100 s promised (201 s simulated")
+    assert "give a larger --D" in err and "a lower --P (down to 1.86 P_flu = 5.514 N)" in err
+
+
+@pytest.mark.parametrize(("args", "estimate"), [
+    ([], 8.4),  # measured 8.4 s
+    (["--elements", "16"], 47.4),  # the default t-max (31.4 s) on 16 elements: measured 34 s
+    (["--P", "8.89"], 12.7),  # measured 14 s
+    (["--D", "1.565e-6", "--t-max", "80"], 73.2),  # eta = 3e-4: measured 46 s
+])
+def test_limit_cycle_beck_accepts_runs_within_the_budget(capsys, monkeypatch, args, estimate):
+    from flutterfriction import cli
+
+    accepted = _no_integration(monkeypatch)
+    seen = []
+    real = cli.beck_cost_estimate
+    monkeypatch.setattr(cli, "beck_cost_estimate", lambda *a: seen.append(real(*a)) or seen[-1])
+    with pytest.raises(accepted):
+        main(["limit-cycle", "beck", *args, "--quiet", "--json"])
+    assert seen == [pytest.approx(estimate, abs=0.05)]
+
+
+def test_the_cost_estimate_is_deterministic(monkeypatch):
+    """From simulated time, periods, elements, eta and P only: no clock enters."""
+    import time
+
+    from flutterfriction.cli import BECK_BUDGET_S, beck_cost_estimate
+
+    audit = (1279.29, 2060.84, 4, 1.0162e-4, 2.9989)
+    first = beck_cost_estimate(*audit)
+    for name in ("time", "perf_counter", "monotonic", "process_time"):
+        monkeypatch.setattr(time, name, lambda: pytest.fail("the clock was read"))
+    assert beck_cost_estimate(*audit) == first == pytest.approx(623.3, abs=0.05)
+    assert first > BECK_BUDGET_S >= beck_cost_estimate(95.79, 158.96, 16, 1.357e-3, 1.855)

@@ -338,18 +338,25 @@ def beck_params(draw):
 @given(beck_params())
 def test_limit_cycle_beck_refusals(params):
     """Every call is refused up front (exit 2, one line naming a parameter) or reaches the
-    integrator with parameters inside the stated ranges."""
+    integrator with parameters inside the stated ranges and a cost estimate within the
+    budget the help promises."""
     import flutterfriction.analysis.rod_dynamics as rd
+    from flutterfriction import cli
 
     def stub(rod, P, **kw):
         raise _Accepted(rod, P, kw)
 
+    estimates = []
+    real = cli.beck_cost_estimate
     with pytest.MonkeyPatch.context() as mp:
         mp.setattr(rd, "beck_limit_cycle", stub)
+        mp.setattr(cli, "beck_cost_estimate", lambda *a: estimates.append(real(*a))
+                   or estimates[-1])
         try:
             _check(_argv(["limit-cycle", "beck"], params) + ["--quiet"])
         except _Accepted as accepted:
             rod, P, kw = accepted.args
+            assert len(estimates) == 1 and estimates[0] <= cli.BECK_BUDGET_S
             assert 1 <= kw["n_elements"] <= 16 and rod.D > 0
             assert 0 < kw["t_max"] <= 2000 * rod.time_scale
             assert 1e-6 <= rod.length <= 1e6 and 1e-12 <= rod.B <= 1e12

@@ -217,3 +217,165 @@ def test_an_unknown_list_name_does_not_hide_the_other_problems():
     assert len(problems) == 3, problems
     assert "unknown parameter list 'list99'" in problems[0]
     assert any("n_pts" in p for p in problems) and any("fig05.n_points" in p for p in problems)
+
+
+# ---------------------------------------------------------------------- models' own ranges
+@pytest.mark.parametrize(("scene", "key", "value", "match"), [
+    # the pendulum's numerical range (the job raised "k1/k2 = 10^10 outside [1e-6, 1e6]")
+    ("eq25", "pendulum", {"l1": 1.0, "l2": 1.0, "d": 1.0, "h": 0.0, "m1": 1.0, "m2": 1.0,
+                          "m3": 0.0, "k1": 1.0e10, "k2": 1.0},
+     "config (fidelity paper): scenes.eq25.pendulum: k1, k2: the ratio k1/k2 = 10^10 is "
+     "outside the model's numerical range [1e-6, 1e6]"),
+    # tip-mass ratios up to 10^8 (the job raised "tan_alpha must be [0, 10000]")
+    ("rod_stability_map", "log10_ratio_range", [-2, 8],
+     "scenes.rod_stability_map.log10_ratio_range: the largest tip-mass ratio 10^8 must be <= "
+     "10000"),
+    # the vanishing damping: above the solver's eta range, and below its damping floor (hung)
+    ("rod_stability_map", "eta_small", 1.0e300,
+     "scenes.rod_stability_map.eta_small: must be in [1e-06, 1]: at least "
+     "analysis.rod.DAMPING_FLOOR"),
+    ("rod_stability_map", "eta_small", 1.0e-20,
+     "scenes.rod_stability_map.eta_small: must be in [1e-06, 1]"),
+    # eq. (106)'s eta of the rod out of range (D = 7e6 N m^2 s)
+    ("errata_rods", "rod", {"length": 0.35, "B": 0.0332, "rho": 0.0546, "D": 7.0e6},
+     "scenes.errata_rods.rod: eta must be 0 or [1e-100, 1] (the rod solver's numerical "
+     "range, analysis.rod.GROUP_RANGES), got 1.34214e+09; eta = D/(B l^2) sqrt(B/rho)"),
+    # the damped rod of Fig. 11 below the FE twin's damping floor
+    ("fig11", "rod", {"length": 0.35, "B": 0.0332, "rho": 0.0546, "D": 1.0e-12},
+     "scenes.fig11.rod: the damping max(eta, gamma) = 1.92e-10 (eq. 106) must be 0 or >= "
+     "1e-06"),
+    ("fig12", "tan_alpha", 1.0e5, "scenes.fig12.tan_alpha: must be in [0, 10000]"),
+    ("fig11", "p_max", 5000.0, "scenes.fig11.p_max: must be in (0, 1000]"),
+    ("errata_rods", "bracket", [1.3, 2.0e4], "scenes.errata_rods.bracket: the tan(alpha) "
+                                             "bracket must lie in [0, 10000]"),
+])
+def test_the_scenes_models_refuse_before_any_job(scene, key, value, match):
+    """Outside audit: each of these passed `snakemake -n` and failed (or hung, for
+    eta_small = 1e-20) only when its job ran; now one line naming the scene and the key."""
+    raw = yaml.safe_load((ROOT / "workflow" / "config.yaml").read_text())
+    raw["scenes"][scene][key] = value
+    problems = validate_config(raw, SCHEMA_PATH, scenes=SCENES)
+    assert any(match in p for p in problems), problems
+    assert len(problems) == 1 and "\n" not in problems[0], problems
+
+
+def test_a_rod_whose_eta_underflows_is_refused():
+    """Outside audit: length 1e100 m with D = 1e-150 N m^2 s underflowed eta to 0 (the
+    undamped answer for a damped rod, silently)."""
+    raw = yaml.safe_load((ROOT / "workflow" / "config.yaml").read_text())
+    raw["scenes"]["errata_rods"]["rod"] = {"length": 1.0e100, "B": 1.0, "rho": 1.0,
+                                           "D": 1.0e-150}
+    problems = validate_config(raw, SCHEMA_PATH, scenes=SCENES)
+    assert len(problems) == 1 and "scenes.errata_rods.rod: " in problems[0], problems
+    assert "rescale" in problems[0]
+
+
+def test_a_fe_convergence_case_below_the_damping_floor_is_refused():
+    raw = yaml.safe_load((ROOT / "workflow" / "config.yaml").read_text())
+    raw["scenes"]["rod_fe_convergence"]["cases"]["tiny"] = {"eta": 1.0e-9}
+    raw["scenes"]["rod_fe_convergence"]["cases"]["huge"] = {"tan_alpha": 1.0e6}
+    problems = validate_config(raw, SCHEMA_PATH, scenes=SCENES)
+    assert sorted(problems) == [
+        "config (fidelity paper): scenes.rod_fe_convergence.cases.huge: tan_alpha must be "
+        "[0, 10000] (the rod solver's numerical range, analysis.rod.GROUP_RANGES), got 1e+06",
+        "config (fidelity paper): scenes.rod_fe_convergence.cases.tiny: the damping "
+        "max(eta, gamma) = 1e-09 (eq. 106) must be 0 or >= 1e-06: the scene's "
+        "finite-element twin cannot resolve the flutter crossing below "
+        "analysis.rod.DAMPING_FLOOR"]
+
+
+def test_a_preset_override_outside_a_models_range_is_refused():
+    """Every preset is resolved and checked: the quick preset's override too."""
+    raw = yaml.safe_load((ROOT / "workflow" / "config.yaml").read_text())
+    raw["fidelity_presets"]["quick"]["scenes"]["rod_stability_map"]["eta_small"] = 1.0e-9
+    raw["scenes"]["rod_stability_map"]["eta_small"] = 1.0e-6
+    problems = validate_config(raw, SCHEMA_PATH, scenes=SCENES)
+    assert len(problems) == 1 and problems[0].startswith(
+        "config (fidelity quick): scenes.rod_stability_map.eta_small: must be in [1e-06, 1]")
+
+
+# ---------------------------------------------------------------------- strings for numbers
+@pytest.mark.parametrize(("value", "extra"), [
+    ("1e-20", "; in a YAML file write 1.0e-20"),  # what `--config scenes={...}` and YAML give
+    ("0.5", ""),
+])
+def test_a_number_given_as_a_string_says_why(value, extra):
+    """Outside audit: `snakemake --config "scenes={rod_stability_map: {eta_small: 1e-20}}"`
+    said "'1e-20' is not of type 'number'": Snakemake passes nested --config values as
+    strings (and YAML 1.1 reads 1e-20, without a decimal point, as a string too)."""
+    raw = yaml.safe_load((ROOT / "workflow" / "config.yaml").read_text())
+    raw["scenes"]["rod_stability_map"]["eta_small"] = value
+    problems = validate_config(raw, SCHEMA_PATH, scenes=SCENES)
+    assert problems == [
+        f"config: scenes.rod_stability_map.eta_small: {value!r} is a string, not a number: "
+        "snakemake --config passes nested values (scenes={...}) as strings; give nested "
+        "values in a --configfile" + (extra + " (YAML 1.1 reads an exponent without a decimal "
+                                      "point or without its sign as a string)" if extra
+                                      else "")]
+
+
+# ---------------------------------------------------------------------- duplicate keys
+def test_a_key_given_twice_is_refused(tmp_path):
+    """Outside audit: YAML kept the last of two keys silently (`fidelity: quick` then
+    `fidelity: paper` ran the paper preset; a pendulum section given twice)."""
+    from flutterfriction.config import duplicate_key_problems
+
+    path = tmp_path / "c.yaml"
+    path.write_text("fidelity: quick\nfidelity: paper\nscenes:\n  eq25:\n"
+                    "    pendulum: {l1: 1.0}\n    n_points: 11\n    pendulum: {l1: 2.0}\n"
+                    "base: &b {x: 1}\nmerged: {<<: *b, x: 2}\n")  # an override is no duplicate
+    assert duplicate_key_problems(path) == [
+        f"{path}: (top level): key 'fidelity' given twice at line 2 (first at line 1; YAML "
+        "would keep the last silently)",
+        f"{path}: scenes.eq25: key 'pendulum' given twice at line 7 (first at line 5; YAML "
+        "would keep the last silently)"]
+    with pytest.raises(ParameterError, match="key 'fidelity' given twice at line 2"):
+        load_config(path)
+    assert duplicate_key_problems(ROOT / "workflow" / "config.yaml") == []
+    assert duplicate_key_problems(ROOT / "workflow" / "coverage.yaml") == []
+
+
+def _scratch_workflow(tmp_path):
+    import shutil
+
+    for part in ("src", "workflow", "notebooks"):
+        shutil.copytree(ROOT / part, tmp_path / part,
+                        ignore=shutil.ignore_patterns("__pycache__", "*.egg-info"))
+    shutil.copy(ROOT / "Snakefile", tmp_path / "Snakefile")
+
+
+def _dry_run(tmp_path, *args):
+    import os
+    import subprocess
+    import sys
+
+    return subprocess.run([sys.executable, "-m", "snakemake", "-n", *args], cwd=tmp_path,
+                          env={**os.environ, "PYTHONPATH": str(tmp_path / "src")},
+                          capture_output=True, text=True, timeout=300)
+
+
+@pytest.mark.slow  # three `snakemake -n` runs (~3 s each)
+def test_the_workflow_refuses_duplicate_keys_and_model_ranges_before_any_job(tmp_path):
+    """`snakemake -n` refuses a key given twice in workflow/config.yaml or in a --configfile,
+    and a pendulum outside the model's range, one line each, before planning any job."""
+    _scratch_workflow(tmp_path)
+    (tmp_path / "over.yaml").write_text(
+        "fidelity: quick\nfidelity: paper\nscenes:\n  eq25:\n    pendulum: {l1: 1.0, l2: 1.0, "
+        "d: 1.0, h: 0.0, m1: 1.0, m2: 1.0, m3: 0.0, k1: 1.0e+10, k2: 1.0}\n")
+    run = _dry_run(tmp_path, "--configfile", "over.yaml")
+    out = run.stdout + run.stderr
+    assert run.returncode != 0 and "invalid configuration:" in out
+    assert "over.yaml: (top level): key 'fidelity' given twice at line 2 (first at line 1" in out
+    assert "scenes.eq25.pendulum: k1, k2: the ratio k1/k2 = 10^10 is outside" in out
+    # Snakemake passes a nested --config value as a string: the message says so
+    run = _dry_run(tmp_path, "--config", "scenes={rod_stability_map: {eta_small: 1e-20}}")
+    out = run.stdout + run.stderr
+    assert run.returncode != 0
+    assert ("config: scenes.rod_stability_map.eta_small: '1e-20' is a string, not a number: "
+            "snakemake --config passes nested values (scenes={...}) as strings; give nested "
+            "values in a --configfile") in out
+    config = tmp_path / "workflow" / "config.yaml"
+    config.write_text(config.read_text() + "fidelity: quick\n")
+    run = _dry_run(tmp_path)
+    out = run.stdout + run.stderr
+    assert run.returncode != 0 and "key 'fidelity' given twice at line" in out

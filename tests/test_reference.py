@@ -192,3 +192,73 @@ def test_the_workflow_refuses_bad_reference_coverage_and_scatter_before_any_job(
                          env={**os.environ, "PYTHONPATH": str(tmp_path / "src")},
                          capture_output=True, text=True)
     assert run.returncode != 0 and expected in run.stdout + run.stderr
+
+
+def _one_quantity(key="k", scene="sc"):
+    return {"id": "x", "source": "s", "scene": scene, "key": key, "quoted": 1.0,
+            "tolerance": {"atol": 0.0, "rtol": 1e-4, "why": "w"},
+            "agreement": {"atol": 0.0, "rtol": 1e-4, "why": "w"}}
+
+
+_DATA = {"sc": {"quantities": {"k": {"value": 1.0, "independent": 1.0, "method": "m",
+                                     "independent_method": "i"}},
+                "errata": {}},
+         "other": {"quantities": {"k_other": {"value": 2.0, "independent": 2.0, "method": "m",
+                                              "independent_method": "i"}}}}
+
+
+@pytest.mark.parametrize(("key", "note"), [
+    ("bogus_key", "key 'bogus_key' is not among the quantities of scene 'sc' (k)"),
+    ("k_other", "key 'k_other' is not among the quantities of scene 'sc' (k); it is one of "
+                "scene 'other'"),  # another scene's key
+])
+def test_an_unknown_key_is_one_fail_line_not_a_key_error(key, note):
+    """Outside audit: a reference entry with a bogus key (or one of another scene) passed the
+    dry run and the final check job died with KeyError after all the work."""
+    ref = {"quantities": [_one_quantity(key)],
+           "errata": [{"id": "e", "source": "s", "printed": "p", "corrected": "c",
+                       "evidence": "v", "scene": "sc", "key": "nope",
+                       "agreement": {"atol": 0.0, "rtol": 1e-4, "why": "w"}}]}
+    rows = run_check(ref, _DATA)
+    assert [(r.id, r.status, r.note) for r in rows] == [
+        ("x", "FAIL", note),
+        ("e", "FAIL", "key 'nope' is not among the errata of scene 'sc' (it has none)")]
+    assert failed(rows) == rows
+    md = summary_markdown(rows)
+    assert f"FAIL ({note})" in md and "**2 of 2 entries FAIL.**" in md
+    row, = run_check({"quantities": [_one_quantity(scene="gone")], "errata": []}, _DATA)
+    assert row.status == "FAIL" and row.note == "scene 'gone' has no data in this run"
+
+
+def test_a_key_given_twice_in_the_reference_file_is_refused(tmp_path):
+    """Outside audit: `quoted:` given twice in an entry kept the last silently."""
+    from flutterfriction.reference import reference_file_problems
+
+    path = tmp_path / "reference.yaml"
+    path.write_text("quantities:\n  - id: x\n    source: s\n    scene: eq25\n    key: k\n"
+                    "    quoted: 1.0\n    quoted: 2.0\n"
+                    "    tolerance: {atol: 0, rtol: 1.0e-4, why: w}\n"
+                    "    agreement: {atol: 0, rtol: 1.0e-4, why: w}\nerrata: []\n")
+    assert reference_file_problems(path) == [
+        f"{path}: quantities.0: key 'quoted' given twice at line 7 (first at line 6; YAML "
+        "would keep the last silently)"]
+    with pytest.raises(ValueError, match="key 'quoted' given twice at line 7"):
+        load_reference(path)
+
+
+def test_an_empty_reference_and_a_quoted_number_as_a_string_are_refused():
+    """Outside audit: `quantities: []` with `errata: []` passed (the check then checked
+    nothing); `quoted: "0.0911"` passed and showed FAIL with no error value."""
+    from flutterfriction.reference import reference_problems
+
+    assert reference_problems({"quantities": [], "errata": []}) == [
+        "quantities and errata are both empty: the check would check nothing (list at least "
+        "one entry)"]
+    assert reference_problems({"quantities": [_one_quantity()], "errata": []}) == []
+    entry = {**_one_quantity(), "quoted": "0.0911"}
+    assert reference_problems({"quantities": [entry], "errata": []}) == [
+        "quantities[0] (id x): quoted: '0.0911' is a number written as a string: write it "
+        "unquoted (a string is a categorical statement such as 'flutter', compared word for "
+        "word, with no tolerance)"]
+    entry = {**_one_quantity(), "quoted": "flutter"}  # a categorical statement stays allowed
+    assert reference_problems({"quantities": [entry], "errata": []}) == []

@@ -66,6 +66,28 @@ BECK_ETA_MIN = 1e-4
 BECK_RANGES = {"length": (1e-6, 1e6, "m"), "B": (1e-12, 1e12, "N m^2"),
                "rho": (1e-12, 1e12, "kg/m")}
 BECK_TOL = 1e-5  # the cycle's convergence tolerance (relative)
+#: Largest estimated wall time of a `limit-cycle beck` run [s] (the help's promise: about a
+#: minute, 100 s at most); a run estimated above it is refused before integrating. The
+#: estimate (:func:`beck_cost_estimate`) is a model, not a clock: the same input gives the
+#: same verdict on every machine.
+BECK_BUDGET_S = 100.0
+#: The model's constants, measured on list (119) (LSODA at rtol 1e-8, one BLAS thread, whole
+#: runs): right-hand sides per time scale T ~720 n^0.44 on n elements (8480 a simulated second
+#: on 4, 14600 on 16 elements at 5.5 N = 1.86 P_flu, eta = 1.36e-3); their cost with the
+#: Jacobians and LU factors ~40 + 0.6 n^2 us (51 us on 4, 140-240 us on 16 elements); more
+#: steps at higher loads, (P/1.86 P_flu)^1.1 (13800 a second at 3 P_flu), and below
+#: eta = 1e-3, (1e-3/eta)^max(0.1, 0.23 (P/P_flu - 1.45)) (9450 a second at eta = 3e-4,
+#: 1.86 P_flu; 30700 at eta = 1e-4, 3 P_flu: the outside audit's run); and the tip's history
+#: (100 points a period, each found by a scan over the integration's pieces of 4 periods)
+#: 2.4e-3 s a period plus 7e-5 s a period squared (0.8 s after 107 periods, 13 s after 498;
+#: 200 s after 1346 on a loaded machine). Whole runs against the estimate: 8.4 s (est. 8.5),
+#: 14 s at 3 P_flu (est. 13), 46 s at eta = 3e-4 (est. 73), 34 s on 16 elements (est. 47),
+#: 72 s at 3 P_flu on 16 elements (est. 79), 442 s for the audit's run (est. 623: refused).
+BECK_COST_RHS_PER_SCALE, BECK_COST_RHS_EXPONENT = 720.0, 0.44
+BECK_COST_US_PER_RHS, BECK_COST_US_PER_RHS_N2 = 40.0, 0.6
+BECK_COST_REF_LOAD_FACTOR, BECK_COST_LOAD_EXPONENT = 1.86, 1.1
+BECK_COST_ETA_KNEE = 1e-3
+BECK_COST_HISTORY_S, BECK_COST_HISTORY_S2 = 2.4e-3, 7e-5
 
 
 class _Parser(argparse.ArgumentParser):
@@ -73,14 +95,41 @@ class _Parser(argparse.ArgumentParser):
         self.exit(2, f"{self.prog}: error: {message}\n")
 
 
+#: A number as the options take it: plain decimal, optionally with an exponent (``-1``,
+#: ``0.5``, ``.5``, ``1.5e-3``). Python's ``float`` accepts more (``1_000``, full-width digits,
+#: ``infinity``), which a typo can produce: refused, so a value is what it reads as.
+_PLAIN_NUMBER = re.compile(r"[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
+_PLAIN_INTEGER = re.compile(r"[+-]?[0-9]+")
+_NON_FINITE = re.compile(r"[+-]?(?:inf|infinity|nan)", re.IGNORECASE)
+
+
 def _number(text: str) -> float:
-    try:
-        value = float(text)
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"not a number: {text!r}") from None
+    word = text.strip()
+    if _NON_FINITE.fullmatch(word):
+        raise argparse.ArgumentTypeError(f"must be finite, got {text!r}")
+    if not _PLAIN_NUMBER.fullmatch(word):
+        hint = " (no '_' digit separators: write the digits only)" if "_" in word else ""
+        raise argparse.ArgumentTypeError(
+            f"not a number: {text!r}{hint}; give a plain decimal number such as 0.5, -3 or "
+            f"1.5e-3")
+    value = float(word)
     if not math.isfinite(value):
         raise argparse.ArgumentTypeError(f"must be finite, got {text!r}")
     return value
+
+
+def _integer(text: str) -> int:
+    word = text.strip()
+    if not _PLAIN_INTEGER.fullmatch(word):
+        hint = " (no '_' digit separators: write the digits only)" if "_" in word else ""
+        raise argparse.ArgumentTypeError(f"not an integer: {text!r}{hint}")
+    return int(word)
+
+
+def _fields(text: str) -> list[str]:
+    """The numbers of one command-line word, separated by commas (spaces around them allowed)
+    or spaces; an empty field (``1,,0``, a leading or trailing comma) is kept, as ``""``."""
+    return re.split(r"\s*,\s*|\s+", text.strip())
 
 
 def _add_pendulum_arguments(parser: argparse.ArgumentParser) -> None:
@@ -169,11 +218,14 @@ def build_parser() -> argparse.ArgumentParser:
         "beck", help="limit cycle of the nonlinear Beck rod (defaults: list (119))",
         description="Geometrically exact inextensible rod with a tangential follower force and "
                     "Kelvin-Voigt viscosity (P2 elements for the rotation), integrated until "
-                    "the cycle on the Poincare section converges (takes 20-100 s; progress on "
-                    "stderr unless --quiet). SI units. A cycle exists only with viscosity "
-                    "(D > 0) and above the damped flutter load P_flu of the linearised rod "
-                    "(2.9645 N for list (119), 4 elements), computed first; loads too close to "
-                    "it, where the approach to the cycle outlasts --t-max, are refused.")
+                    "the cycle on the Poincare section converges (about 10 s for list (119), "
+                    "at most a minute or two; progress on stderr unless --quiet). SI units. A "
+                    "cycle exists only with viscosity (D > 0) and above the damped flutter "
+                    "load P_flu of the linearised rod (2.9645 N for list (119), 4 elements), "
+                    "computed first; loads too close to it, where the approach to the cycle "
+                    "outlasts --t-max, are refused, and so is a run whose estimated wall time "
+                    f"(from the simulated time, elements, eta and P; never the clock) exceeds "
+                    f"{BECK_BUDGET_S:g} s.")
     for name, default, text in (
             ("P", LIST_119_LOAD, f"follower load [N], P_flu < P <= {BECK_LOAD_MAX:g} P_flu"),
             ("length", LIST_119["length"], "rod length l [m], 1e-6..1e6"),
@@ -186,7 +238,7 @@ def build_parser() -> argparse.ArgumentParser:
             ("tip-mass", 0.0, f"tip mass [kg], 0..{BECK_TIP_MASS_RATIO_MAX:g} rho l")):
         lb.add_argument(f"--{name}", type=_number, default=default,
                         help=f"{text} (default {default})")
-    lb.add_argument("--elements", type=int, default=4,
+    lb.add_argument("--elements", type=_integer, default=4,
                     help=f"P2 elements, {BECK_ELEMENTS[0]}..{BECK_ELEMENTS[1]} (default 4)")
     lb.add_argument("--t-max", type=_number, default=None,
                     help=f"simulated time allowed for the cycle to converge [s], at most "
@@ -196,6 +248,20 @@ def build_parser() -> argparse.ArgumentParser:
                     help="no progress messages on stderr")
     lb.add_argument("--json", action="store_true", help="print one JSON object")
     return parser
+
+
+def beck_cost_estimate(t_run_scales: float, periods: float, n_elements: int, eta: float,
+                       load_factor: float) -> float:
+    """Estimated wall time [s] of `limit-cycle beck` (see :data:`BECK_BUDGET_S` and the
+    ``BECK_COST_*`` constants): ``t_run_scales`` time scales T simulated, ``periods`` cycle
+    periods in them, on ``n_elements`` P2 elements at ``eta`` and P = ``load_factor`` P_flu.
+    Deterministic: from simulated time, steps, elements, eta and P only, never the clock."""
+    stiff = max(1.0, load_factor / BECK_COST_REF_LOAD_FACTOR) ** BECK_COST_LOAD_EXPONENT
+    stiff *= max(1.0, BECK_COST_ETA_KNEE / eta) ** max(0.1, 0.23 * (load_factor - 1.45))
+    rhs = t_run_scales * BECK_COST_RHS_PER_SCALE * n_elements ** BECK_COST_RHS_EXPONENT * stiff
+    us_per_rhs = BECK_COST_US_PER_RHS + BECK_COST_US_PER_RHS_N2 * n_elements ** 2
+    return (rhs * us_per_rhs * 1e-6 + BECK_COST_HISTORY_S * periods
+            + BECK_COST_HISTORY_S2 * periods ** 2)
 
 
 def _limit_cycle_beck(args: argparse.Namespace) -> dict:
@@ -314,6 +380,28 @@ def _limit_cycle_beck(args: argparse.Namespace) -> dict:
             f"roughly {t_need:.3g} s of simulated time, far beyond --t-max = {t_max:.4g} s; "
             f"give {' or '.join(hints)}")
 
+    # The cost, before integrating: the run lasts until the cycle converges (t_need, t_need_eta
+    # above) or t_max, with a period of about the linear flutter mode's.
+    t_run = min(t_max, max(t_need, t_need_eta))
+    A = np.block([[np.zeros((n, n)), np.eye(n)], [-Minv @ (K + args.P * K1), -Minv @ C]])
+    ev = np.linalg.eigvals(A)
+    period = 2 * math.pi / max(abs(ev[np.argmax(ev.real)].imag), 1e-300)
+    cost = beck_cost_estimate(t_run / T, t_run / period, args.elements, groups.eta,
+                              args.P / P_flu)
+    if cost > BECK_BUDGET_S:
+        hints = {"--D": "a larger --D (eta: a faster approach, fewer steps)"}
+        if args.P > BECK_COST_REF_LOAD_FACTOR * P_flu:
+            hints["--P"] = (f"a lower --P (down to {BECK_COST_REF_LOAD_FACTOR:g} P_flu = "
+                            f"{BECK_COST_REF_LOAD_FACTOR * P_flu:.4g} N)")
+        if args.elements > 1:
+            hints["--elements"] = "fewer --elements"
+        raise ParameterError(
+            f"{', '.join(hints)}: this run is estimated at {cost:.3g} s of wall time, beyond "
+            f"the {BECK_BUDGET_S:g} s promised ({t_run:.3g} s simulated, ~{t_run / period:.3g} "
+            f"periods, on {args.elements} elements at eta = {groups.eta:.3g} and P = "
+            f"{args.P / P_flu:.3g} P_flu: small eta and high loads need more steps); give "
+            f"{' or '.join(hints.values())}")
+
     say = _progress_printer(args.quiet)
     say(f"damped flutter load P_flu = {P_flu:.6g} N ({args.elements} P2 elements); "
         f"integrating the nonlinear rod at P = {args.P:g} N ({above:.3g}% above) until the "
@@ -375,7 +463,11 @@ def _vector(size: int):
     of numbers separated by commas (or spaces, when quoted); :class:`_VectorAction` gathers the
     words (``nargs="+"``) and checks the count."""
     def parse(text: str) -> list[float]:
-        parts = re.split(r"[,\s]+", text.strip())
+        parts = _fields(text)
+        if "" in parts:
+            raise argparse.ArgumentTypeError(
+                f"empty entry in {text!r} (two commas in a row, or a leading or trailing "
+                f"comma): give {size} numbers separated by commas or spaces")
         return [_number(x) for x in parts]
     parse.vector_size = size
     parse.__name__ = f"{size} numbers"
@@ -396,8 +488,10 @@ class _VectorAction(argparse.Action):
 
 def _words_of_numbers(word: str) -> int:
     """How many numbers ``word`` holds (``-1``, ``-1e-3``, ``-1,0.5``, ``nan``...), 0 if it is
-    not a list of numbers."""
-    parts = re.split(r"[,\s]+", word.strip())
+    not a list of numbers. Loose on purpose: a word that only *looks* like numbers (``1_000``,
+    ``-1,0.5,`` with an empty entry) is gathered too, so that the option's type refuses it by
+    name rather than argparse taking ``-1,...`` for an unknown option."""
+    parts = [x for x in _fields(word) if x]
     try:
         for x in parts:
             float(x)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import copy
 import math
+import re
 from collections.abc import Iterable, Iterator
 from pathlib import Path
 from typing import Any
@@ -13,6 +14,61 @@ import yaml
 from flutterfriction.errors import ParameterError
 
 TOP_LEVEL_KEYS = {"fidelity", "fidelity_presets", "scenes", "sweep_parts"}
+
+_MERGE_TAG = "tag:yaml.org,2002:merge"
+
+
+def duplicate_key_problems(path: str | Path) -> list[str]:
+    """One line per mapping key written twice in the YAML (or JSON) file at ``path``, naming
+    the key, where it sits and both lines: PyYAML and Snakemake keep the last value silently
+    (``fidelity: quick`` then ``fidelity: paper`` would run the paper preset). A key that
+    overrides one merged in by ``<<: *anchor`` is not a duplicate. A file that does not parse
+    gives no line here (its parser reports it)."""
+    try:
+        with open(path, encoding="utf-8") as fh:
+            root = yaml.compose(fh, Loader=yaml.SafeLoader)
+    except (OSError, yaml.YAMLError):
+        return []
+    lines: list[str] = []
+    visited: set[int] = set()  # an alias is the anchored node itself: reported once
+
+    def walk(node: Any, where: tuple) -> None:
+        if node is None or id(node) in visited:
+            return
+        visited.add(id(node))
+        if isinstance(node, yaml.MappingNode):
+            first: dict[tuple[str, str], int] = {}
+            for key, value in node.value:
+                if key.tag == _MERGE_TAG:
+                    continue
+                if isinstance(key, yaml.ScalarNode):
+                    line = key.start_mark.line + 1
+                    ident = (key.tag, key.value)
+                    if ident in first:
+                        lines.append(f"{path}: {_where(where)}: key {key.value!r} given twice "
+                                     f"at line {line} (first at line {first[ident]}; YAML "
+                                     f"would keep the last silently)")
+                    else:
+                        first[ident] = line
+                    walk(value, (*where, key.value))
+                else:
+                    walk(value, (*where, "?"))
+        elif isinstance(node, yaml.SequenceNode):
+            for i, item in enumerate(node.value):
+                walk(item, (*where, i))
+
+    walk(root, ())
+    return lines
+
+
+def load_yaml(path: str | Path) -> Any:
+    """``yaml.safe_load`` of the file at ``path``, refusing a key written twice in a mapping
+    (:func:`duplicate_key_problems`; :class:`ParameterError` listing them, one line each)."""
+    problems = duplicate_key_problems(path)
+    if problems:
+        raise ParameterError("\n".join(problems))
+    with open(path, encoding="utf-8") as fh:
+        return yaml.safe_load(fh)
 
 
 def expand_parameter_lists(config: dict[str, Any]) -> list[str]:
@@ -35,8 +91,7 @@ def expand_parameter_lists(config: dict[str, Any]) -> list[str]:
 def load_config(path: str | Path) -> dict[str, Any]:
     """Load the workflow configuration (chapter lists named in it resolved) and reject
     unknown top-level keys by name."""
-    with open(path, encoding="utf-8") as fh:
-        config = yaml.safe_load(fh)
+    config = load_yaml(path)
     if not isinstance(config, dict):
         raise ParameterError(f"{path}: the configuration must be a mapping")
     problems = expand_parameter_lists(config)
@@ -115,6 +170,9 @@ def _schema_problems(config: dict[str, Any], schema: dict[str, Any], prefix: str
             allowed = sorted(err.schema.get("properties", {}))
             extra = sorted(set(err.instance) - set(allowed))
             message = f"unknown key(s) {extra}; allowed: {allowed}"
+        elif err.validator == "type" and isinstance(err.instance, str) \
+                and _reads_as(err.instance, err.validator_value):
+            message = _string_number_message(err.instance, err.validator_value)
         elif err.validator in ("required", "enum", "minimum", "maximum", "exclusiveMinimum",
                                "exclusiveMaximum", "minItems", "maxItems", "type"):
             message = err.message
@@ -124,6 +182,34 @@ def _schema_problems(config: dict[str, Any], schema: dict[str, Any], prefix: str
             message = message[:300] + " ..."
         lines.append(f"{prefix}{_where(err.path)}: {message}")
     return lines
+
+
+_NUMBER = re.compile(r"[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
+_INTEGER = re.compile(r"[+-]?[0-9]+")
+
+
+def _reads_as(text: str, expected: Any) -> bool:
+    """Whether the string ``text`` spells a value of the JSON-schema type(s) ``expected``."""
+    kinds = [expected] if isinstance(expected, str) else list(expected)
+    text = text.strip()
+    return (("number" in kinds and bool(_NUMBER.fullmatch(text)))
+            or ("integer" in kinds and bool(_INTEGER.fullmatch(text)))
+            or ("boolean" in kinds and text.lower() in ("true", "false")))
+
+
+def _string_number_message(text: str, expected: Any) -> str:
+    """Why a number (or boolean) arrived as a string, and how to give it (the two ways it
+    happens: ``snakemake --config`` nested values, and YAML 1.1's floats)."""
+    kind = expected if isinstance(expected, str) else " or ".join(expected)
+    message = (f"{text!r} is a string, not a {kind}: snakemake --config passes nested values "
+               f"(scenes={{...}}) as strings; give nested values in a --configfile")
+    mantissa, e, exponent = text.strip().lower().partition("e")
+    if e and ("." not in mantissa or exponent[:1] not in "+-"):
+        fixed = (mantissa if "." in mantissa else mantissa + ".0") + "e" + \
+            (exponent if exponent[:1] in "+-" else "+" + exponent)
+        message += (f"; in a YAML file write {fixed} (YAML 1.1 reads an exponent without a "
+                    f"decimal point or without its sign as a string)")
+    return message
 
 
 def _walk(value: Any, path: tuple = ()) -> Iterator[tuple[tuple, Any]]:
@@ -151,11 +237,13 @@ def _physical_problems(scene: str, params: dict[str, Any], prefix: str) -> list[
         key = path[-1] if path else ""
         try:
             if key in ("pendulum", "cycle_pendulum") and isinstance(value, dict):
-                ZieglerPendulum(**value)
+                # the model's numerical range too (ratios, mass matrix, viscosities): the
+                # scenes' solvers refuse a pendulum outside it when their job runs
+                ZieglerPendulum(**value).check_numerical_range()
             elif key == "rod" and isinstance(value, dict):
-                Rod(**value)
-        except (ParameterError, TypeError) as exc:
-            lines.append(f"{where}: {exc}")
+                _rod_groups(Rod(**value))
+        except _MODEL_ERRORS as exc:
+            lines.append(f"{where}: {' '.join(str(exc).split())}")
         if isinstance(key, str) and (key.endswith("_range") or key == "bracket") \
                 and isinstance(value, list) and len(value) == 2 \
                 and all(isinstance(v, int | float) for v in value) and not value[0] < value[1]:
@@ -171,6 +259,126 @@ def _physical_problems(scene: str, params: dict[str, Any], prefix: str) -> list[
             upper = _lookup(params, (*path[:-1], key[:-4] + "_max"))
             if isinstance(upper, int | float) and not value < upper:
                 lines.append(f"{where}: must be < {key[:-4]}_max = {upper}, got {value}")
+    return lines
+
+
+_MODEL_ERRORS = (ParameterError, TypeError, ValueError, ZeroDivisionError, OverflowError)
+
+#: Eq. (106)'s groups and the rod parameter that makes each non-zero.
+_GROUP_SOURCES = {"eta": ("D", "eta = D/(B l^2) sqrt(B/rho)"),
+                  "gamma": ("kappa", "gamma = kappa l^2/sqrt(rho B)"),
+                  "tan_alpha": ("tip_mass", "tan(alpha) = M/(rho l)")}
+
+
+def _rod_groups(rod: Any) -> Any:
+    """The rod's groups of eq. (106) within the rod solver's range
+    (:func:`flutterfriction.analysis.rod.check_groups`); a group that rounds to 0 although
+    its parameter is positive (below the double range) is refused too."""
+    from flutterfriction.analysis.rod import check_groups
+
+    g = rod.groups()
+    for group, (source, formula) in _GROUP_SOURCES.items():
+        if getattr(rod, source) > 0 and getattr(g, group) == 0:
+            raise ParameterError(f"{source} = {getattr(rod, source)!r} > 0 but {formula} "
+                                 f"rounds to 0 (below the double range): rescale the rod")
+    try:
+        check_groups(g)
+    except ParameterError as exc:
+        group = str(exc).split(" ", 1)[0]
+        formula = _GROUP_SOURCES.get(group, ("", group))[1]
+        raise ParameterError(f"{exc}; {formula} of this rod (eq. 106)") from None
+    return g
+
+
+def _number_at(params: dict[str, Any], key: str) -> float | None:
+    value = params.get(key)
+    if isinstance(value, int | float) and not isinstance(value, bool) and math.isfinite(value):
+        return value
+    return None
+
+
+#: Scenes' tip-mass ratios tan(alpha) given directly (the rod solver refuses > 1e4).
+_TAN_ALPHA_KEYS = {"fig10": ("pfluger_tan_alpha",), "fig12": ("tan_alpha", "stated_tan_alpha"),
+                   "errata_rods": ("stated_tan_alpha",)}
+#: Scenes whose finite-element twin (analysis.rod.fe_critical_loads) solves the damped rod.
+_FE_DAMPED_ROD_SCENES = ("fig11", "fig12")
+
+
+def _rod_scene_problems(scene: str, params: dict[str, Any], prefix: str) -> list[str]:
+    """What the rod scenes hand the rod solver, checked against its ranges before any job:
+    tip-mass ratios (and the stability map's range of them) within
+    :data:`~flutterfriction.analysis.rod.GROUP_RANGES`, ``p_max`` within ``P_MAX_LIMIT``,
+    and a damping the finite-element twin resolves (0 or at least ``DAMPING_FLOOR``)."""
+    from flutterfriction.analysis.rod import (
+        DAMPING_FLOOR,
+        GROUP_RANGES,
+        P_MAX_LIMIT,
+        check_groups,
+    )
+    from flutterfriction.models.rod import Rod, RodGroups
+
+    lines: list[str] = []
+
+    def bad(key: str, message: str) -> None:
+        lines.append(f"{prefix}scenes.{scene}.{key}: {message}")
+
+    tan_max, eta_max = GROUP_RANGES["tan_alpha"][1], GROUP_RANGES["eta"][1]
+    tan_note = ("tan(alpha) = M/(rho l), the rod solver's numerical range, "
+                "analysis.rod.GROUP_RANGES")
+    for key in _TAN_ALPHA_KEYS.get(scene, ()):
+        v = _number_at(params, key)
+        if v is not None and v > tan_max:
+            bad(key, f"must be in [0, {tan_max:g}] ({tan_note}), got {v!r}")
+    bracket = params.get("bracket")
+    if scene == "errata_rods" and isinstance(bracket, list) \
+            and all(isinstance(v, int | float) for v in bracket) \
+            and any(not 0 <= v <= tan_max for v in bracket):
+        bad("bracket", f"the tan(alpha) bracket must lie in [0, {tan_max:g}] ({tan_note}), "
+                       f"got {bracket}")
+    p_max = _number_at(params, "p_max")
+    if scene in ("fig10", "fig11", "fig12") and p_max is not None and p_max > P_MAX_LIMIT:
+        bad("p_max", f"must be in (0, {P_MAX_LIMIT:g}] (the rod solver's load range, "
+                     f"analysis.rod.P_MAX_LIMIT), got {p_max!r}")
+
+    def fe_damping(key: str, g: Any) -> None:
+        damping = max(g.eta, g.gamma)
+        if 0 < damping < DAMPING_FLOOR:
+            bad(key, f"the damping max(eta, gamma) = {damping:.3g} (eq. 106) must be 0 or >= "
+                     f"{DAMPING_FLOOR:g}: the scene's finite-element twin cannot resolve the "
+                     f"flutter crossing below analysis.rod.DAMPING_FLOOR")
+
+    if scene in _FE_DAMPED_ROD_SCENES and isinstance(params.get("rod"), dict):
+        try:
+            g = _rod_groups(Rod(**params["rod"]))
+        except _MODEL_ERRORS:
+            pass  # reported with the rod itself
+        else:
+            fe_damping("rod", g)
+    if scene == "rod_fe_convergence" and isinstance(params.get("cases"), dict):
+        for name, spec in params["cases"].items():
+            if not isinstance(spec, dict):
+                continue
+            try:
+                g = check_groups(RodGroups(**spec))
+            except _MODEL_ERRORS as exc:
+                bad(f"cases.{name}", " ".join(str(exc).split()))
+            else:
+                fe_damping(f"cases.{name}", g)
+    if scene == "rod_stability_map":
+        rng = params.get("log10_ratio_range")
+        if isinstance(rng, list) and len(rng) == 2 \
+                and all(isinstance(v, int | float) for v in rng) \
+                and rng[1] > math.log10(tan_max):
+            bad("log10_ratio_range", f"the largest tip-mass ratio 10^{rng[1]:g} must be <= "
+                                     f"{tan_max:g} ({tan_note}): the upper end must be <= "
+                                     f"{math.log10(tan_max):g}, got {rng}")
+        eta = _number_at(params, "eta_small")
+        if eta is not None and not DAMPING_FLOOR <= eta <= eta_max:
+            bad("eta_small", f"must be in [{DAMPING_FLOOR:g}, {eta_max:g}]: at least "
+                             f"analysis.rod.DAMPING_FLOOR (the scene's 64-element "
+                             f"finite-element check cannot resolve the flutter crossing "
+                             f"below it) and at most the rod solver's eta range "
+                             f"(analysis.rod.GROUP_RANGES), got {eta!r}")
     return lines
 
 
@@ -221,6 +429,7 @@ def validate_config(config: dict[str, Any], schema_path: str | Path,
         lines = _schema_problems(resolved, schema, prefix)
         for scene, params in resolved["scenes"].items():
             lines += _physical_problems(scene, params, prefix)
+            lines += _rod_scene_problems(scene, params, prefix)
         seen = {p.split(": ", 1)[1] for p in problems}
         problems += [line for line in lines if line.split(": ", 1)[1] not in seen]
     return problems

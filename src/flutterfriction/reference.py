@@ -105,9 +105,17 @@ def reference_problems(ref: Any, schema_path: str | Path = REFERENCE_SCHEMA,
         if err.validator == "additionalProperties":
             extra = sorted(set(err.instance) - set(err.schema.get("properties", {})))
             message = f"unknown key(s) {extra}; allowed: {sorted(err.schema['properties'])}"
+        elif err.validator == "anyOf" and list(err.path)[-1:] == ["quoted"] \
+                and isinstance(err.instance, str):
+            message = (f"{err.instance!r} is a number written as a string: write it unquoted "
+                       f"(a string is a categorical statement such as 'flutter', compared "
+                       f"word for word, with no tolerance)")
         else:
             message = err.message if len(err.message) < 200 else f"invalid ({err.validator})"
         problems.append(f"{name(err.path)}: {message}")
+    if all(isinstance(ref.get(k), list) and not ref[k] for k in ("quantities", "errata")):
+        problems.append("quantities and errata are both empty: the check would check nothing "
+                        "(list at least one entry)")
     seen: set[str] = set()
     for section in ("quantities", "errata"):
         entries = ref.get(section)
@@ -145,21 +153,27 @@ def reference_problems(ref: Any, schema_path: str | Path = REFERENCE_SCHEMA,
 
 
 def reference_file_problems(path: str | Path, scenes: Any = None) -> list[str]:
-    """:func:`reference_problems` of the file at ``path`` (a YAML error is one problem)."""
+    """:func:`reference_problems` of the file at ``path`` (a YAML error is one problem; so is
+    each key written twice in a mapping, which YAML would resolve silently to the last)."""
+    from flutterfriction.config import duplicate_key_problems
+
     try:
         with open(path, encoding="utf-8") as fh:
             ref = yaml.safe_load(fh)
     except (OSError, yaml.YAMLError) as exc:
         return [f"{path}: {' '.join(str(exc).split())}"]
-    return [f"{path}: {p}" for p in reference_problems(ref, scenes=scenes)]
+    return duplicate_key_problems(path) + [f"{path}: {p}"
+                                           for p in reference_problems(ref, scenes=scenes)]
 
 
 def load_reference(path: str | Path) -> dict[str, Any]:
-    """Read and validate a reference file (see :func:`reference_problems`); raises
-    :class:`ParameterError` listing every problem, one line each."""
+    """Read and validate a reference file (see :func:`reference_problems`; a key written twice
+    is refused too); raises :class:`ParameterError` listing every problem, one line each."""
+    from flutterfriction.config import duplicate_key_problems
+
     with open(path, encoding="utf-8") as fh:
         ref = yaml.safe_load(fh)
-    problems = reference_problems(ref)
+    problems = duplicate_key_problems(path) + reference_problems(ref)
     if problems:
         raise ParameterError(f"{path}: invalid reference file:\n  " + "\n  ".join(problems))
     return ref
@@ -174,8 +188,36 @@ def _tolerances(entry: dict[str, Any], fidelity: str) -> tuple[dict, dict, str]:
     return override.get("tolerance", tol), override.get("agreement", agr), QUICK_NOTE
 
 
+def _missing(entry: dict[str, Any], data: Mapping[str, Any], kind: str) -> CheckRow | None:
+    """A FAIL row when the scene's data hold no ``kind`` ("quantities" or "errata") under the
+    entry's key (a misspelled key, or one of another scene): one clear line in the summary,
+    not a KeyError after all the work."""
+    scene, key = entry["scene"], entry["key"]
+    if scene not in data:
+        note = f"scene {scene!r} has no data in this run"
+    else:
+        held = data[scene].get(kind) or {}
+        if key in held:
+            return None
+        others = sorted(held)
+        listed = ", ".join(others[:12]) + (", ..." if len(others) > 12 else "")
+        owners = sorted(name for name, d in data.items()
+                        if name != scene and key in (d.get(kind) or {}))
+        note = (f"key {key!r} is not among the {kind} of scene {scene!r} "
+                f"({listed or 'it has none'})"
+                + (f"; it is one of scene {', '.join(map(repr, owners))}" if owners else ""))
+    return CheckRow(id=entry["id"], kind="quantity" if kind == "quantities" else "erratum",
+                    source=entry["source"], quoted=entry.get("quoted", entry.get("printed")),
+                    unit=entry.get("unit", ""), reproduced=None, independent=None, method="",
+                    independent_method="", error=None, agreement=None, status="FAIL",
+                    note=note)
+
+
 def _check_quantity(entry: dict[str, Any], data: Mapping[str, Any],
                     fidelity: str = "paper") -> CheckRow:
+    missing = _missing(entry, data, "quantities")
+    if missing is not None:
+        return missing
     q = data[entry["scene"]]["quantities"][entry["key"]]
     quoted = entry["quoted"]
     common = dict(id=entry["id"], kind="quantity", source=entry["source"], quoted=quoted,
@@ -194,6 +236,9 @@ def _check_quantity(entry: dict[str, Any], data: Mapping[str, Any],
 
 
 def _check_erratum(entry: dict[str, Any], data: Mapping[str, Any]) -> CheckRow:
+    missing = _missing(entry, data, "errata")
+    if missing is not None:
+        return missing
     e = data[entry["scene"]]["errata"][entry["key"]]
     tol = entry["agreement"]
     printed_err = normalised_error(e["printed"], e["independent"], tol)
