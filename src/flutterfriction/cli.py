@@ -208,8 +208,10 @@ def build_parser() -> argparse.ArgumentParser:
                     "crossings of the Poincare section agree to 1e-8, then confirms the orbit "
                     "by shooting. SI units.")
     _add_pendulum_arguments(lz)
-    lz.add_argument("--c1", type=_number, required=True, help="hinge viscosity at A, > 0")
-    lz.add_argument("--c2", type=_number, required=True, help="hinge viscosity at B, > 0")
+    lz.add_argument("--c1", type=_number, required=True,
+                    help="hinge viscosity at A [N m s/rad], >= 0 (c1 or c2 > 0)")
+    lz.add_argument("--c2", type=_number, required=True,
+                    help="hinge viscosity at B [N m s/rad], >= 0 (c1 or c2 > 0)")
     lz.add_argument("--P", type=_number, required=True, help="follower load [N]")
     lz.add_argument("--alpha0-deg", type=_number, default=0.1,
                     help="initial rotations alpha1 = alpha2 [deg] (default 0.1)")
