@@ -33,7 +33,13 @@ import re
 import sys
 from collections.abc import Sequence
 
-from flutterfriction.errors import ConvergenceError, ParameterError, check_nonnegative
+from flutterfriction.errors import (
+    PLAIN_INTEGER,
+    PLAIN_NUMBER,
+    ConvergenceError,
+    ParameterError,
+    check_nonnegative,
+)
 from flutterfriction.parameters import LIST_119, LIST_119_LOAD
 
 ZIEGLER_PARAMS = {
@@ -95,11 +101,8 @@ class _Parser(argparse.ArgumentParser):
         self.exit(2, f"{self.prog}: error: {message}\n")
 
 
-#: A number as the options take it: plain decimal, optionally with an exponent (``-1``,
-#: ``0.5``, ``.5``, ``1.5e-3``). Python's ``float`` accepts more (``1_000``, full-width digits,
-#: ``infinity``), which a typo can produce: refused, so a value is what it reads as.
-_PLAIN_NUMBER = re.compile(r"[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
-_PLAIN_INTEGER = re.compile(r"[+-]?[0-9]+")
+# Numbers as the options take them: errors.PLAIN_NUMBER / PLAIN_INTEGER (what float() accepts
+# beyond them, such as 1_000 or full-width digits, is refused: a value is what it reads as).
 _NON_FINITE = re.compile(r"[+-]?(?:inf|infinity|nan)", re.IGNORECASE)
 
 
@@ -107,7 +110,7 @@ def _number(text: str) -> float:
     word = text.strip()
     if _NON_FINITE.fullmatch(word):
         raise argparse.ArgumentTypeError(f"must be finite, got {text!r}")
-    if not _PLAIN_NUMBER.fullmatch(word):
+    if not PLAIN_NUMBER.fullmatch(word):
         hint = " (no '_' digit separators: write the digits only)" if "_" in word else ""
         raise argparse.ArgumentTypeError(
             f"not a number: {text!r}{hint}; give a plain decimal number such as 0.5, -3 or "
@@ -120,7 +123,7 @@ def _number(text: str) -> float:
 
 def _integer(text: str) -> int:
     word = text.strip()
-    if not _PLAIN_INTEGER.fullmatch(word):
+    if not PLAIN_INTEGER.fullmatch(word):
         hint = " (no '_' digit separators: write the digits only)" if "_" in word else ""
         raise argparse.ArgumentTypeError(f"not an integer: {text!r}{hint}")
     return int(word)

@@ -4,14 +4,13 @@ from __future__ import annotations
 
 import copy
 import math
-import re
 from collections.abc import Iterable, Iterator
 from pathlib import Path
 from typing import Any
 
 import yaml
 
-from flutterfriction.errors import ParameterError
+from flutterfriction.errors import PLAIN_INTEGER, PLAIN_NUMBER, ParameterError
 
 TOP_LEVEL_KEYS = {"fidelity", "fidelity_presets", "scenes", "sweep_parts"}
 
@@ -184,16 +183,14 @@ def _schema_problems(config: dict[str, Any], schema: dict[str, Any], prefix: str
     return lines
 
 
-_NUMBER = re.compile(r"[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
-_INTEGER = re.compile(r"[+-]?[0-9]+")
 
 
 def _reads_as(text: str, expected: Any) -> bool:
     """Whether the string ``text`` spells a value of the JSON-schema type(s) ``expected``."""
     kinds = [expected] if isinstance(expected, str) else list(expected)
     text = text.strip()
-    return (("number" in kinds and bool(_NUMBER.fullmatch(text)))
-            or ("integer" in kinds and bool(_INTEGER.fullmatch(text)))
+    return (("number" in kinds and bool(PLAIN_NUMBER.fullmatch(text)))
+            or ("integer" in kinds and bool(PLAIN_INTEGER.fullmatch(text)))
             or ("boolean" in kinds and text.lower() in ("true", "false")))
 
 

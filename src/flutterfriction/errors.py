@@ -3,8 +3,15 @@
 from __future__ import annotations
 
 import math
+import re
 from numbers import Real
 from typing import Any
+
+#: A number as typed by a user (CLI options, nested config values): plain decimal, optionally
+#: with an exponent (``-1``, ``0.5``, ``.5``, ``1.5e-3``); Python's ``float`` accepts more
+#: (``1_000``, ``infinity``), which a typo can produce.
+PLAIN_NUMBER = re.compile(r"[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
+PLAIN_INTEGER = re.compile(r"[+-]?[0-9]+")
 
 
 class ParameterError(ValueError):
@@ -75,3 +82,13 @@ def check_finite_array(name: str, value: object, shape: tuple[int, ...],
 
 def _unit(unit: str) -> str:
     return f" {unit}" if unit else ""
+
+
+def check_finite_result(value: Any, why: str) -> Any:
+    """``value`` if every entry is finite, else :class:`ParameterError` (``why``): a result that
+    overflowed is refused, never returned as inf or NaN."""
+    import numpy as np
+
+    if not np.all(np.isfinite(value)):
+        raise ParameterError(why)
+    return value

@@ -47,6 +47,7 @@ from scipy.special import ellipeinc, ellipj, ellipkinc, ellipkm1
 from flutterfriction.errors import (
     ConvergenceError,
     ParameterError,
+    check_finite_result,
     check_integer,
     check_positive,
     check_real,
@@ -431,10 +432,9 @@ def linear_tip_deflection(length: float, B: float, loads: ElasticaLoads) -> floa
 def _finite_deflection(u: float, length: float, B: float) -> float:
     """``u`` if finite, else ParameterError: a deflection beyond the double range (an outside
     audit: l = 1e300, B = 1e-300 raised a bare OverflowError) is refused, naming the inputs."""
-    if not math.isfinite(u):
-        raise ParameterError(f"the deflection of length = {length:g} m, B = {B:g} N m^2 under "
-                             f"these loads overflows the double range: rescale the input")
-    return u
+    return check_finite_result(u, f"the deflection of length = {length:g} m, B = {B:g} N m^2 "
+                                  f"under these loads overflows the double range: rescale "
+                                  f"the input")
 
 
 def perturbation_tip_deflection(length: float, B: float, loads: ElasticaLoads

@@ -15,6 +15,7 @@ from numpy.typing import ArrayLike, NDArray
 from flutterfriction.errors import (
     ParameterError,
     check_finite_array,
+    check_finite_result,
     check_positive,
     check_real,
 )
@@ -28,16 +29,9 @@ def isotropic_elasticity(lam: float, mu: float) -> NDArray:
     with np.errstate(over="ignore", invalid="ignore"):  # an overflow is refused just below
         E = (lam * np.einsum("ij,kl->ijkl", I3, I3)
              + mu * (np.einsum("ik,jl->ijkl", I3, I3) + np.einsum("il,jk->ijkl", I3, I3)))
-    return _finite_result(
+    return check_finite_result(
         E, f"E with lam = {lam:g}, mu = {mu:g} overflows the double range: rescale the moduli")
 
-
-def _finite_result(value: NDArray, why: str) -> NDArray:
-    """``value`` if every entry is finite, else ParameterError(why): a result that overflowed
-    is refused, never returned as inf or NaN."""
-    if not np.all(np.isfinite(value)):
-        raise ParameterError(why)
-    return value
 
 
 def random_elasticity_perturbation(rng: np.random.Generator) -> NDArray:
@@ -163,7 +157,7 @@ def elastoplastic_tangent(E: NDArray, P: ArrayLike, Q: ArrayLike, g: float) -> N
     g = _modulus(g)
     with np.errstate(over="ignore", invalid="ignore"):  # an overflow is refused just below
         C = E - np.einsum("ij,kl->ijkl", apply(E, P), apply_transpose(E, Q)) / g
-    return _finite_result(
+    return check_finite_result(
         C, f"the tangent with g = {g:g} overflows the double range: |g| is too small for the "
         f"scale of E[P] and E[Q]")
 
