@@ -147,3 +147,50 @@ def test_limit_cycle_stops_on_the_distance_left_not_on_the_last_step():
     lc = dy.limit_cycle(p, 1.01 * damped_flutter_load(p), [0.3, 0.3, 0.0, 0.0], tol=1e-7,
                         t_max=5000.0)
     assert lc.alpha1_amplitude_rad == pytest.approx(0.1138763729, rel=5e-7)
+
+
+def _slower(p: ZieglerPendulum, s: float) -> ZieglerPendulum:
+    """The same pendulum with its motions ``s`` times slower (masses x s^2, viscosities x s)."""
+    return ZieglerPendulum(**{**{k: getattr(p, k) for k in _PENDULUM_KEYS},
+                              "m1": p.m1 * s**2, "m2": p.m2 * s**2, "m3": p.m3 * s**2,
+                              "c1": p.c1 * s, "c2": p.c2 * s})
+
+
+_PENDULUM_KEYS = ("l1", "l2", "d", "h", "m1", "m2", "m3", "k1", "k2", "c1", "c2")
+
+
+@pytest.mark.parametrize("s", [1e-4, 100.0])
+def test_transient_and_shooting_do_not_depend_on_the_unit_of_time(cycle, s):
+    """``limit_cycle`` and ``shoot_periodic_orbit`` run in the pendulum's time unit: the same
+    orbit, ``s`` times slower, at the same cost. In seconds, the 100x slower pendulum was
+    refused (600 s simulated = 120 tau) and the 1e-4 one integrated 20 s chunks of 18000
+    periods between two checks of the step bound."""
+    P, lc = cycle
+    slow = _slower(SEC29, s)
+    other = dy.limit_cycle(slow, P, np.radians([0.1, 0.1, 0, 0]))
+    assert other.period_s == pytest.approx(s * lc.period_s, rel=1e-8)
+    assert other.alpha1_amplitude_rad == pytest.approx(lc.alpha1_amplitude_rad, rel=1e-7)
+    assert other.transient_s == pytest.approx(s * lc.transient_s, rel=1e-6)
+    assert other.section_state[3] == pytest.approx(lc.section_state[3] / s, rel=1e-6)
+    shot = dy.shoot_periodic_orbit(slow, P, other)
+    assert shot.period_s == pytest.approx(s * lc.period_s, rel=1e-8)
+
+
+def test_bifurcation_diagram_does_not_depend_on_the_unit_of_time():
+    """The pendulum's bifurcation-diagram scene (limit_cycle_amplitude) for the §2.9 pendulum
+    and the same pendulum 100x slower: the same amplitudes, periods x 100, the same verdict.
+    Its decay test ran 400 s whatever the pendulum: 100x slower, the envelope had not halved
+    and the scene reported 'subcritical?'."""
+    from flutterfriction.scenes.ziegler_nonlinear import limit_cycle_amplitude
+
+    def diagram(p):
+        keys = {k: getattr(p, k) for k in _PENDULUM_KEYS}
+        return limit_cycle_amplitude({"pendulum": keys, "load_factors": [1.05, 1.2, 1.5],
+                                      "tol": 1e-6})
+
+    ref, slow = diagram(SEC29), diagram(_slower(SEC29, 100.0))
+    assert slow["alpha1_amplitude"] == pytest.approx(ref["alpha1_amplitude"], rel=1e-5)
+    assert slow["period"] == pytest.approx([100 * t for t in ref["period"]], rel=1e-6)
+    assert slow["quantities"]["hopf_type"]["value"] == "supercritical"
+    assert slow["below"]["envelope_last"] == pytest.approx(ref["below"]["envelope_last"],
+                                                           rel=1e-6)

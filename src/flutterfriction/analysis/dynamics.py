@@ -93,6 +93,14 @@ class LimitCycle:
     def as_dict(self) -> dict:
         return asdict(self)
 
+    def in_time_scale(self, s: float) -> LimitCycle:
+        """The same orbit with time measured in units of ``s`` seconds (times / s, angular
+        velocities x s; angles unchanged): ``s = tau`` to, ``1/tau`` from the time unit of
+        :func:`in_time_unit`."""
+        a1, a2, v1, v2 = self.section_state
+        return replace(self, period_s=self.period_s / s, transient_s=self.transient_s / s,
+                       section_state=(a1, a2, v1 * s, v2 * s))
+
 
 def _amplitudes(pendulum, P, H, x0, T, method, rtol, atol, n=2001):
     """Largest ``|alpha1|``, ``|alpha2|`` over one period from ``x0``: at the samples and at the
@@ -106,17 +114,22 @@ def _amplitudes(pendulum, P, H, x0, T, method, rtol, atol, n=2001):
 
 
 def limit_cycle(pendulum: ZieglerPendulum, P: float, state0: ArrayLike, H: float = 0.0,
-                tol: float = 1e-8, t_max: float = 600.0, method: str = "DOP853",
+                tol: float = 1e-8, t_max: float | None = None, method: str = "DOP853",
                 rtol: float = 1e-11, atol: float = 1e-13,
-                max_steps: int = 2_000_000, chunk: float = 20.0) -> LimitCycle:
+                max_steps: int = 2_000_000, chunk: float | None = None) -> LimitCycle:
     """Integrate until successive crossings of the Poincaré section ``alpha1_dot = 0``
     (downwards: ``alpha1`` at a maximum) agree to ``tol`` (relative) in ``alpha1``, ``alpha2``,
     ``alpha2_dot`` and in the time between crossings (the period).
 
-    Bounded by simulated time (``t_max`` [s]) and by the number of integration steps
-    (``max_steps``, counted per ``chunk`` [s] of simulated time), never by the wall clock; a
-    rotation beyond
-    ``50 pi`` stops the integration at once (terminal event: the motion runs away)."""
+    Bounded by simulated time (``t_max`` [s], default :data:`TRANSIENT_T_MAX` time units
+    ``tau``, 588 s for the §2.9 pendulum) and by the number of integration steps
+    (``max_steps``, counted per ``chunk`` [s] of simulated time, default
+    :data:`TRANSIENT_CHUNK` ``tau``), never by the wall clock; a rotation beyond ``50 pi``
+    stops the integration at once (terminal event: the motion runs away). The integration
+    runs in the pendulum's time unit (:func:`in_time_unit`; ``rtol``, ``atol`` apply there), so
+    that the work does not depend on the unit of time: with a chunk fixed in seconds, a
+    pendulum of 1e-8 kg integrated 27000 periods between two checks of the step bound (an
+    outside audit). Times and velocities in the result are in seconds."""
     def section(t, x):
         return x[2]
 
@@ -128,39 +141,45 @@ def limit_cycle(pendulum: ZieglerPendulum, P: float, state0: ArrayLike, H: float
     P, H, x = _checked_start(P, H, state0)
     for name, value in (("tol", tol), ("t_max", t_max), ("rtol", rtol), ("atol", atol),
                         ("chunk", chunk)):
-        if not check_real(name, value) > 0:
+        if value is not None and not check_real(name, value) > 0:
             raise ParameterError(f"{name} must be > 0, got {value!r}")
+    tau = time_unit(pendulum)
+    unit = in_time_unit(pendulum)
+    x = x * np.array([1.0, 1.0, tau, tau])
+    t_end = TRANSIENT_T_MAX if t_max is None else t_max / tau
+    step = TRANSIENT_CHUNK if chunk is None else chunk / tau
     t0 = 0.0
     crossings: list[tuple[float, NDArray]] = []
     steps = 0
-    while t0 < t_max:
-        sol = solve_ivp(lambda t, y: pendulum.equations_of_motion(y, P, H, check=False),
-                        (t0, t0 + chunk), x,
+    while t0 < t_end:
+        sol = solve_ivp(lambda t, y: unit.equations_of_motion(y, P, H, check=False),
+                        (t0, t0 + step), x,
                         method=method, events=(section, runaway), rtol=rtol, atol=atol)
         if not sol.success:
             raise ConvergenceError(f"time integration failed: {sol.message}")
         if sol.status == 1 or np.max(np.abs(sol.y[:2])) > 50 * np.pi:
             raise ConvergenceError(f"the motion runs away (|alpha| > 50 pi at t = "
-                                   f"{sol.t[-1]:.4g} s): no limit cycle (divergence?)")
+                                   f"{sol.t[-1] * tau:.4g} s): no limit cycle (divergence?)")
         steps += sol.t.size
         if steps > max_steps:
             raise ConvergenceError(f"no limit cycle within {max_steps} integration steps "
-                                   f"(t = {sol.t[-1]:.4g} s simulated)")
+                                   f"(t = {sol.t[-1] * tau:.4g} s simulated)")
         for te, ye in zip(sol.t_events[0], sol.y_events[0], strict=True):
             if ye[0] > 0:  # maxima of alpha1 only
                 crossings.append((float(te), ye.copy()))
         found = _converged_cycle(crossings, tol)
         if found is not None:
             tc, yc, T = found
-            a1, a2 = _amplitudes(pendulum, P, H, yc, T, method, rtol, atol)
-            return LimitCycle(a1, a2, T, tuple(float(v) for v in yc), tc, len(crossings))
+            a1, a2 = _amplitudes(unit, P, H, yc, T, method, rtol, atol)
+            cycle = LimitCycle(a1, a2, T, tuple(float(v) for v in yc), tc, len(crossings))
+            return cycle.in_time_scale(1.0 / tau)
         x, t0 = sol.y[:, -1], sol.t[-1]
     last = ""
     if len(crossings) >= 2:
         gap = float(np.max(np.abs(crossings[-1][1] - crossings[-2][1])))
         last = (f"; last two section crossings differ by {gap:.2g} "
                 f"(alpha1 = {crossings[-1][1][0]:.4g} rad)")
-    raise ConvergenceError(f"no limit cycle converged to {tol:g} within t = {t_max:g} s "
+    raise ConvergenceError(f"no limit cycle converged to {tol:g} within t = {t_end * tau:g} s "
                            f"simulated{last}")
 
 
@@ -210,7 +229,12 @@ def _converged_cycle(crossings: list[tuple[float, NDArray]], tol: float
 def shoot_periodic_orbit(pendulum: ZieglerPendulum, P: float, guess: LimitCycle,
                          H: float = 0.0, rtol: float = 1e-12, atol: float = 1e-14) -> LimitCycle:
     """Periodic orbit by shooting (independent of the transient): unknowns ``(alpha1, alpha2,
-    alpha2_dot, T)`` with ``alpha1_dot = 0`` on the section; residual ``phi_T(x0) - x0``."""
+    alpha2_dot, T)`` with ``alpha1_dot = 0`` on the section; residual ``phi_T(x0) - x0``.
+
+    Solved in the pendulum's time unit (:func:`in_time_unit`: the residual's bound and
+    ``atol`` then mean the same for any unit of time); ``guess`` and the result in seconds."""
+    tau = time_unit(pendulum)
+    pendulum, guess = in_time_unit(pendulum), guess.in_time_scale(tau)
     x_guess = np.asarray(guess.section_state, dtype=float)
 
     def residual(z):
@@ -228,7 +252,8 @@ def shoot_periodic_orbit(pendulum: ZieglerPendulum, P: float, guess: LimitCycle,
         raise ConvergenceError(f"shooting did not converge: {res.message}")
     x0 = np.array([res.x[0], res.x[1], 0.0, res.x[2]])
     a1, a2 = _amplitudes(pendulum, P, H, x0, res.x[3], "DOP853", rtol, atol)
-    return LimitCycle(a1, a2, float(res.x[3]), tuple(float(v) for v in x0), 0.0, 0)
+    cycle = LimitCycle(a1, a2, float(res.x[3]), tuple(float(v) for v in x0), 0.0, 0)
+    return cycle.in_time_scale(1.0 / tau)
 
 
 def tip_acceleration(pendulum: ZieglerPendulum, states: NDArray, P: float,
@@ -387,7 +412,7 @@ def in_time_unit(pendulum: ZieglerPendulum) -> ZieglerPendulum:
 
 def ziegler_limit_cycle(pendulum: ZieglerPendulum, P: float, alpha0: float, *,
                         tol: float = 1e-8, P_name: str = "P",
-                        alpha0_name: str = "alpha0") -> dict:
+                        alpha0_name: str = "alpha0", check: bool = True) -> dict:
     """The limit cycle of the viscous pendulum (eq. 10 with hinge viscosity) at follower load
     ``P`` [N], in the flutter interval of the damped pendulum, from ``alpha1 = alpha2 =
     alpha0`` [rad].
@@ -404,7 +429,16 @@ def ziegler_limit_cycle(pendulum: ZieglerPendulum, P: float, alpha0: float, *,
     (:func:`limit_cycle_by_continuation`) and checked by a section return with Radau. All
     integrations are bounded by simulated time or step counts, and run in the pendulum's time
     unit (:func:`in_time_unit`): the work and the answer do not depend on the unit of time.
-    Times in the result are in seconds."""
+    Times in the result are in seconds. ``check=False`` leaves out the independent check
+    (shooting or section return): for callers that check the cycle otherwise.
+
+    Raises
+    ------
+    ParameterError
+        As above, before any integration.
+    ConvergenceError
+        Neither the transient nor the continuation converged (the message gives both).
+    """
     from flutterfriction.analysis.ziegler import (
         damped_divergence_load,
         damped_flutter_load,
@@ -433,16 +467,17 @@ def ziegler_limit_cycle(pendulum: ZieglerPendulum, P: float, alpha0: float, *,
     notes = []
     if estimate <= TRANSIENT_BUDGET:
         try:
-            cycle = limit_cycle(unit, P, [alpha0, alpha0, 0.0, 0.0], tol=tol,
-                                t_max=TRANSIENT_T_MAX, chunk=TRANSIENT_CHUNK)
-            check = shoot_periodic_orbit(unit, P, cycle)
-            return {"method": "transient on the Poincare section (DOP853)",
-                    "alpha1_amplitude_rad": cycle.alpha1_amplitude_rad,
-                    "alpha2_amplitude_rad": cycle.alpha2_amplitude_rad,
-                    "period_s": cycle.period_s * tau, "transient_s": cycle.transient_s * tau,
-                    "P_flu": P_flu, "P_div": P_div,
-                    "shooting_check": {"period_s": check.period_s * tau,
-                                       "alpha1_amplitude_rad": check.alpha1_amplitude_rad}}
+            cycle = limit_cycle(pendulum, P, [alpha0, alpha0, 0.0, 0.0], tol=tol)  # in tau
+            out = {"method": "transient on the Poincare section (DOP853)",
+                   "alpha1_amplitude_rad": cycle.alpha1_amplitude_rad,
+                   "alpha2_amplitude_rad": cycle.alpha2_amplitude_rad,
+                   "period_s": cycle.period_s, "transient_s": cycle.transient_s,
+                   "P_flu": P_flu, "P_div": P_div}
+            if check:
+                shot = shoot_periodic_orbit(pendulum, P, cycle)
+                out["shooting_check"] = {"period_s": shot.period_s,
+                                         "alpha1_amplitude_rad": shot.alpha1_amplitude_rad}
+            return out
         except ConvergenceError as exc:
             notes.append(f"transient: {exc} (times in units of tau = {tau:.4g} s)")
     else:
@@ -453,12 +488,14 @@ def ziegler_limit_cycle(pendulum: ZieglerPendulum, P: float, alpha0: float, *,
         cycle = limit_cycle_by_continuation(unit, P, P_flu)
     except ConvergenceError as exc:
         raise ConvergenceError("; ".join([*notes, f"continuation: {exc}"])) from None
-    t_ret, x_ret = section_return(unit, P, cycle.section_state, cycle.period_s)
-    return {"method": "continuation from the linear flutter mode (amplitude-parametrised "
-                      "shooting)",
-            "alpha1_amplitude_rad": cycle.alpha1_amplitude_rad,
-            "alpha2_amplitude_rad": cycle.alpha2_amplitude_rad,
-            "period_s": cycle.period_s * tau,
-            "transient_s": None, "P_flu": P_flu, "P_div": P_div, "notes": notes,
-            "section_check": {"period_s": t_ret * tau, "alpha1_rad": float(x_ret[0]),
-                              "method": "one return to the section (Radau, rtol 1e-10)"}}
+    out = {"method": "continuation from the linear flutter mode (amplitude-parametrised "
+                     "shooting)",
+           "alpha1_amplitude_rad": cycle.alpha1_amplitude_rad,
+           "alpha2_amplitude_rad": cycle.alpha2_amplitude_rad,
+           "period_s": cycle.period_s * tau,
+           "transient_s": None, "P_flu": P_flu, "P_div": P_div, "notes": notes}
+    if check:
+        t_ret, x_ret = section_return(unit, P, cycle.section_state, cycle.period_s)
+        out["section_check"] = {"period_s": t_ret * tau, "alpha1_rad": float(x_ret[0]),
+                                "method": "one return to the section (Radau, rtol 1e-10)"}
+    return out
