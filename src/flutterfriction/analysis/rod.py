@@ -605,7 +605,16 @@ def fe_critical_loads(g: RodGroups, n_elements: int, p_max: float = 80.0,
     two scan points are caught by minimising the indicators of :class:`_FEScan`. Damped: the
     scan runs on the modal reduction to the modes the load couples and each boundary is
     polished on the full model. Parameters as :func:`critical_loads` (``n_elements``
-    required); the loads are the FE model's, not eq. (118)'s."""
+    required); the loads are the FE model's, not eq. (118)'s.
+
+    Accuracy near the damping floor: the damped flutter load is where a growth rate of order
+    ``eta`` crosses zero, computed from a spectrum whose round-off grows with the stiffest
+    element mode, so below ``eta ~ 1e-5`` round-off, not the mesh, sets the error. Measured
+    against the exact load (tan(alpha) 0, 1, 4.59; 20/40/80 elements; p_max 40): at
+    ``eta = 1e-6`` up to 2.3e-6 relative on 80 elements (4e-7 on 20), at 3e-6 up to 9.8e-7, at
+    1e-5 and above within the discretisation error (<= 4.8e-7 on 20 elements, <= 1.4e-7 on 40
+    and 80). For small damping use :func:`critical_loads` (exact at any damping); this
+    function is its independent check."""
     p_max = _check_p_max(p_max)
     step = _check_step(step, p_max)
     check_groups(g)
