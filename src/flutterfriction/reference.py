@@ -30,6 +30,7 @@ from typing import Any
 
 import yaml
 
+from flutterfriction.config import safe_load
 from flutterfriction.errors import ParameterError
 from flutterfriction.figure_offences import Offence, figure_checks_markdown, figure_checks_summary
 from flutterfriction.io import markdown_table, write_json, write_text
@@ -86,7 +87,7 @@ def reference_problems(ref: Any, schema_path: str | Path = REFERENCE_SCHEMA,
     import jsonschema
 
     with open(schema_path, encoding="utf-8") as fh:
-        schema = yaml.safe_load(fh)
+        schema = safe_load(fh)
     if not isinstance(ref, dict):
         return ["the reference file must be a mapping with 'quantities' and 'errata'"]
 
@@ -159,7 +160,7 @@ def reference_file_problems(path: str | Path, scenes: Any = None) -> list[str]:
 
     try:
         with open(path, encoding="utf-8") as fh:
-            ref = yaml.safe_load(fh)
+            ref = safe_load(fh)
     except (OSError, yaml.YAMLError) as exc:
         return [f"{path}: {' '.join(str(exc).split())}"]
     return duplicate_key_problems(path) + [f"{path}: {p}"
@@ -172,7 +173,7 @@ def load_reference(path: str | Path) -> dict[str, Any]:
     from flutterfriction.config import duplicate_key_problems
 
     with open(path, encoding="utf-8") as fh:
-        ref = yaml.safe_load(fh)
+        ref = safe_load(fh)
     problems = duplicate_key_problems(path) + reference_problems(ref)
     if problems:
         raise ParameterError(f"{path}: invalid reference file:\n  " + "\n  ".join(problems))

@@ -21,8 +21,7 @@ from pathlib import Path
 from typing import Any
 from urllib.parse import unquote, urlsplit
 
-import yaml
-
+from flutterfriction.config import safe_load
 from flutterfriction.errors import ParameterError
 from flutterfriction.figure_offences import RULES as FIGURE_RULES
 from flutterfriction.figure_offences import Offence
@@ -86,9 +85,9 @@ def load_layout(path: str | Path,
     import jsonschema
 
     with open(path, encoding="utf-8") as fh:
-        layout = yaml.safe_load(fh)
+        layout = safe_load(fh)
     with open(REPORT_SCHEMA, encoding="utf-8") as fh:
-        schema = yaml.safe_load(fh)
+        schema = safe_load(fh)
     problems = [f"{'.'.join(map(str, e.path)) or '(top level)'}: "
                 f"{e.message if len(e.message) < 200 else e.validator}"
                 for e in jsonschema.Draft202012Validator(schema).iter_errors(layout)]
@@ -166,9 +165,9 @@ def load_coverage(path: str | Path = COVERAGE,
     import jsonschema
 
     with open(path, encoding="utf-8") as fh:
-        cov = yaml.safe_load(fh)
+        cov = safe_load(fh)
     with open(schema_path, encoding="utf-8") as fh:
-        schema = yaml.safe_load(fh)
+        schema = safe_load(fh)
     problems = []
     for err in jsonschema.Draft202012Validator(schema).iter_errors(cov):
         where = ".".join(map(str, err.path)) or "(top level)"
