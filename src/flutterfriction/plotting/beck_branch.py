@@ -44,7 +44,14 @@ def plot_beck_branch(data: dict[str, Any]) -> Figure:
                      xytext=(0, -16), textcoords="offset points", ha="center", fontsize=7)
         ax2.annotate(f"{T[k_cycle] * 1e3:.2f} ms", (P[k_cycle], T[k_cycle] * 1e3),
                      xytext=(4, -14), textcoords="offset points", ha="left", fontsize=7)
-    ax1.set_ylabel("tip amplitude A [mm]")
+    checks = data.get("mesh_checks") or []
+    if checks:
+        n_fine = data["settings"]["check_elements"]
+        for ax, key in ((ax1, "tip_amplitude_m"), (ax2, "period_s")):
+            ax.plot([c["P_N"] for c in checks], [c["fine"][key] * 1e3 for c in checks], "s",
+                    ms=7, mfc="none", mec="C3", mew=1.1, zorder=4,
+                    label=f"mesh check: the cycle on {n_fine} P2 elements")
+    ax1.set_ylabel("tip amplitude A (largest lateral displacement) [mm]")
     ax2.set_ylabel("period [ms]")
     ax1.legend(fontsize=7, loc="lower right")
     ax2.legend(fontsize=7, loc="upper right")
