@@ -50,7 +50,7 @@ def _zoom_crossing(ax, p: np.ndarray, re: np.ndarray, p_flu: float) -> None:
     ins.tick_params(labelsize=6, pad=1)
     ins.xaxis.set_major_locator(plt.MaxNLocator(4))
     ins.set_xlabel("p [-]", fontsize=6, labelpad=3)
-    ins.set_ylabel(rf"max Re $\tilde\omega$" "\n" rf"[$10^{{{exp}}}$]", fontsize=6,
+    ins.set_ylabel(rf"max Re $\tilde\omega$" "\n" rf"$\times 10^{{{exp}}}$ [-]", fontsize=6,
                    labelpad=2)
     ins.set_facecolor("white")
     # The panel's own p_f line runs under the inset: the inset (zorder 5) covers it, and its
@@ -385,6 +385,17 @@ def plot_fig11(data: dict[str, Any]) -> Figure:
     return plot_branches(data, "Fig. 11: the Beck rod, list (119)")
 
 
+def _one_rad_note(data: dict[str, Any]) -> str:
+    """The caption's other reading, alpha = 1 rad, with its loads (computed by the scene)."""
+    r = data.get("alpha_1_rad")
+    if r is None:
+        return ""
+    u, d = r["undamped"], r["damped"]
+    return (f"\n(α = 1 rad, tan α = {r['tan_alpha']:.4g}, gives the flutter loads "
+            f"{u['p_flu']:.2f}, {d['p_flu']:.2f} but the divergence loads {u['p_div']:.2f}, "
+            f"{d['p_div']:.2f}: see the errata table)")
+
+
 def plot_fig12(data: dict[str, Any]) -> Figure:
     """Fig. 12 twice, side by side: at the caption's tan(alpha) = 1 (the figure as printed) and
     at the tan(alpha) that reproduces the quoted loads, with the erratum stated."""
@@ -418,8 +429,8 @@ def plot_fig12(data: dict[str, Any]) -> Figure:
     fig.suptitle("Fig. 12: the Pflüger rod, list (119), tip mass tan α = M/(ρl); "
                  "flutter / divergence loads p\n"
                  f"Erratum: the caption's tan α = {t_st:g} gives {loads(stated)}; the loads "
-                 f"the chapter quotes are those at tan α = {t_fit:.4g}: {loads(fitted)}",
-                 fontsize=8.5)
+                 f"the chapter quotes are those at tan α = {t_fit:.4g}: {loads(fitted)}"
+                 + _one_rad_note(data), fontsize=8.5)
     fig.tight_layout(rect=(0, 0.04, 1, 0.985), h_pad=1.6)
     _branch_legend(fig, len(fitted["undamped"]["re"]) // 2,
                    _shows_divergence(stated.values(), p_st)

@@ -119,6 +119,14 @@ def fig12(params: dict[str, Any]) -> dict[str, Any]:
         cases[name] = {"groups": vars(g), "re": w.real.T.tolist(), "im": w.imag.T.tolist(),
                        "critical": critical[name].as_dict()}
     out["stated"] = {"tan_alpha": stated, "p": p.tolist(), "cases": cases}
+    # The other reading of the caption, alpha = 1 rad: the quoted flutter loads, not the
+    # divergence ones (stated on the figure; errata_rods checks it).
+    one_rad = {name: ar.critical_loads(RodGroups(tan_alpha=math.tan(1.0), eta=g.eta,
+                                                 gamma=g.gamma))
+               for name, g in groups.items()}
+    out["alpha_1_rad"] = {"tan_alpha": math.tan(1.0),
+                          **{name: {"p_flu": c.p_flu, "p_div": c.p_div}
+                             for name, c in one_rad.items()}}
     return out
 
 
