@@ -27,6 +27,31 @@ plt.rcParams.update({
 REGIME_COLOURS = {"stable": "#d8ecd3", "flutter": "#fbe0b8", "divergence": "#f4c7c3"}
 
 
+#: A pendulum's parameters in the order and units of list (47) (SI).
+_PENDULUM_UNITS = (("l1", "m"), ("l2", "m"), ("d", "m"), ("h", "m"), ("m1", "kg"),
+                   ("m2", "kg"), ("m3", "kg"), ("k1", "N m"), ("k2", "N m"), ("c1", "N m s"),
+                   ("c2", "N m s"))
+
+
+def pendulum_text(pendulum: dict[str, float] | None) -> str:
+    """The pendulum a figure was computed for, in one short line (``l1 = l2 = 0.1 m, ...``;
+    equal pairs written once); empty without parameters (data from before they were kept)."""
+    if not pendulum:
+        return ""
+    parts, done = [], set()
+    for name, unit in _PENDULUM_UNITS:
+        if name in done or name not in pendulum:
+            continue
+        twin = {"l1": "l2", "m1": "m2", "k1": "k2", "c1": "c2"}.get(name)
+        value = pendulum[name]
+        if twin is not None and pendulum.get(twin) == value:
+            parts.append(f"{name[0]}1 = {name[0]}2 = {value:g} {unit}")
+            done.add(twin)
+        else:
+            parts.append(f"{name} = {value:g} {unit}")
+    return ", ".join(parts)
+
+
 def tidy_log_axis(axis, values) -> None:
     """Log-axis ticks that never crowd: when the values hold fewer than two powers of ten
     (measured wall times, say), two to five labelled ticks inside the values' range, in short

@@ -256,11 +256,16 @@ def plot_localization_directions(data: dict[str, Any]) -> Figure:
     ax.plot(th, data["g_E"], color="C0",
             label=r"$g^E_{cr}(n)$, n in the $(\sigma_1,\sigma_3)$ plane")
     ax.axhline(data["g_max"], color="C3", ls="--", lw=1.0,
-               label=f"max over the sphere = {data['g_max']:.6f}")
-    ax.axvline(np.degrees(data["theta_max_in_plane"]), color="k", ls=":", lw=0.8)
+               label=f"max over the sphere = {data['g_max']:.6f} Pa")
+    theta_max = np.degrees(data["theta_max_in_plane"])
+    ax.axvline(theta_max, color="k", ls=":", lw=0.8,
+               label=f"direction of the maximum in the plane, {theta_max:.1f}°")
     q = data["quantities"]["h_cr"]
-    ax.set_title(f"Localization, Drucker–Prager: $h_{{cr}}$ = {q['value']:.6f} "
-                 f"(Rudnicki–Rice: {q['independent']:.6f})", fontsize=8)
+    pr = data["params"]
+    ax.set_title(f"Localization, Drucker–Prager (G = {pr['G']:g} Pa, ν = {pr['nu']:g}, "
+                 f"μ = {pr['mu_f']:g}, β = {pr['beta']:g}, N = {pr['N']:g}):\n"
+                 f"$h_{{cr}}$ = max $-$ Q:E[P] = {q['value']:.6f} Pa "
+                 f"(Rudnicki–Rice: {q['independent']:.6f} Pa)", fontsize=8)
     ax.set_xlabel(r"angle of n from the $\sigma_1$ axis [deg]")
     ax.set_ylabel(r"$g^E_{cr}(n)$ [Pa]")
     ax.legend(fontsize=7)

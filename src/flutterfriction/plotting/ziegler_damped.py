@@ -133,7 +133,7 @@ def plot_fig19_theory(data: dict[str, Any]) -> Figure:
     ax2.annotate(f"§2.9: {data['c_reference']:g} N m s", (data["c_reference"], 0.97),
                  rotation=90, xycoords=("data", "axes fraction"), ha="right", va="top",
                  fontsize=7)
-    ax2.axhline(1.0, color="k", lw=0.6)
+    ax2.axhline(1.0, color="k", lw=0.6, label="ratio 1 (no viscosity effect)")
     ax2.set_xlabel(r"hinge viscosity $c_1 = c_2$ [N m s]")
     ax2.set_ylabel("damped / undamped critical load [-]")
     ax2.legend(loc="upper left", fontsize=7)

@@ -9,6 +9,8 @@ import numpy as np
 from matplotlib.collections import LineCollection
 from matplotlib.figure import Figure
 
+from flutterfriction.plotting import pendulum_text
+
 
 def time_coloured(ax, x, y, t, lw=0.8):
     pts = np.array([x, y]).T.reshape(-1, 1, 2)
@@ -46,6 +48,15 @@ def _transient_and_cycle(ax, x, y, t, k: int, t_end: float, cycle_label: bool):
     return lc
 
 
+def _section29_text(data: dict[str, Any]) -> str:
+    """The pendulum and the start of Figs. 13-14 (the §2.9 list and imperfection)."""
+    params = data.get("params", {})
+    text = pendulum_text(params.get("pendulum"))
+    if "alpha0_deg" in params:
+        text += f";\nfrom rest at α1 = α2 = {params['alpha0_deg']:g}°"
+    return text
+
+
 def plot_fig13(data: dict[str, Any]) -> Figure:
     """Fig. 13: trajectory in the alpha1-alpha2 plane reaching a stable limit cycle."""
     a1, a2 = np.degrees(data["alpha"])
@@ -60,7 +71,7 @@ def plot_fig13(data: dict[str, Any]) -> Figure:
     ax.legend(loc="upper left", fontsize=7, title="transient: until the α1 peaks\nare within "
               f"{100 * TRANSIENT_TOL:g} % of the cycle's", title_fontsize=6.5)
     ax.set_title(f"Fig. 13: P = {data['P']:.4g} N = 1.5 P*_flu (eq. 54); limit cycle, "
-                 f"period {T:.4f} s", fontsize=8)
+                 f"period {T:.4f} s\n{_section29_text(data)}", fontsize=7)
     return fig
 
 
@@ -81,7 +92,8 @@ def plot_fig14(data: dict[str, Any]) -> Figure:
                title=f"transient: until the α1 peaks are within {100 * TRANSIENT_TOL:g} % of "
                      "the cycle's", title_fontsize=6.5)
     axes[0].set_title(f"Fig. 14: amplitudes {np.degrees(lcd['alpha1_amplitude_rad']):.2f}°, "
-                      f"{np.degrees(lcd['alpha2_amplitude_rad']):.2f}°", fontsize=8)
+                      f"{np.degrees(lcd['alpha2_amplitude_rad']):.2f}°\n"
+                      f"{_section29_text(data)}", fontsize=7)
     return fig
 
 
@@ -148,15 +160,21 @@ def plot_limit_cycle_amplitude(data: dict[str, Any]) -> Figure:
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(8.6, 3.6))
     ax1.plot(P, np.degrees(data["alpha1_amplitude"]), "o-", ms=4, label=r"$\alpha_1$")
     ax1.plot(P, np.degrees(data["alpha2_amplitude"]), "s-", ms=4, label=r"$\alpha_2$")
-    Pfine = np.linspace(Pf, P[2], 50)
+    # The normal form through the first cycle, drawn over the whole load range (on top of the
+    # markers) so that where the branch leaves it shows.
+    Pfine = np.linspace(Pf, P[-1], 200)
     c = np.degrees(data["alpha1_amplitude"][0]) / np.sqrt(P[0] - Pf)
-    ax1.plot(Pfine, c * np.sqrt(Pfine - Pf), "k:", lw=1, label=r"$\propto\sqrt{P - P_{flu}}$")
+    ax1.plot(Pfine, c * np.sqrt(Pfine - Pf), "k:", lw=1.2, zorder=3,
+             label=r"$\alpha_1 \propto \sqrt{P - P_{flu}}$ (normal form, through the first cycle)")
     ax1.plot([P[0] * 0.97, Pf], [0, 0], "k-", lw=2, label="stable equilibrium")
-    ax1.axvline(Pf, color="k", ls="--", lw=0.8)
+    ax1.axvline(Pf, color="k", ls="--", lw=0.8, label=f"damped flutter load P_flu = {Pf:.4g} N")
     ax1.set_xlabel("follower load P [N]")
     ax1.set_ylabel("limit-cycle amplitude [deg]")
     ax1.legend(fontsize=7)
     q = data["quantities"]
+    text = pendulum_text(data.get("params", {}).get("pendulum"))
+    if text:
+        fig.suptitle(f"The pendulum {text}", fontsize=7)
     ax1.set_title(f"supercritical Hopf at P_flu = {Pf:.4g} N (exponent "
                   f"{q['hopf_exponent']['value']:.3f})", fontsize=8)
     ax2.plot(P, data["period"], "o-", ms=4)
