@@ -8,7 +8,8 @@ converts to newtons with ``P = gamma k2/l1`` and ``H = eta k2/l1``.
 Erratum (eqs. 37, 39, 41): the text prints the half-width of the flutter interval as
 ``2 sqrt(k) a / beta2``; it is ``2 sqrt(k a) / beta2`` (the discriminant of eq. 34 is
 ``(beta1 - gamma beta2)^2 - 4 k a``, and eq. 42 follows only from ``sqrt(k a)``). The two agree
-when ``k = 1`` or ``a = 1``, as in the chapter's examples. The printed form is kept in
+only when ``a = 1``, whatever ``k``: for list (47) (``k = 1``, ``a = 3.111``) the printed form
+gives 3.28 N and 10.33 N, not the chapter's own 4.8 N and 8.8 N. The printed form is kept in
 :func:`flutter_divergence_gammas_as_printed` as evidence for ``workflow/reference.yaml``.
 """
 

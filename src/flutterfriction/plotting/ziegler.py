@@ -136,8 +136,14 @@ def plot_fig03(data: dict[str, Any]) -> Figure:
     top.set_xlabel("P [N]")
     ax.legend(loc="lower left", bbox_to_anchor=(0.0, 0.12))
     co = data["coefficients"]
-    ax.set_title(rf"Eq. (34) for list (47): $a$ = {co['a']:.4f}, $\beta_1$ = {co['beta1']:.4f}, "
-                 rf"$\beta_2$ = {co['beta2']:.4f}", pad=28)
+    title = (rf"Eq. (34) for list (47): $a$ = {co['a']:.4f}, $\beta_1$ = {co['beta1']:.4f}, "
+             rf"$\beta_2$ = {co['beta2']:.4f}")
+    printed = data.get("gammas_as_printed")
+    if printed is not None:  # the erratum of eq. (37), stated where its values show
+        title += ("\n" + rf"$\gamma_{{flu}}, \gamma_{{div}}$ from eq. (37) corrected, "
+                  rf"$\beta_1 \mp 2\sqrt{{ka}}$; as printed, $\beta_1 \mp 2\sqrt{{k}}\,a$, "
+                  f"they would be {printed[0]:.3f}, {printed[1]:.3f}")
+    ax.set_title(title, pad=28, fontsize=8)
     return fig
 
 

@@ -120,6 +120,8 @@ def fig03(params: dict[str, Any]) -> dict[str, Any]:
         "groups": vars(g),
         "load_unit_N": p.load_unit,
         "coefficients": {"a": cf.coefficient_a(g), "beta1": b1, "beta2": b2},
+        # Eq. (37) as printed (2 sqrt(k) a for 2 sqrt(k a)): drawn as the erratum's evidence.
+        "gammas_as_printed": list(cf.flutter_divergence_gammas_as_printed(g)),
         "quantities": {
             "gamma_flu": quantity(g_flu, P_flu / p.load_unit, "closed form eq. (37)",
                                    NUMERIC_FLUTTER, "K/L"),
