@@ -455,3 +455,45 @@ def test_nonlinear_rod_entry_points_refuse_bad_arguments(call, name):
     rod = Rod(length=0.35, B=0.0332, rho=0.0546, D=7.078e-6)
     with pytest.raises(ParameterError, match=rf"^{name} "):
         call(rod)
+
+
+def test_transient_does_not_depend_on_the_unit_of_time(cycle_2):
+    """grow_into_cycle's bound and chunk are in the rod's time scale: the same rod twenty
+    times slower (rho x 400, D x 20: the same groups) settles at twenty times the time, on the
+    same amplitudes. In seconds (t_max 60 s) it was refused (an outside audit, on 3
+    elements, ten times slower)."""
+    from flutterfriction.analysis.rod_dynamics import grow_into_cycle
+
+    tr, _ = cycle_2
+    slow = Rod(length=ROD.length, B=ROD.B, rho=400 * ROD.rho, D=20 * ROD.D)
+    other = grow_into_cycle(NonlinearRod(slow, 2), 5.5, amplitude=1e-3, rtol=1e-6, tol=3e-3)
+    assert 20 * tr.t_end > 60.0  # beyond the old bound
+    assert other.t_end == pytest.approx(20 * tr.t_end, rel=1e-3)
+    assert other.crossings_A[-1] == pytest.approx(tr.crossings_A[-1], rel=1e-4)
+
+
+def test_limit_cycle_with_two_section_crossings_per_period():
+    """A stable cycle whose lateral tip displacement has two positive maxima of different
+    heights per period (eta = 0.1, 2.9 P_flu; an outside audit: refused as 'slow approach'
+    although the crossings alternated 0.68487, 0.83119 exactly). Its period 0.770047 s and
+    largest maximum 0.831186 m are the audit's (own Radau integration); the works by
+    quadrature balance whatever the sampling (a fixed trapezoid was 50 % off on an
+    impulsive cycle)."""
+    rod = Rod(length=1.0, B=1.0, rho=1.0, D=0.1)
+    runs = [rdyn.beck_limit_cycle(rod, 39.5, n_elements=4, method="LSODA", rtol=1e-8,
+                                  atol=1e-10, tol=1e-5, initial_tip_rotation=1.2,
+                                  samples_per_period=n) for n in (20, 200)]
+    for c in runs:
+        assert c.period_s == pytest.approx(0.770047, rel=2e-6)
+        assert c.tip_amplitude_m == pytest.approx(0.831186, rel=2e-6)
+        assert c.energy_balance_error < 1e-6
+    assert runs[0].work_follower_J == pytest.approx(runs[1].work_follower_J, rel=1e-9)
+    assert runs[0].tip_rotation_amplitude_rad == pytest.approx(
+        runs[1].tip_rotation_amplitude_rad, rel=1e-9)
+
+
+def test_cycle_chain_on_one_mesh():
+    """beck_cycle_chain with a single mesh returns it (was an IndexError after all the work),
+    and an empty list of meshes is refused before any."""
+    with pytest.raises(ParameterError, match="meshes"):
+        rdyn.beck_cycle_chain(ROD, 5.5, [])

@@ -81,9 +81,61 @@ def exact_jacobian(model: NonlinearRod, P: float, method: str) -> dict:
 _METHODS = frozenset({"RK23", "RK45", "DOP853", "Radau", "BDF", "LSODA"})
 
 
+#: Largest number of section crossings (positive maxima of the lateral tip displacement) per
+#: period that :func:`beck_limit_cycle` recognises (an outside audit found two, of different
+#: heights, at eta = 0.1 and 2.9 P_flu).
+MAX_MAXIMA_PER_PERIOD = 4
+#: :func:`beck_limit_cycle`'s default bound on simulated time, in time scales l^2 sqrt(rho/B).
+DEFAULT_T_MAX_SCALES = 200.0
+
+
+def _repeating_lag(crossings: list) -> int | None:
+    """The smallest lag ``m`` at which the last section crossings' amplitudes nearly repeat
+    (four crossings of one phase within 1e-3 of each other), None if none does yet."""
+    for m in range(1, MAX_MAXIMA_PER_PERIOD + 1):
+        if len(crossings) < 3 * m + 1:
+            return None
+        us = np.array([c[1] for c in crossings[-1::-m][:4]])
+        if np.ptp(us) <= 1e-3 * abs(us[0]):
+            return m
+    return None
+
+
+def _refined_peak(f: Callable[[float], float], tt: NDArray, samples: NDArray) -> float:
+    """The maximum of ``f`` over ``[tt[0], tt[-1]]``: the largest sample, refined by a bounded
+    search between its neighbours (the sampled maximum alone is low by ~(pi/N)^2/2 of the
+    amplitude on N samples per period)."""
+    from scipy.optimize import minimize_scalar
+
+    k = int(np.argmax(samples))
+    lo, hi = tt[max(k - 1, 0)], tt[min(k + 1, len(tt) - 1)]
+    res = minimize_scalar(lambda t: -f(t), bounds=(lo, hi), method="bounded",
+                          options={"xatol": 1e-12 * (tt[-1] - tt[0])})
+    return float(max(samples[k], -res.fun))
+
+
+def _works_over(model: NonlinearRod, state_at: Callable[[float], NDArray], t0: float,
+                T: float, P: float) -> tuple[float, float]:
+    """Work of the follower force and energy dissipated over ``[t0, t0 + T]`` [J]: adaptive
+    Gauss–Kronrod quadrature of the powers on the dense output, to 1e-10 relative. (A fixed
+    200-sample trapezoid reported 0.155 and 0.314 J, an energy balance error of 0.51, for a
+    cycle whose works are both 0.2119 J: its dissipation is impulsive, peaks of 210 times
+    the mean; found by an outside audit.)"""
+    from scipy.integrate import quad_vec
+
+    n = model.n_dof
+
+    def powers(t: float) -> NDArray:
+        s = state_at(t)
+        return np.array(model.power_balance(s[:n], s[n:], P))
+
+    works, _ = quad_vec(powers, t0, t0 + T, epsrel=1e-10, limit=4000)
+    return float(works[0]), float(works[1])
+
+
 def beck_limit_cycle(rod: Rod, P: float, n_elements: int = 8, method: str = "BDF",
                      rtol: float = 1e-7, atol: float = 1e-9, tol: float = 1e-4,
-                     t_max: float = 30.0, initial_tip_rotation: float = 0.05,
+                     t_max: float | None = None, initial_tip_rotation: float = 0.05,
                      samples_per_period: int = 200,
                      start: tuple[NonlinearRod, NDArray] | None = None,
                      progress: Callable[[str], None] | None = None) -> RodLimitCycle:
@@ -96,7 +148,18 @@ def beck_limit_cycle(rod: Rod, P: float, n_elements: int = 8, method: str = "BDF
     geometric tail
     ``|d_k| mu / (1 - mu)``, ``mu`` the observed contraction), which matters where the
     approach is slow (near the flutter load the growth rate is tiny: 0.021 1/s at 1.1 times
-    the damped flutter load of list (119), so transients there last minutes).
+    the damped flutter load of list (119), so transients there last minutes). A cycle may
+    cross the section (a positive maximum of the lateral tip displacement) up to
+    :data:`MAX_MAXIMA_PER_PERIOD` times per period: the crossings are compared at the
+    smallest lag at which they nearly repeat (1e-3), so a cycle with two maxima of different
+    heights per period (eta = 0.1 at 2.9 P_flu, found by an outside audit) is recognised.
+
+    ``t_max`` [s] bounds the simulated time (default 200 time scales ``l^2 sqrt(rho/B)``,
+    31.4 s for list 119: in the rod's own time, so that the same rod in other units gets the
+    same bound). The measures are taken on the last period: the largest lateral tip
+    displacement from the section crossings themselves, the smallest and the tip rotation
+    refined from ``samples_per_period`` samples by a bounded search on the dense output, and
+    the works by adaptive quadrature (:func:`_works_over`).
 
     ``progress(message)``, if given, hears of every section crossing (simulated time, tip
     amplitude, the relative changes tested against ``tol``); it never changes the result."""
@@ -104,6 +167,8 @@ def beck_limit_cycle(rod: Rod, P: float, n_elements: int = 8, method: str = "BDF
         raise ParameterError(f"P must be > 0, got {P}")
     if method not in _METHODS:
         raise ParameterError(f"method must be one of {sorted(_METHODS)}, got {method!r}")
+    if t_max is None:
+        t_max = DEFAULT_T_MAX_SCALES * rod.time_scale
     for name, value in (("rtol", rtol), ("atol", atol), ("tol", tol), ("t_max", t_max)):
         if not check_real(name, value) > 0:
             raise ParameterError(f"{name} must be > 0, got {value!r}")
@@ -146,15 +211,18 @@ def beck_limit_cycle(rod: Rod, P: float, n_elements: int = 8, method: str = "BDF
             if tip_state(model, ye)[1] <= 0:
                 continue
             crossings.append((float(te), float(tip_state(model, ye)[1]), ye.copy()))
-            if len(crossings) < 4:
+            chunk = 4 * (crossings[-1][0] - crossings[-2][0]) if len(crossings) > 1 else chunk
+            lag = _repeating_lag(crossings)
+            if lag is None:
                 continue
-            # Four crossings: three periods and four amplitudes agree to tol (after a mesh
-            # change the sequence beats, and two agreeing crossings can be a coincidence),
-            # and the geometric tail of a steadily contracting sequence is below tol too.
-            ts = np.array([c[0] for c in crossings[-4:]])
-            us = np.array([c[1] for c in crossings[-4:]])
+            # Four crossings of one phase: three periods and four amplitudes agree to tol
+            # (after a mesh change the sequence beats, and two agreeing crossings can be a
+            # coincidence), and the geometric tail of a steadily contracting sequence is below
+            # tol too.
+            phase = crossings[-1::-lag][:4][::-1]
+            ts = np.array([c[0] for c in phase])
+            us = np.array([c[1] for c in phase])
             periods = np.diff(ts)
-            chunk = 4 * periods[-1]
             d_c, d_b = us[-1] - us[-2], us[-2] - us[-3]
             mu = d_c / d_b if d_b != 0 else 0.0
             tail = abs(d_c) * mu / (1 - mu) if 0 < mu < 1 else 0.0
@@ -163,7 +231,8 @@ def beck_limit_cycle(rod: Rod, P: float, n_elements: int = 8, method: str = "BDF
                          f"amplitude {us[-1]:.5f} m, period spread "
                          f"{np.ptp(periods) / periods[-1]:.1e}, amplitude spread "
                          f"{np.ptp(us) / us[-1]:.1e}, tail {tail / us[-1]:.1e} "
-                         f"(converged below {tol:g})")
+                         f"(converged below {tol:g})"
+                         + (f"; {lag} maxima per period" if lag > 1 else ""))
             if (np.ptp(periods) <= tol * periods[-1] and np.ptp(us) <= tol * us[-1]
                     and tail <= tol * us[-1] and mu < 1):
                 converged = True
@@ -172,7 +241,7 @@ def beck_limit_cycle(rod: Rod, P: float, n_elements: int = 8, method: str = "BDF
     if not converged:
         raise ConvergenceError(f"no rod limit cycle converged to {tol:g} within {t_max} s "
                                f"(P = {P} N; below the flutter load the motion decays)")
-    T = crossings[-1][0] - crossings[-2][0]
+    T = crossings[-1][0] - crossings[-1 - lag][0]
     t_end = crossings[-1][0]
     wall = time.perf_counter() - t_begin
 
@@ -187,13 +256,15 @@ def beck_limit_cycle(rod: Rod, P: float, n_elements: int = 8, method: str = "BDF
             return chunks[i].sol(t)
         return chunks[-1].sol(min(t, chunks[-1].t[-1]))
 
-    # Measures on the last period, and the energy balance (trapezoid, fine sampling).
+    # Measures on the last period.
     tt = np.linspace(t_end - T, t_end, samples_per_period + 1)
     states = np.array([state_at(t) for t in tt])
     tips = np.array([tip_state(model, s) for s in states])
-    powers = np.array([model.power_balance(s[:n], s[n:], P) for s in states])
-    W_P = float(np.trapezoid(powers[:, 0], tt))
-    W_D = float(np.trapezoid(powers[:, 1], tt))
+    u_max = max(c[1] for c in crossings[-lag:])  # the section's maxima, exact
+    u_min = -_refined_peak(lambda t: -tip_state(model, state_at(t))[1], tt, -tips[:, 1])
+    rot = np.abs(states[:, n - 1])
+    rotation = _refined_peak(lambda t: abs(state_at(t)[n - 1]), tt, rot)
+    W_P, W_D = _works_over(model, state_at, t_end - T, T, P)
     # The rod's shape at 41 instants of the last period (for the animation only).
     shapes = []
     for s_ in states[:: max(1, samples_per_period // 40)]:
@@ -205,8 +276,8 @@ def beck_limit_cycle(rod: Rod, P: float, n_elements: int = 8, method: str = "BDF
     th = np.linspace(0.0, t_end, max(200, int(100 * t_end / T)))
     hist = np.array([tip_state(model, state_at(t)) for t in th])
     return RodLimitCycle(
-        tip_amplitude_m=float(0.5 * (tips[:, 1].max() - tips[:, 1].min())), period_s=float(T),
-        tip_rotation_amplitude_rad=float(np.max(np.abs(states[:, n - 1]))),
+        tip_amplitude_m=float(0.5 * (u_max - u_min)), period_s=float(T),
+        tip_rotation_amplitude_rad=rotation,
         work_follower_J=W_P, work_dissipated_J=W_D,
         energy_balance_error=abs(W_P - W_D) / W_D, transient_s=t_end, wall_s=wall,
         n_rhs=counter["rhs"],
@@ -496,15 +567,16 @@ class CycleMeasures:
 def cycle_measures(cycle: ShootingCycle, P: float, samples: int = 512,
                    wall_s: float = 0.0, cpu_s: float = 0.0, n_rhs: int = 0) -> CycleMeasures:
     """Amplitudes, period and the energy balance over one period of a converged cycle: the
-    orbit's dense output at ``samples`` instants, the works by the periodic trapezoid rule
-    (spectrally accurate for a smooth periodic integrand), the extremes by parabolas."""
+    orbit's dense output at ``samples`` instants, the extremes by parabolas; the works by
+    adaptive quadrature (:func:`_works_over`: the periodic trapezoid rule on the samples is
+    spectrally accurate only while the powers are smooth on the sampling's scale, and an
+    impulsive dissipation is not)."""
     model, T = cycle.model, cycle.T
     n = model.n_dof
     tt = np.arange(samples) * (T / samples)
     Y = cycle.orbit.sol(tt)
     tips = tip_states(model, Y)
-    powers = np.array([model.power_balance(Y[:n, k], Y[n:, k], P) for k in range(samples)])
-    W_P, W_D = (float(x) for x in powers.sum(axis=0) * (T / samples))
+    W_P, W_D = _works_over(model, cycle.orbit.sol, 0.0, T, P)
     fl = cycle.floquet
     mus = None if fl is None else sorted(fl.nontrivial, key=lambda z: -abs(z))
     return CycleMeasures(
@@ -570,14 +642,23 @@ class RodTransient:
         return out
 
 
+#: :func:`grow_into_cycle`'s default bound on simulated time and its solver chunk, in time
+#: scales ``l^2 sqrt(rho/B)`` (62.8 s and 1.0 s for list 119).
+TRANSIENT_T_MAX_SCALES, TRANSIENT_CHUNK_SCALES = 400.0, 6.4
+
+
 def grow_into_cycle(model: NonlinearRod, P: float, amplitude: float = 1e-3,
                     method: str = "LSODA", rtol: float = 1e-6, tol: float = 1e-3,
-                    t_max: float = 60.0) -> RodTransient:
+                    t_max: float | None = None) -> RodTransient:
     """Integrate from the straight rod perturbed by the linear flutter mode (lateral tip
     displacement ``amplitude``) until the tip amplitude on the section changes by less than
     ``tol`` (relative) from one period to the next (with the slow Floquet multiplier ``mu``
     the distance from the cycle is then about ``tol / (1 - mu)``). Deterministic: bounded by
-    ``t_max`` of simulated time, never by the clock."""
+    ``t_max`` [s] of simulated time (default :data:`TRANSIENT_T_MAX_SCALES` time scales
+    ``l^2 sqrt(rho/B)``, 63 s for list 119), never by the clock; the solver is called every
+    :data:`TRANSIENT_CHUNK_SCALES` time scales. Both in the rod's own time: in seconds, the
+    same rod ten times slower (rho x 100, D x 10: the same groups) was refused (an outside
+    audit)."""
     from flutterfriction.analysis.stability import first_order_matrix
 
     y = flutter_mode_start(model, P, amplitude)
@@ -598,7 +679,12 @@ def grow_into_cycle(model: NonlinearRod, P: float, amplitude: float = 1e-3,
     options = exact_jacobian(model, P, method)
     t_begin, c_begin = time.perf_counter(), time.process_time()
     t0, chunks, ts, states = 0.0, [], [], []
-    chunk = 1.0  # simulated seconds per solve_ivp call (~7 periods); the test runs per crossing
+    # ~7 periods of list 119 per solve_ivp call; the test runs per crossing
+    chunk = TRANSIENT_CHUNK_SCALES * model.rod.time_scale
+    if t_max is None:
+        t_max = TRANSIENT_T_MAX_SCALES * model.rod.time_scale
+    if not check_real("t_max", t_max) > 0:
+        raise ParameterError(f"t_max must be > 0, got {t_max!r}")
     while t0 < t_max:
         sol = solve_ivp(rhs, (t0, min(t0 + chunk, t_max)), y, method=method, rtol=rtol,
                         atol=rtol * 1e-2, events=section, dense_output=True, **options)
@@ -620,7 +706,7 @@ def grow_into_cycle(model: NonlinearRod, P: float, amplitude: float = 1e-3,
                         cpu_s=time.process_time() - c_begin, chunks=chunks)
         y, t0 = sol.y[:, -1], sol.t[-1]
     raise ConvergenceError(f"the transient did not settle to {tol:g} per period within "
-                           f"{t_max} s (P = {P} N)")
+                           f"{t_max:.4g} s (P = {P} N)")
 
 
 @dataclass
@@ -631,7 +717,7 @@ class CycleChain:
     cycles: list  # CycleMeasures per mesh
     transient: RodTransient
     transient_cycle: ShootingCycle  # the cycle on the transient's mesh (exact monodromy)
-    primary: ShootingCycle  # the cycle on the second-last mesh (shapes)
+    primary: ShootingCycle  # the cycle on the second-last mesh (shapes; the only one if one)
     section_distance: list  # of the transient's crossings from the cycle (scaled max norm)
 
 
@@ -659,10 +745,12 @@ def beck_cycle_chain(rod: Rod, P: float, meshes: list[int], method: str = "LSODA
     (secant-updated) monodromy prolongated as the Jacobian (orbits by ``fine_method`` with
     the exact right-hand-side Jacobian). Every mesh is converged to a Newton correction below
     ``tol``."""
-    if not P > 0:
+    if not check_real("P", P) > 0:
         raise ParameterError(f"P must be > 0, got {P}")
+    if not meshes:
+        raise ParameterError("meshes must list at least one number of elements")
     say = progress or (lambda message: None)
-    models = [NonlinearRod(rod, int(n)) for n in meshes]
+    models = [NonlinearRod(rod, n) for n in meshes]
     base = models[0]
     transient = grow_into_cycle(base, P, initial_amplitude, method, transient_rtol,
                                 transient_tol)
@@ -692,6 +780,6 @@ def beck_cycle_chain(rod: Rod, P: float, meshes: list[int], method: str = "LSODA
             f"{', '.join(f'{c:.1e}' for c in cyc.corrections)}, CPU {cycles[-1].cpu_s:.1f} s")
         prev = cyc
     return CycleChain(meshes=[int(n) for n in meshes], cycles=cycles, transient=transient,
-                      transient_cycle=shot[0], primary=shot[-2],
+                      transient_cycle=shot[0], primary=shot[max(len(shot) - 2, 0)],
                       section_distance=[section_distance(base, s, shot[0])
                                         for s in transient.section_states])
