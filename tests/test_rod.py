@@ -368,3 +368,18 @@ def test_rod_groups_refuse_underflow_instead_of_zero_damping():
         Rod(length=1e100, B=1.0, rho=1.0, D=1e-150).groups()
     with pytest.raises(ParameterError, match="below the normal double range"):
         Rod(length=1e300, B=1e-300, rho=1e300).load_unit  # noqa: B018
+
+
+def test_critical_loads_print_no_numpy_warnings():
+    """Newton steps onto the pole of eq. (113) or a flat point are failed solves, handled as
+    such, not numpy warnings printed beside a right answer (an outside audit saw them at
+    tan(alpha) = 5, eta = 0.01)."""
+    import warnings
+
+    from flutterfriction.analysis import rod as ar
+    from flutterfriction.models.rod import RodGroups
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", RuntimeWarning)
+        c = ar.critical_loads(RodGroups(tan_alpha=5.0, eta=0.01), p_max=40)
+    assert c.p_flu is not None and 0 < c.p_flu < 40

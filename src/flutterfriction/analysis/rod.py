@@ -107,16 +107,24 @@ def _newton2(residual: Callable[[NDArray], NDArray], x0: NDArray, tol: float = 1
 # ---------------------------------------------------------------------- eigenvalues at one p
 def refine_eigenvalues(p: float, g: RodGroups, guesses: NDArray, tol: float = 1e-13,
                        max_iter: int = 50) -> NDArray:
-    """Newton on the exact ``f(p, omega~) = 0`` from each guess (vectorised over guesses)."""
+    """Newton on the exact ``f(p, omega~) = 0`` from each guess (vectorised over guesses).
+
+    A step onto the pole ``omega~ = -1/eta`` of eq. (113) or a flat point (``f' = 0``) is a
+    :class:`ConvergenceError` at once, without numpy's warnings (the callers treat it as any
+    failed Newton: an outside audit saw divide-by-zero warnings printed for answers that
+    were right)."""
     w = np.asarray(guesses, dtype=complex).copy()
-    sigma0 = np.real(characteristic_function(p, w, g, with_exponent=True)[1])
     h = 1e-4 * np.maximum(1.0, np.abs(w))
-    for _ in range(max_iter):
-        F, dF = _with_derivative(lambda z: _f(p, z, g, sigma0), w, h)
-        step = F / dF
-        w = w - step
-        if np.all(np.abs(step) <= tol * np.maximum(1.0, np.abs(w))):
-            return w
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        sigma0 = np.real(characteristic_function(p, w, g, with_exponent=True)[1])
+        for _ in range(max_iter):
+            F, dF = _with_derivative(lambda z: _f(p, z, g, sigma0), w, h)
+            step = F / dF
+            if not np.all(np.isfinite(step)):
+                break
+            w = w - step
+            if np.all(np.abs(step) <= tol * np.maximum(1.0, np.abs(w))):
+                return w
     raise ConvergenceError(f"Newton on eq. (118) did not converge at p = {p} from {guesses}")
 
 
