@@ -215,12 +215,24 @@ def plot_fig22(data: dict[str, Any]) -> Figure:
     return fig
 
 
+def _case_text(params: dict[str, Any]) -> str:
+    """The nonassociative case a figure was computed for: elasticity, P, Q (Voigt order 11,
+    22, 33, 23, 13, 12) and the direction n; empty without parameters."""
+    if not {"lam", "mu", "P", "Q"} <= set(params):
+        return ""
+    def vec(v):
+        return "(" + ", ".join(f"{x:g}" for x in v) + ")"
+    text = (f"λ = {params['lam']:g} Pa, μ = {params['mu']:g} Pa, P = {vec(params['P'])}, "
+            f"Q = {vec(params['Q'])} (Voigt 11, 22, 33, 23, 13, 12)")
+    return text + (f", n = {vec(params['n'])}" if "n" in params else "")
+
+
 def plot_acoustic_eigenvalues(data: dict[str, Any]) -> Figure:
     """Re and Im of the eigenvalues of A(n) against g, with g_cr^E, g1, g2."""
     g = np.array(data["g"])
     g1, g2 = data["flutter_interval"]
-    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(5.6, 4.8), sharex=True,
-                                   gridspec_kw={"height_ratios": [3, 2]})
+    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(6.4, 5.4), sharex=True,
+                                   gridspec_kw={"height_ratios": [3, 2]}, layout="constrained")
     for ax in (ax1, ax2):
         ax.axvspan(g1, g2, color=REGIME_COLOURS["flutter"], lw=0, label="flutter (g1, g2)")
         ax.set_xscale("log")
@@ -236,8 +248,8 @@ def plot_acoustic_eigenvalues(data: dict[str, Any]) -> Figure:
         ax1.annotate(f"{name} = {val:.4g}", (val, 1.0), xycoords=("data", "axes fraction"),
                      xytext=(0, 2), textcoords="offset points", va="bottom", ha=ha, fontsize=7)
     gE = data["g_localization"]
-    ax1.set_title(f"Eigenvalues of A(n) (eq. 179), nonassociative case; "
-                  f"$g^E_{{cr}}(n)$ = {gE:.4g} < 0: localization not reached for g > 0",
+    ax1.set_title(f"Eigenvalues of A(n) (eq. 179); "
+                  f"$g^E_{{cr}}(n)$ = {gE:.4g} < 0: no localization for g > 0",
                   fontsize=8, pad=14)
     ax1.set_yscale("symlog", linthresh=1.0)
     # eta, the eigenvalue of A(n) (eq. 183): rho c^2 of a plane wave, a stress (unit density)
@@ -246,6 +258,13 @@ def plot_acoustic_eigenvalues(data: dict[str, Any]) -> Figure:
     ax2.set_xlabel("plastic modulus g [Pa]")
     # In the empty Re < 0 band (no eigenvalue goes there for g > 0).
     ax1.legend(*ax2.get_legend_handles_labels(), fontsize=7, loc="lower right", ncol=2)
+    text = _case_text(data.get("params", {}))
+    printed = data.get("flutter_interval_as_printed")
+    if printed is not None:
+        text += (f"\n$g_1$, $g_2$ from eq. (188) corrected; as printed it gives "
+                 f"{printed[0]:.4g}, {printed[1]:.4g} (see the errata)")
+    if text:
+        fig.suptitle(text, fontsize=7)
     return fig
 
 
@@ -287,7 +306,8 @@ def plot_flutter_map(data: dict[str, Any]) -> Figure:
     ax1.set_yscale("symlog", linthresh=1e-3)
     ax1.set_xlabel(r"angle of n in the $(e_1, e_3)$ plane [deg]")
     ax1.set_ylabel("plastic modulus g [Pa]")
-    ax1.set_title("(a) nonassociative case: directions that flutter", fontsize=8)
+    ax1.set_title("(a) nonassociative case: directions that flutter\n"
+                  "($g_1$, $g_2$ from eq. (188) corrected)", fontsize=8)
     ax1.legend(fontsize=7)
     an = data["anisotropy"]
     off = np.array(an["offsets_deg"])
@@ -296,13 +316,14 @@ def plot_flutter_map(data: dict[str, Any]) -> Figure:
     # Each direction (a cell of the tangent-plane grid around the coalescence direction n_C)
     # coloured by the smallest anisotropy at which it flutters.
     levels = [k for k, m in enumerate(maps) if m.any()]
-    cmap = plt.get_cmap("autumn_r")
+    # Distinct colours, one per anisotropy level (a sequential map made neighbours alike).
+    palette = ["#d62728", "#1f77b4", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b", "#e377c2"]
     shown = np.zeros_like(maps[0])
     for n, k in enumerate(levels):
         new_cells = maps[k] & ~shown
         shown |= maps[k]
         r, c = np.nonzero(new_cells)
-        colour = cmap(0.35 + 0.65 * n / max(len(levels) - 1, 1))
+        colour = palette[n % len(palette)]
         for rr, cc in zip(r, c, strict=True):
             ax2.add_patch(plt.Rectangle((off[cc] - step / 2, off[rr] - step / 2), step, step,
                                         color=colour, lw=0))
@@ -320,10 +341,16 @@ def plot_flutter_map(data: dict[str, Any]) -> Figure:
     ax2.set_ylabel(r"tilt towards $t_2 = n_C \times t_1$ [deg]")
     ax2.legend(fontsize=6.5, loc="upper left", title=f"cells: directions on a {step:g}° grid",
                title_fontsize=6.5)
-    ax2.set_title("(b) Drucker–Prager at coalescence + anisotropy ε", fontsize=8)
+    seed = data.get("params", {}).get("anisotropy", {}).get("seed")
+    ax2.set_title("(b) Drucker–Prager at coalescence + elastic anisotropy ε\n(a random "
+                  "perturbation of the isotropic tensor"
+                  + (f", seed {seed})" if seed is not None else ")"), fontsize=8)
     ax3.plot(an["eps"], np.array(an["fraction_flutter"]) * 100, "o-", ms=3.5, color="C3")
     ax3.set_xlabel("elastic anisotropy ε [-]")
     ax3.set_ylabel(f"directions that flutter [%] (of the ±{off[-1]:g}° patch)")
     ax3.set_title("(c) flutter appears with anisotropy", fontsize=8)
+    text = _case_text(data.get("params", {}).get("plane_case", {}))
+    if text:
+        fig.suptitle(f"(a): {text}, n in the $(e_1, e_3)$ plane", fontsize=7)
     fig.tight_layout()
     return fig

@@ -122,6 +122,10 @@ def acoustic_eigenvalues(params: dict[str, Any]) -> dict[str, Any]:
     return {
         "g": g.tolist(), "re": eta.real.T.tolist(), "im": eta.imag.T.tolist(), "mu": mu,
         "g_localization": gE, "flutter_interval": list(interval),
+        # eq. (188) as printed (the erratum, stated on the figure); None if it has no interval
+        "flutter_interval_as_printed": (
+            None if (pr := so.flutter_interval_as_printed(lam, mu, P, Q, n)) is None
+            else [float(x) for x in pr]),
         "max_closed_vs_eig": float(np.max(np.abs(np.sort_complex(closed) - eta))),
         "quantities": {
             "g1": quantity(interval[0], brute[0][0], "closed form eq. (188), corrected",
