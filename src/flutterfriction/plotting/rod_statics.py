@@ -132,6 +132,10 @@ def _loads_text(loads: dict[str, float]) -> str:
             f"q2 = {loads['q2']:g} N/m")
 
 
+#: Said on each of Figs. 6-9: the chapter draws these rods without numbers.
+OUR_LOADS = "(our loads: the chapter gives none)"
+
+
 def _box(ax: Axes, text: str, loc=(0.02, 0.02), va: str = "bottom") -> None:
     ax.text(*loc, text, transform=ax.transAxes, fontsize=7.5, va=va, ha="left",
             bbox={"fc": "white", "ec": "0.7", "alpha": 0.9, "boxstyle": "round,pad=0.3"},
@@ -253,7 +257,7 @@ def plot_fig06(data: dict[str, Any]) -> Figure:
     ax2.set_title(r"Rotation of the tangent, $\sin\theta = u_2'$, $\cos\theta = 1 + u_1'$ "
                   "(eq. 64)", fontsize=8.5)
     fig.suptitle("Fig. 6: the kinematics of an inextensible rod (reference straight, "
-                 r"$s = x_0$)", fontsize=10)
+                 r"$s = x_0$) " + OUR_LOADS, fontsize=10)
     return fig
 
 
@@ -307,7 +311,7 @@ def plot_fig07(data: dict[str, Any]) -> Figure:
                 Line2D([], [], color=MOM_COL, lw=1.4, marker=">", ms=5),
                 Line2D([], [], color=T_COL, lw=1.4, marker=">", ms=5),
                 Line2D([], [], color=M_COL, lw=1.4, marker=">", ms=5)]
-    labels += [f"internal force (arrows: {fs / 1e3:.3g} m per N)",
+    labels += [f"internal force (arrows: {fs:.3g} mm per N)",
                "internal moment (counterclockwise: +e3)",
                r"tangent $\mathbf{t}$ (exits the left part)",
                r"$\mathbf{m}$ (eq. 71)"]
@@ -335,8 +339,8 @@ def plot_fig07(data: dict[str, Any]) -> Figure:
     ax2.legend(fontsize=7.5, loc="best")
     ax2.set_title("Moment at every cut: constitutive against equilibrium", fontsize=8.5)
     fig.suptitle(r"Fig. 7: action $\mathbf{a}(s)$, $\mathcal{M}(s)$ and reaction "
-                 r"$-\mathbf{a}(s)$, $-\mathcal{M}(s)$ at an ideal cut of a deformed rod",
-                 fontsize=10)
+                 r"$-\mathbf{a}(s)$, $-\mathcal{M}(s)$ at an ideal cut of a deformed rod "
+                 + OUR_LOADS, fontsize=10)
     return fig
 
 
@@ -402,7 +406,7 @@ def plot_fig08(data: dict[str, Any]) -> Figure:
                 Line2D([], [], color=MOM_COL, lw=1.4, marker=">", ms=5)]
     labels += [f"q = ({q[0]:g}, {q[1]:g}) N/m per unit length (arrows: {qs / 1e3:.3g} m "
                "per N/m)",
-               f"internal force on the part (arrows: {fs / 1e3:.3g} m per N)",
+               f"internal force on the part (arrows: {fs:.3g} mm per N)",
                "internal moment on the part (counterclockwise: +e3)"]
     b = part["balances"]
     box = ("equilibrium of the part, residual / largest term:\n"
@@ -435,7 +439,7 @@ def plot_fig08(data: dict[str, Any]) -> Figure:
     ax2.legend(fontsize=7.5, loc="best")
     ax2.set_title("Internal moment", fontsize=8.5)
     fig.suptitle(r"Fig. 8: equilibrium of a part of a deformed rod under the distributed "
-                 r"load $\mathbf{q}$ (eq. 74)", fontsize=10)
+                 r"load $\mathbf{q}$ (eq. 74) " + OUR_LOADS, fontsize=10)
     return fig
 
 
@@ -508,11 +512,11 @@ def plot_fig09(data: dict[str, Any]) -> Figure:
                 Line2D([], [], color=Q_COL, lw=1.1, marker=">", ms=5),
                 Line2D([], [], color="C5", lw=1.1, marker=">", ms=5)]
     labels += [rf"end force $\mathbf{{P}} = -P_1\mathbf{{e}}_1 - P_2\mathbf{{e}}_2$ "
-               f"({fs / 1e3:.3g} m per N)",
+               f"({fs:.3g} mm per N)",
                rf"$q_1\mathbf{{e}}_1$ per unit length, $q_1$ = {loads['q1']:g} N/m "
-               f"({qs / 1e3:.3g} m per N/m)",
+               f"({qs:.3g} mm per N/m)",
                rf"$q_2\mathbf{{e}}_2$ per unit length, $q_2$ = {loads['q2']:g} N/m "
-               f"({qs / 1e3:.3g} m per N/m)"]
+               f"({qs:.3g} mm per N/m)"]
     qd = data["quantities"]
     u = (qd["tip_shortening"]["value"] * MM, qd["tip_deflection"]["value"] * MM)
     rel = abs(qd["tip_deflection"]["value"] / qd["tip_deflection"]["independent"] - 1)
@@ -551,5 +555,5 @@ def plot_fig09(data: dict[str, Any]) -> Figure:
                   r"$u_2^{\rm lin}(l) = -P_2 l^3/(3B) + q_2 l^4/(8B)$; "
                   f"measured order {lim['order']:.4f}", fontsize=8.5)
     fig.suptitle("Fig. 9: the clamped elastica under the end forces P1, P2 and the forces "
-                 "per unit length q1, q2 (geometrically exact)", fontsize=10)
+                 "per unit length q1, q2 (geometrically exact) " + OUR_LOADS, fontsize=10)
     return fig
