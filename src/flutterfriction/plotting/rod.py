@@ -335,7 +335,7 @@ def plot_beck_work_precision(data: dict[str, Any]) -> Figure:
 def plot_beck_hopf(data: dict[str, Any]) -> Figure:
     """The rod's branch of limit cycles from the Hopf point, and its Floquet multipliers
     against the normal form."""
-    A, P = np.array(data["A"]), np.array(data["P"])
+    A, P = 1e3 * np.array(data["A"]), np.array(data["P"])  # A in mm, as beck_branch
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(9.5, 3.9), layout="constrained")
     ax1.plot(P, A, "o-", ms=4, label="limit cycles (periodic-orbit continuation)")
     ax1.axvline(data["P_flu_exact"], color="k", ls=":", lw=1,
@@ -345,19 +345,20 @@ def plot_beck_hopf(data: dict[str, Any]) -> Figure:
     ax1.plot(data["P_flu_model"] + dP, c * np.sqrt(dP), "C1--", lw=1,
              label=r"$A \propto \sqrt{P - P_{flu}}$")
     ax1.set_xlabel("follower load P [N]")
-    ax1.set_ylabel("tip amplitude A [m]")
+    ax1.set_ylabel("tip amplitude A (largest lateral displacement) [mm]")
     ax1.legend(fontsize=7)
     fl = sorted(data["floquet"].values(), key=lambda v: v["A"])
-    ax2.plot([v["A"] for v in fl], [v["slow_decay"] for v in fl], "o", ms=6,
+    ax2.plot([1e3 * v["A"] for v in fl], [v["slow_decay"] for v in fl], "o", ms=6,
              label=r"$1 - \mu$, slow Floquet multiplier (return map)")
-    ax2.plot([v["A"] for v in fl], [v["normal_form_decay"] for v in fl], "x", ms=8,
+    ax2.plot([1e3 * v["A"] for v in fl], [v["normal_form_decay"] for v in fl], "x", ms=8,
              label=r"normal form: $1 - e^{-2\sigma(P) T}$")
     ax2.set_yscale("log")
-    ax2.set_xlabel("tip amplitude A [m]")
+    ax2.set_xlabel("tip amplitude A [mm]")
     ax2.set_ylabel(r"$1 - \mu$: distance inside the unit circle [-]")
     ax2.legend(fontsize=7)
-    fig.suptitle("Beck rod, list (119): the Hopf bifurcation at the damped flutter load is "
-                 "supercritical (stable cycles, branch towards higher loads)", fontsize=9)
+    fig.suptitle(f"Beck rod, list (119), {data['n_elements']} P2 elements: the Hopf "
+                 "bifurcation at the damped flutter load is supercritical (stable cycles, "
+                 "branch towards higher loads)", fontsize=9)
     return fig
 
 

@@ -11,7 +11,7 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Arc
 
-from flutterfriction.plotting import REGIME_COLOURS
+from flutterfriction.plotting import REGIME_COLOURS, pendulum_text
 from flutterfriction.plotting.pendulum import MASS, ROD, draw_pendulum
 
 
@@ -311,8 +311,11 @@ def plot_fig02(data: dict[str, Any]) -> Figure:
 
 
 def plot_eq25(data: dict[str, Any]) -> Figure:
+    # H_cr does not depend on the masses, the omega^2 curves do: the pendulum is stated.
+    text = pendulum_text(data.get("params", {}).get("pendulum"))
     return plot_dead_load_spectrum(
-        data, r"Eq. (25): dead load on equal rods, $H_{cr}$ = (3-$\sqrt{5}$)/2 K/L")
+        data, r"Eq. (25): dead load on equal rods, $H_{cr}$ = (3-$\sqrt{5}$)/2 K/L"
+        + (f"\n{text}" if text else ""))
 
 
 def plot_eq46(data: dict[str, Any]) -> Figure:
