@@ -205,14 +205,12 @@ def _title(data, fig: str, what: str) -> str:
     n = data["history_mesh"]
     err = data["mesh_error"][str(n)]
     return (f"{fig}: nonlinear Beck rod, list (119), P = {data['P']:g} N: {what}\n"
-            f"flutter grows from the straight rod ({tr['initial_amplitude_m'] * 1000:g} mm "
-            f"flutter mode) and saturates into the limit cycle\n"
-            f"transient on {n} P2 elements; black: the limit cycle on the same {n} elements "
-            f"(periodic-orbit Newton),\nwithin {100 * max(err.values()):.2f}% of the "
-            f"{data['meshes'][-1]}-element cycle; the transient ends "
-            f"{100 * tr['final_distance']:.1f}% from it, at t = {tr['t_end']:.2f} s\n"
-            f"converged cycle ({data['meshes'][-2]} elements): tip amplitude "
-            f"{c['tip_amplitude_m'] * 1000:.1f} mm, period {c['period_s'] * 1000:.2f} ms")
+            f"black: the limit cycle on the transient's {n} P2 elements (Newton; within "
+            f"{100 * max(err.values()):.2f}% of the {data['meshes'][-1]}-element one); on "
+            f"{data['meshes'][-2]} elements A = {c['tip_amplitude_m'] * 1000:.1f} mm, "
+            f"T = {c['period_s'] * 1000:.2f} ms\n"
+            f"the transient from a {tr['initial_amplitude_m'] * 1000:g} mm flutter mode ends "
+            f"{100 * tr['final_distance']:.1f}% from it, at t = {tr['t_end']:.2f} s")
 
 
 def _growth(ax, x, y, t, cx, cy):
@@ -262,7 +260,7 @@ def plot_fig15(data: dict[str, Any]) -> Figure:
     ins.set_title("flutter grows and saturates (dashed: the cycle's amplitude)", fontsize=5.5,
                   pad=2)
     _figure_legend(fig, ax)
-    fig.suptitle(_title(data, "Fig. 15", "trajectory of the loaded end"), fontsize=7)
+    fig.suptitle(_title(data, "Fig. 15", "trajectory of the loaded end"), fontsize=8)
     return fig
 
 
@@ -278,7 +276,7 @@ def plot_fig16(data: dict[str, Any]) -> Figure:
         ax.set_ylabel(rf"{name} tip velocity $\dot u_{k}^{{tip}}$ [m/s]")
     fig.colorbar(lc, ax=axes, label="time t [s]", shrink=0.6)
     _figure_legend(fig, axes[0])
-    fig.suptitle(_title(data, "Fig. 16", "tip velocities against displacements"), fontsize=7)
+    fig.suptitle(_title(data, "Fig. 16", "tip velocities against displacements"), fontsize=8)
     return fig
 
 
@@ -292,7 +290,7 @@ def plot_fig17(data: dict[str, Any]) -> Figure:
     ax.set_xlabel(r"axial tip velocity $\dot u_1^{tip}$ [m/s]")
     ax.set_ylabel(r"lateral tip velocity $\dot u_2^{tip}$ [m/s]")
     _figure_legend(fig, ax)
-    fig.suptitle(_title(data, "Fig. 17", "lateral against axial tip velocity"), fontsize=7)
+    fig.suptitle(_title(data, "Fig. 17", "lateral against axial tip velocity"), fontsize=8)
     return fig
 
 
