@@ -169,7 +169,7 @@ def plot_fe_convergence(data: dict[str, Any]) -> Figure:
 def plot_stability_map(data: dict[str, Any]) -> Figure:
     """Flutter and divergence loads against the tip-mass ratio M/(rho l)."""
     r = np.array(data["mass_ratio"], float)
-    fig, ax = plt.subplots(figsize=(5.6, 3.8))
+    fig, ax = plt.subplots(figsize=(6.0, 5.0), layout="constrained")
     for name, style, lw, label in (("undamped", "-", 2.6, "damping absent"),
                                    ("vanishing_damping", "--", 1.2,
                                     r"vanishing internal damping")):
@@ -178,11 +178,35 @@ def plot_stability_map(data: dict[str, Any]) -> Figure:
         div = np.array([np.nan if v is None else v for v in d["p_div"]], float)
         ax.plot(r, div, style, lw=lw, color="C3" if name == "undamped" else "k",
                 label=f"divergence, {label}" + (" (the same)" if name != "undamped" else ""))
+    ends = data["undamped"].get("p_div_end")
+    p_top = 80.0  # the loads searched
+    if ends is not None:
+        div = np.array([np.nan if v is None else v for v in data["undamped"]["p_div"]], float)
+        top = np.array([np.nan if v is None else v for v in ends], float)
+        has = ~np.isnan(div)
+        inside = ~np.isnan(top)
+        ax.fill_between(r, div, np.where(inside, top, p_top), where=has,
+                        color=REGIME_COLOURS["divergence"], lw=0, alpha=0.7,
+                        label="divergence (damping absent)")
+        if inside.any():
+            ax.fill_between(r, top, p_top, where=inside, color=REGIME_COLOURS["flutter"],
+                            lw=0, label="flutter again above the divergence window")
+            ax.plot(r[inside], top[inside], "-", lw=1.0, color="C3",
+                    label="end of the divergence window (grid points)")
+        # Where divergence first appears (below p = 80): between two ratios of the map's grid.
+        k = int(np.argmax(has))
+        if k > 0:
+            ax.annotate(f"divergence below p = {p_top:g}\nfirst for "
+                        f"{r[k - 1]:.3g} < tan α < {r[k]:.3g}", (r[k], div[k]),
+                        xytext=(0.12, 0.62), textcoords="axes fraction", fontsize=7,
+                        arrowprops={"arrowstyle": "->", "lw": 0.7})
+        ax.set_ylim(top=max(65.0, float(np.nanmax(top)) + 3 if inside.any() else 65.0))
     ax.set_xscale("symlog", linthresh=0.01)
     ax.set_xlim(0, r[-1])
     ax.set_xlabel(r"tip-mass ratio $M/(\rho l) = \tan\alpha$ [-]")
     ax.set_ylabel(r"critical load $p = P l^2/B$ [-] (searched up to 80)")
-    ax.legend(fontsize=7)
+    fig.legend(*ax.get_legend_handles_labels(), fontsize=7, loc="outside lower center",
+               ncol=2)
     ax.set_title("Beck (ratio 0) to Pflüger rods: the paradox of vanishing damping", fontsize=9)
     return fig
 

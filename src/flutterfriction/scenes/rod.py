@@ -244,7 +244,15 @@ def _map_compute(params: dict[str, Any], points: list[list[Any]]) -> list[dict[s
                 c = None
         if c is None:
             c = ar.critical_loads(g)
-        out.append({"p_flu": c.p_flu, "p_div": c.p_div})
+        p_div_end = None
+        if case == "undamped" and c.p_div is not None:
+            # The divergence window's upper end (flutter again above it; the Pflüger column
+            # near tan(alpha) = 0.6): from the regime intervals, which the continuation does
+            # not follow (one exact solve more, ~0.1 s, where divergence exists).
+            full = c if c.intervals is not None else ar.critical_loads(g)
+            div = next(iv for iv in full.intervals if iv["regime"] == "divergence")
+            p_div_end = div["p_to"] if div["p_to"] < full.intervals[-1]["p_to"] else None
+        out.append({"p_flu": c.p_flu, "p_div": c.p_div, "p_div_end": p_div_end})
         prev, prev_case = c, case
     return out
 
@@ -256,6 +264,8 @@ def _map_combine(params: dict[str, Any], results: list[dict[str, Any]]) -> dict[
     for name in ("undamped", "vanishing_damping"):
         rows = [res for (case, _), res in zip(points, results, strict=True) if case == name]
         out[name] = {"p_flu": [x["p_flu"] for x in rows], "p_div": [x["p_div"] for x in rows]}
+        if name == "undamped":
+            out[name]["p_div_end"] = [x.get("p_div_end") for x in rows]
     beck = ar.critical_loads(RodGroups(eta=eta))
     out["quantities"] = {"beck_vanishing_damping": quantity(
         beck.p_flu, ar.fe_critical_loads(RodGroups(eta=eta), 64).p_flu, EXACT,
