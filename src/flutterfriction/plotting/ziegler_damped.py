@@ -160,11 +160,16 @@ def plot_paradox_map(data: dict[str, Any]) -> Figure:
         ax.clabel(cs, fontsize=6, fmt="%.2f")
         pts = [(np.log10(c), yy) for c, yy in zip(free, y, strict=True) if c is not None]
         if pts:
+            # Every point, clipped at the frame (the curve runs on beyond it).
             px, py = np.array(pts).T
-            inside = (px >= lc[0]) & (px <= lc[-1])
-            ax.plot(px[inside], py[inside], color="C3", lw=1.8,
-                    label="no paradox (closed form)")
+            ax.plot(px, py, color="C3", lw=1.8, label="no paradox (closed form)")
             ax.legend(loc="lower left", fontsize=7)
+        else:
+            ax.text(0.03, 0.03, "no c1/c2 removes the paradox\nanywhere on this panel "
+                    "(closed form)", transform=ax.transAxes, fontsize=7, color="w",
+                    va="bottom")
+        ax.set_xlim(lc[0], lc[-1])
+        ax.set_ylim(y[0], y[-1])
         on_panel = [pt for pt in data["check_points"]
                     if (ax is axes[0] and pt["d_over_l1"] == 1.0)
                     or (ax is axes[1] and pt["m1_over_m2"] == 1.0)]
