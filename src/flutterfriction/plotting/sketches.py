@@ -57,7 +57,11 @@ def plot_fig01(data: dict[str, Any]) -> Figure:
     ax.add_patch(Circle((0, 0), 0.018 * L, fc="white", ec=ROD, lw=1.0, zorder=6))
     draw_ground(ax, np.zeros(2), 0.06 * L, 0.0)
     ax.annotate("A", (0.0, 0.04 * L), ha="center", va="bottom")
-    ax.annotate("P (coaxial with BC)", (1.02 * L, -0.06 * L), ha="center", va="top",
+    # B (the hinge) and C (the loaded end) on the straight state, below the bars
+    A0, B0, C0 = (np.array(p) for p in bars["points"][0])
+    ax.annotate("B", B0 + np.array([0.0, -0.05 * L]), ha="center", va="top")
+    ax.annotate("C", C0 + np.array([0.0, -0.05 * L]), ha="center", va="top")
+    ax.annotate("P (coaxial with BC)", (1.02 * L, -0.12 * L), ha="center", va="top",
                 fontsize=8)
     ax.set_aspect("equal")
     ax.set_xlim(-0.2 * L, 1.35 * L)

@@ -208,7 +208,7 @@ def plot_fig04(data: dict[str, Any]) -> Figure:
         ax_t = fig.add_subplot(sub[:, ncol + 1])
         t_d = np.array(case["t_dense"])
         a_d = np.degrees(np.array(case["alpha_dense"]))
-        for j, (lab, col) in enumerate(((r"$\alpha_1$", "C0"), (r"$\alpha_2$", "C3"))):
+        for j, (lab, col) in enumerate(((r"$\alpha_1$", "C0"), (r"$\alpha_2$", "C2"))):
             ax_t.plot(t_d, a_d[:, j], color=col, lw=1.2, label=lab)
             ax_t.plot(times, alpha[:, j], "o", ms=2.5, color=col)
         ax_t.plot([], [], "o", ms=2.5, color="0.3", label="instants drawn")
