@@ -54,6 +54,18 @@ def test_every_study_contributes_runs():
     assert "| failed |" in work_precision_markdown(runs, [])
 
 
+def test_every_family_says_what_varies_along_its_lines():
+    """The figure titles each panel with what its lines sweep (a line of the damped flutter
+    load crosses viscosities, not costs): every family the scenes produce has its entry."""
+    from flutterfriction.benchmarks import FAMILY_SETTINGS
+    from flutterfriction.scenes import ziegler_nonlinear
+
+    source = open(ziegler_nonlinear.__file__, encoding="utf-8").read()
+    pendulum = {f for f in FAMILY_SETTINGS if f.startswith("pendulum")}
+    assert all(f'"family": "{f}"' in source for f in pendulum)
+    assert {r["family"] for r in gather_runs(*_studies())} <= set(FAMILY_SETTINGS)
+
+
 def test_benchmark_files_are_read_latest_line_and_sorted(tmp_path):
     header = "s\th:m:s\tmax_rss\tmax_vms\tmax_uss\tmax_pss\tio_in\tio_out\tmean_load\tcpu_time\n"
     (tmp_path / "a.solve.tsv").write_text(header + "9.0\t0:00:09\t100\t1\t1\t1\t0\t0\t50\t4.5\n"

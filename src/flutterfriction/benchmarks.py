@@ -24,6 +24,19 @@ STUDIES = {"pendulum": "pendulum_work_precision", "rod_fe": "rod_fe_convergence"
            "rod_integrators": "beck_work_precision", "rod_cycle": "beck_limit_cycle"}
 
 
+#: What each family's ``setting`` is, i.e. what varies along each line of the figure (a line
+#: of the damped flutter load is not a work-precision curve: it crosses problems of smaller
+#: and smaller viscosity, where the eigenvalue method loses digits and Routh does not).
+FAMILY_SETTINGS = {
+    "pendulum flutter load": "one run per method",
+    "pendulum damped flutter load": "the hinge viscosity c (1e-2 to 1e-10 N m s; not a cost)",
+    "pendulum limit cycle (one period)": "the integrator's rtol",
+    "rod flutter load: finite elements vs exact": "the number of elements",
+    "rod limit cycle (one period)": "rtol (adaptive) or the step (generalized-α)",
+    "rod limit cycle: mesh (vs finest)": "the number of elements (chained)",
+}
+
+
 def _row(family: str, method: str, setting: Any, error: float | None, wall_s: float | None
          ) -> dict[str, Any]:
     return {"family": family, "method": method, "setting": setting,

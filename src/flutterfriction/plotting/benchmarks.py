@@ -8,6 +8,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.figure import Figure
 
+from flutterfriction.benchmarks import FAMILY_SETTINGS
 from flutterfriction.plotting import tidy_log_axis
 
 FLOOR = 1e-17  # errors of exactly 0 (agreement to the last bit) are drawn here
@@ -21,13 +22,16 @@ def plot_work_precision(runs: list[dict[str, Any]]) -> Figure:
     for ax, family in zip(axes.flat, families, strict=False):
         rows = [r for r in runs if r["family"] == family and r["error"] is not None]
         for k, method in enumerate(dict.fromkeys(r["method"] for r in rows)):
-            pts = sorted((r["wall_s"], max(r["error"], FLOOR)) for r in rows
-                         if r["method"] == method)
-            ax.loglog(*zip(*pts, strict=True), "o-", ms=3.5, lw=1, color=f"C{k % 10}",
-                      label=method)
+            # In the order of the setting (what varies along the line), else of the cost.
+            mine = sorted((r for r in rows if r["method"] == method),
+                          key=lambda r: (r["setting"] is None, r["setting"] or 0.0,
+                                         r["wall_s"]))
+            ax.loglog([r["wall_s"] for r in mine], [max(r["error"], FLOOR) for r in mine],
+                      "o-", ms=3.5, lw=1, color=f"C{k % 10}", label=method)
         tidy_log_axis(ax.xaxis, [r["wall_s"] for r in rows])
         tidy_log_axis(ax.yaxis, [max(r["error"], FLOOR) for r in rows])
-        ax.set_title(family, fontsize=8)
+        sweep = FAMILY_SETTINGS.get(family)
+        ax.set_title(family + (f"\nalong each line: {sweep}" if sweep else ""), fontsize=8)
         ax.set_xlabel("wall time [s]")
         ax.set_ylabel("relative error [-]")
         ax.legend(fontsize=6)
