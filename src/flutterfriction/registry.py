@@ -223,14 +223,6 @@ _ENTRIES = [
     Scene("fig14", ziegler_nonlinear.fig14, "limit_cycles", {"fig14": _fig(
         "ziegler_nonlinear:plot_fig14",
         "Fig. 14: angular velocities against rotations on the way to the limit cycle.")}),
-    Scene("fig20", ziegler_nonlinear.fig20, "limit_cycles", {"fig20": _fig(
-        "ziegler_nonlinear:plot_fig20",
-        "Fig. 20: transverse acceleration of the loaded end, linear (blows up) against "
-        "nonlinear (limit cycle), 6 s and a 1.5 s detail.")}),
-    Scene("fig21", ziegler_nonlinear.fig21, "limit_cycles", {"fig21": _fig(
-        "ziegler_nonlinear:plot_fig21",
-        "Fig. 21: the path of the loaded end and the scratch it leaves on the moving "
-        "plate.")}),
     Scene("beck_limit_cycle", rod.beck_limit_cycle, "limit_cycles", {
         "fig15": _fig("rod:plot_fig15",
                       "Fig. 15: the nonlinear Beck rod of list (119) at P = 5.5 N: the tip's "
@@ -239,6 +231,14 @@ _ENTRIES = [
         "fig16": _fig("rod:plot_fig16", "Fig. 16: tip velocities against tip displacements."),
         "fig17": _fig("rod:plot_fig17",
                       "Fig. 17: the tip's lateral against axial velocity.")}, slow=True),
+    Scene("fig20", ziegler_nonlinear.fig20, "limit_cycles", {"fig20": _fig(
+        "ziegler_nonlinear:plot_fig20",
+        "Fig. 20: transverse acceleration of the loaded end, linear (blows up) against "
+        "nonlinear (limit cycle), 6 s and a 1.5 s detail.")}),
+    Scene("fig21", ziegler_nonlinear.fig21, "limit_cycles", {"fig21": _fig(
+        "ziegler_nonlinear:plot_fig21",
+        "Fig. 21: the path of the loaded end and the scratch it leaves on the moving "
+        "plate.")}),
     Scene("limit_cycle_amplitude", ziegler_nonlinear.limit_cycle_amplitude, "limit_cycles", {
         "limit_cycle_amplitude": _fig(
             "ziegler_nonlinear:plot_limit_cycle_amplitude",
