@@ -85,7 +85,36 @@ def clear_interrupted_outputs(metadata=Path(".snakemake") / "incomplete"):
             print(f"removed {output}: its job was interrupted; it will be rebuilt", file=sys.stderr)
 
 
-clear_interrupted_outputs()
+def may_clear_interrupted_outputs(locks=Path(".snakemake") / "locks"):
+    """Only a real run of the main process, with no other run holding the directory: every
+    Snakemake call reads this file, and clearing there removed the outputs of jobs still
+    running (a dry run beside a run, a second run refused the lock, a cluster job's own
+    Snakemake process; found by an outside audit). After a hard kill the README's recipe
+    unlocks first, so the next run still resumes."""
+    short = [a[1:] for a in sys.argv[1:] if a.startswith("-") and not a.startswith("--")]
+    dry = any(
+        a in ("--dry-run", "--dryrun", "--lint", "--summary", "--detailed-summary")
+        for a in sys.argv[1:]
+    ) or any(a.isalpha() and "n" in a for a in short)
+    held = locks.is_dir() and any(locks.iterdir())
+    return workflow.is_main_process and not dry and not held
+
+
+def clear_paper_pdfs():
+    """The quick preset draws no PDF: a paper run's PDFs left beside the quick PNGs would go
+    stale as soon as a parameter changes (an outside audit took eq47.pdf of list 47 next to
+    an eq47.png of another pendulum). Removed; the next paper run draws them again."""
+    for pdf in [*Path("results/figures").glob("*.pdf"), Path(WORK_PRECISION_PDF)]:
+        if pdf.is_file():
+            pdf.unlink()
+            print(f"removed {pdf}: the quick preset draws PNG only", file=sys.stderr)
+
+
+WORK_PRECISION_PDF = "results/benchmarks/work_precision.pdf"
+if may_clear_interrupted_outputs():
+    clear_interrupted_outputs()
+    if DRAFT:
+        clear_paper_pdfs()
 
 
 # Functions of the rule files (Snakemake's lint wants functions and rules apart).

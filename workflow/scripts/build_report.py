@@ -25,6 +25,9 @@ from flutterfriction.report import (
 )
 
 log_job_output(snakemake.log[0])  # this job's output goes to its log file
+# A report being rebuilt invalidates the last verdict: were this job to fail, the old
+# passed.txt must not go on saying that everything passes (an outside audit saw it do so).
+Path(snakemake.params.passed).unlink(missing_ok=True)
 
 reference = load_reference(snakemake.input.reference)
 data = load_scene_data(snakemake.input.data)
