@@ -156,7 +156,9 @@ show("fig12")
 # ## Finite elements against the exact function
 #
 # The FE flutter load converges at the rate $h^4$ expected of cubic Hermite elements; with 32
-# elements it is within ~1e-6 of the exact value, at a cost of tens of milliseconds.
+# elements it is within ~1e-6 (relative) of the exact value, at a cost of a few tenths of a
+# second (this run's errors and times are in the figure and the work-precision table); the
+# damped case reaches a floor of ~4e-9 from 32 elements on.
 
 # %%
 show("rod_fe_convergence")

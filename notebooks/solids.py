@@ -99,9 +99,10 @@ display(Markdown(quantities_table(scene("solids_statements")["quantities"], digi
 # (a) For the nonassociative case, the band of $g$ in which each direction of a principal
 # plane flutters, above the localization modulus as the theory requires. (b) A
 # deviatoric-associative Drucker–Prager material at the coalescence modulus (194) cannot flutter
-# with isotropic elasticity; adding a small generic elastic anisotropy (a random tensor with the
-# major and minor symmetries, size ε relative to μ) makes a thin set of directions near the
-# coalescence direction flutter; (c) that set grows with ε (Bigoni and Loret 1999).
+# with isotropic elasticity; adding a generic elastic anisotropy (a random tensor with the
+# major and minor symmetries, size ε relative to μ) of ε ≳ 0.05 (none at 0.02 on this grid)
+# makes a thin set of directions near the coalescence direction flutter (0.015–0.2 % of the
+# patch); (c) that set grows with ε (Bigoni and Loret 1999).
 
 # %%
 show("flutter_map", width=900)

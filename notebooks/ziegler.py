@@ -117,8 +117,9 @@ show("eq47")
 
 # %% [markdown]
 # The half-width of the flutter interval is $2\sqrt{k a}/\beta_2$; the text prints
-# $2\sqrt{k}\,a/\beta_2$ in eqs. (37), (39), (41). The two agree whenever $k = k_1/k_2 = 1$, as in
-# all the chapter's examples, so the misprint is only visible for unequal springs:
+# $2\sqrt{k}\,a/\beta_2$ in eqs. (37), (39), (41). The two agree only when $a = 1$, whatever $k$:
+# for list (47) ($k = 1$, $a = 28/9$) the printed form would give 3.28 N and 10.33 N instead of
+# the chapter's own 4.8 N and 8.8 N (Fig. 3 states both). Below, the check with $k_1 = 2k_2$:
 
 # %%
 e = scene("errata_ziegler")["errata"]
@@ -144,9 +145,9 @@ show("eq48")
 # The linear equations (11) are solved exactly, $\mathbf{x}(t) = e^{\mathbf{A}t}\mathbf{x}_0$,
 # at the drawn instants (no time stepping), from $\alpha_1 = \alpha_2 = \pm 0.5°$ at rest, for
 # $P$ = 6.8 N (flutter) and 15.4 N (divergence). The drawings use the exact rigid-rod
-# kinematics with the linear solution's angles: past a few tens of degrees (after about 0.3 s
-# in flutter, 0.12 s in divergence) the linear model is outside its range of validity, which
-# is the point of §2.9.
+# kinematics with the linear solution's angles: past a few tens of degrees (20° after about
+# 0.37 s in flutter, 0.15 s in divergence) the linear model is outside its range of validity,
+# which is the point of §2.9.
 
 # %%
 show("fig04", width=900)

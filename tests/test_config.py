@@ -379,3 +379,11 @@ def test_the_workflow_refuses_duplicate_keys_and_model_ranges_before_any_job(tmp
     run = _dry_run(tmp_path)
     out = run.stdout + run.stderr
     assert run.returncode != 0 and "key 'fidelity' given twice at line" in out
+
+
+def test_scenes_that_are_not_a_mapping_are_one_line(config):
+    """``--config scenes=foo`` (or ``scenes: foo`` in a file) was an AttributeError traceback
+    from the list expansion (an outside audit); now the schema's one line."""
+    bad = dict(config, scenes="foo")
+    assert validate_config(bad, SCHEMA_PATH, scenes=SCENES) == [
+        "config: scenes: 'foo' is not of type 'object'"]

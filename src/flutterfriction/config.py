@@ -87,7 +87,10 @@ def expand_parameter_lists(config: dict[str, Any]) -> list[str]:
     from flutterfriction.parameters import NAMED_KEYS, parameter_list
 
     problems = []
-    for scene, section in (config.get("scenes") or {}).items():
+    scenes = config.get("scenes") or {}
+    if not isinstance(scenes, dict):  # the schema names it (a mapping of scene sections)
+        return problems
+    for scene, section in scenes.items():
         for key, kind in NAMED_KEYS.items():
             if isinstance(section, dict) and isinstance(section.get(key), str):
                 try:
@@ -415,7 +418,7 @@ def validate_config(config: dict[str, Any], schema_path: str | Path,
     unresolved = {line.split(": ", 2)[1] for line in problems}
     problems += [line for line in _schema_problems(config, schema, "config: ")
                  if line.split(": ", 2)[1] not in unresolved]
-    if scenes is not None:
+    if scenes is not None and isinstance(config.get("scenes") or {}, dict):
         known = set(scenes)
         problems += [f"config: scenes.{name}: no such scene; registered scenes: {sorted(known)}"
                      for name in sorted(set(config.get("scenes") or {}) - known)]

@@ -56,7 +56,8 @@ table { border-collapse: collapse; font-size: .8em; width: 100%; }
 th, td { border: 1px solid #ddd; padding: .25em .4em; vertical-align: top; text-align: left; }
 th { background: #f3f3f3; position: sticky; top: 0; }
 tr.pass td.status { color: #176117; } tr.fail td { background: #fde2e2; }
-tr.erratum td { background: #fff6d6; } td.num { font-family: monospace; font-size: 1.1em; white-space: nowrap; }
+tr.erratum td { background: #fff6d6; }
+td.num { font-family: monospace; font-size: 1.1em; white-space: nowrap; }
 .summary { font-size: 1.1em; padding: .6em; background: #eef6ee; border-radius: 4px; }
 .summary.bad { background: #fde2e2; }
 details { margin: .3em 0; } .wide { overflow-x: auto; }
