@@ -4,6 +4,7 @@ reproduce every quoted number; and the check itself can fail."""
 from __future__ import annotations
 
 import copy
+import json
 
 import pytest
 from conftest import ROOT
@@ -262,3 +263,47 @@ def test_an_empty_reference_and_a_quoted_number_as_a_string_are_refused():
         "word, with no tolerance)"]
     entry = {**_one_quantity(), "quoted": "flutter"}  # a categorical statement stays allowed
     assert reference_problems({"quantities": [entry], "errata": []}) == []
+
+
+def test_recorded_parameters_are_the_shipped_configuration():
+    """workflow/reference_parameters.json records the parameters every quoted value belongs
+    to; it must be what the shipped configuration resolves, for every preset (after a
+    deliberate change of a scene's parameters, re-record: python -m flutterfriction.reference
+    and re-verify that scene's reference entries)."""
+    from flutterfriction.config import load_config
+    from flutterfriction.reference import load_parameters, parameter_changes, record_parameters
+
+    shipped = record_parameters(load_config(ROOT / "workflow" / "config.yaml"))
+    assert parameter_changes(load_parameters(ROOT / "workflow" / "reference_parameters.json"),
+                             shipped) == []
+
+
+def test_a_scene_with_other_parameters_is_not_applicable_not_failed():
+    """A researcher's own pendulum in eq47 (k1 = 0.25): the chapter's 4.8038 N does not apply,
+    so the entry is 'not applicable', naming the changed key, and does not fail the run (it
+    failed it, unexplained: an outside audit); the scenes left alone are still checked."""
+    from flutterfriction.reference import (
+        NOT_APPLICABLE,
+        failed,
+        load_parameters,
+        load_reference,
+        run_check,
+    )
+
+    recorded = load_parameters(ROOT / "workflow" / "reference_parameters.json")
+    reference = load_reference(ROOT / "workflow" / "reference.yaml")
+    entry = next(e for e in reference["quantities"] if e["id"] == "eq47_P_flu")
+    params = json.loads(json.dumps(recorded["paper"]["eq47"]))
+    params["pendulum"]["k1"] = 0.25
+    data = {"eq47": {"scene": "eq47", "params": params,
+                     "quantities": {entry["key"]: {"value": 4.7476, "independent": 4.7476,
+                                                   "method": "m", "independent_method": "i",
+                                                   "unit": "N"}}}}
+    rows = run_check({"quantities": [entry]}, data, "paper", recorded)
+    assert rows[0].status == NOT_APPLICABLE and "pendulum.k1: 0.189 -> 0.25" in rows[0].note
+    assert rows[0].reproduced == 4.7476  # your own value, shown
+    assert failed(rows) == []
+    # the same data with the chapter's parameters: checked, and 4.7476 N fails
+    data["eq47"]["params"] = recorded["paper"]["eq47"]
+    assert [r.status for r in run_check({"quantities": [entry]}, data, "paper", recorded)] == [
+        "FAIL"]

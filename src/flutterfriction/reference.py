@@ -17,6 +17,12 @@ One normalised error is used throughout (as scipy's ODE tests do):
 ``e = |x - ref| / (atol + rtol |ref|)``; a comparison passes when ``e <= 1``.
 An erratum is *verified* when the corrected form agrees with the independent computation and
 the printed form does not.
+
+Each quoted value belongs to the chapter's parameters: ``workflow/reference_parameters.json``
+records, per preset, the parameters of every scene as the shipped configuration resolves them
+(:func:`record_parameters`; a test keeps it equal to the shipped configuration). A scene run
+with other parameters (a researcher's own pendulum, rod or soil) is not the chapter's: its
+entries are reported *not applicable*, naming the changed keys, instead of failing the run.
 """
 
 from __future__ import annotations
@@ -49,7 +55,7 @@ class CheckRow:
     independent_method: str
     error: float | None  # normalised error vs the quoted value (or printed vs independent)
     agreement: float | None  # normalised error primary vs independent (or corrected vs indep.)
-    status: str  # "pass" | "FAIL" | "verified erratum" | "UNVERIFIED erratum"
+    status: str  # "pass" | "FAIL" | "verified erratum" | "UNVERIFIED erratum" | NOT_APPLICABLE
     note: str = ""
 
     @property
@@ -59,6 +65,48 @@ class CheckRow:
 
 
 QUICK_NOTE = "quick-preset tolerance"
+NOT_APPLICABLE = "not applicable"
+#: The parameters every quoted value belongs to (see the module's docstring).
+REFERENCE_PARAMETERS = Path("workflow/reference_parameters.json")
+
+
+def record_parameters(config: Mapping[str, Any]) -> dict[str, dict[str, Any]]:
+    """``{preset: {scene: parameters}}`` as ``config`` (loaded, chapter lists resolved)
+    resolves them for each preset: what the workflow's solve jobs record in the data."""
+    from flutterfriction.config import scene_params
+
+    out = {}
+    for fidelity in sorted(config.get("fidelity_presets") or {}):
+        resolved = dict(config, fidelity=fidelity)
+        out[fidelity] = {s: scene_params(resolved, s) for s in sorted(config.get("scenes", {}))}
+    return out
+
+
+def parameter_changes(recorded: Any, used: Any, where: str = "") -> list[str]:
+    """The keys where ``used`` differs from ``recorded``, one short line each."""
+    if isinstance(recorded, dict) and isinstance(used, dict):
+        return [line for k in sorted(set(recorded) | set(used))
+                for line in parameter_changes(recorded.get(k), used.get(k),
+                                              f"{where}.{k}" if where else str(k))]
+    return [] if recorded == used else [f"{where or '(all)'}: {recorded!r} -> {used!r}"]
+
+
+def _not_applicable(entry: dict[str, Any], changes: list[str],
+                    data: Mapping[str, Any]) -> CheckRow:
+    """The entry's row for a scene run with other parameters: the values this run computed
+    (your own), no comparison, the changed keys named."""
+    shown = "; ".join(changes[:3]) + (f"; {len(changes) - 3} more" if len(changes) > 3 else "")
+    kind = "quantities" if "quoted" in entry else "errata"
+    q = (data[entry["scene"]].get(kind) or {}).get(entry["key"]) or {}
+    return CheckRow(id=entry["id"], kind="quantity" if kind == "quantities" else "erratum",
+                    source=entry["source"], quoted=entry.get("quoted", entry.get("printed")),
+                    unit=entry.get("unit", q.get("unit", "")),
+                    reproduced=q.get("value", q.get("corrected")),
+                    independent=q.get("independent"), method=q.get("method", ""),
+                    independent_method=q.get("independent_method", ""), error=None,
+                    agreement=None, status=NOT_APPLICABLE,
+                    note=f"scene {entry['scene']!r} ran with other parameters than the "
+                         f"chapter's: {shown}")
 
 
 def normalised_error(x: float, ref: float, tol: Mapping[str, float]) -> float:
@@ -255,16 +303,41 @@ def _check_erratum(entry: dict[str, Any], data: Mapping[str, Any]) -> CheckRow:
 
 
 def run_check(reference: dict[str, Any], data: Mapping[str, Any],
-              fidelity: str = "paper") -> list[CheckRow]:
+              fidelity: str = "paper",
+              parameters: Mapping[str, Any] | None = None) -> list[CheckRow]:
     """Compare every reference entry with the scene data (``{scene: data}``) at the
-    tolerances of ``fidelity`` (an entry's ``quick`` block applies at ``"quick"`` only)."""
-    rows = [_check_quantity(e, data, fidelity) for e in reference.get("quantities", [])]
-    rows += [_check_erratum(e, data) for e in reference.get("errata", [])]
+    tolerances of ``fidelity`` (an entry's ``quick`` block applies at ``"quick"`` only).
+    With ``parameters`` (:func:`record_parameters`' record), an entry whose scene ran with
+    other parameters than those recorded for ``fidelity`` is not applicable."""
+    recorded = (parameters or {}).get(fidelity, {})
+
+    def changes(entry: dict[str, Any]) -> list[str]:
+        scene = entry["scene"]
+        if scene not in recorded or scene not in data or "params" not in data[scene]:
+            return []
+        return parameter_changes(recorded[scene], data[scene]["params"])
+
+    rows = []
+    for kind, check in (("quantities", lambda e: _check_quantity(e, data, fidelity)),
+                        ("errata", lambda e: _check_erratum(e, data))):
+        for e in reference.get(kind, []):
+            moved = changes(e)
+            rows.append(_not_applicable(e, moved, data) if moved else check(e))
     return rows
 
 
 def failed(rows: list[CheckRow]) -> list[CheckRow]:
-    return [r for r in rows if r.status not in ("pass", "verified erratum")]
+    return [r for r in rows if r.status not in ("pass", "verified erratum", NOT_APPLICABLE)]
+
+
+def not_applicable(rows: list[CheckRow]) -> list[CheckRow]:
+    return [r for r in rows if r.status == NOT_APPLICABLE]
+
+
+def load_parameters(path: str | Path = REFERENCE_PARAMETERS) -> dict[str, Any]:
+    """The recorded parameters (:data:`REFERENCE_PARAMETERS`)."""
+    with open(path, encoding="utf-8") as fh:
+        return json.load(fh)
 
 
 def _fmt(x: Any) -> str:
@@ -276,13 +349,19 @@ def _fmt(x: Any) -> str:
 def summary_markdown(rows: list[CheckRow]) -> str:
     bad = failed(rows)
     loose = sum(r.note == QUICK_NOTE for r in rows)
+    skipped = not_applicable(rows)
+    checked = len(rows) - len(skipped)
     lines = [
         "# Reference check",
         "",
-        f"{len(rows) - len(bad)} of {len(rows)} entries pass "
-        f"({sum(r.kind == 'erratum' for r in rows)} errata verified against an independent "
-        "computation)." if not bad else f"**{len(bad)} of {len(rows)} entries FAIL.**",
+        f"{checked - len(bad)} of {checked} entries pass "
+        f"({sum(r.kind == 'erratum' and r.status != NOT_APPLICABLE for r in rows)} errata "
+        "verified against an independent computation)." if not bad
+        else f"**{len(bad)} of {checked} entries FAIL.**",
         "",
+        *([f"{len(skipped)} entries are not applicable: their scenes ran with other "
+           "parameters than the chapter's (your own; the rows name the changed keys), so the "
+           "chapter's values do not apply to them.", ""] if skipped else []),
         "Normalised error e = |x - ref| / (atol + rtol |ref|), pass when e <= 1: `error` compares "
         "the reproduced value with the quoted one, `agreement` the primary with the "
         "independent method. For an erratum, `error` is printed-vs-independent (must be > 1) and "
@@ -306,6 +385,7 @@ def write_summary(rows: list[CheckRow], json_path: str | Path, md_path: str | Pa
     """The check summary (JSON and markdown); with ``figure_checks`` (figure -> offences,
     :mod:`flutterfriction.figure_offences`), the figure check's result too."""
     summary: dict[str, Any] = {"n_entries": len(rows), "n_failed": len(failed(rows)),
+                               "n_not_applicable": len(not_applicable(rows)),
                                "entries": [asdict(r) for r in rows]}
     md = summary_markdown(rows)
     if figure_checks is not None:
@@ -323,3 +403,14 @@ def load_scene_data(paths: list[str | Path]) -> dict[str, Any]:
             d = json.load(fh)
         out[d["scene"]] = d
     return out
+
+
+if __name__ == "__main__":  # python -m flutterfriction.reference: re-record the parameters
+    import sys
+
+    from flutterfriction.config import load_config
+    from flutterfriction.io import write_json as _write
+
+    _write(REFERENCE_PARAMETERS, record_parameters(load_config("workflow/config.yaml")))
+    print(f"recorded the parameters of every scene and preset in {REFERENCE_PARAMETERS}",
+          file=sys.stderr)

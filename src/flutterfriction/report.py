@@ -25,7 +25,7 @@ from flutterfriction.config import safe_load
 from flutterfriction.errors import ParameterError
 from flutterfriction.figure_offences import RULES as FIGURE_RULES
 from flutterfriction.figure_offences import Offence
-from flutterfriction.reference import CheckRow
+from flutterfriction.reference import NOT_APPLICABLE, CheckRow
 
 STYLE = """
 body { font-family: system-ui, sans-serif; max-width: 1200px; margin: 2em auto; padding: 0 1em;
@@ -56,6 +56,7 @@ table { border-collapse: collapse; font-size: .8em; width: 100%; }
 th, td { border: 1px solid #ddd; padding: .25em .4em; vertical-align: top; text-align: left; }
 th { background: #f3f3f3; position: sticky; top: 0; }
 tr.pass td.status { color: #176117; } tr.fail td { background: #fde2e2; }
+tr.na td { color: #666; } .summary.na { background: #eeeeee; }
 tr.erratum td { background: #fff6d6; }
 td.num { font-family: monospace; font-size: 1.1em; white-space: nowrap; }
 .summary { font-size: 1.1em; padding: .6em; background: #eef6ee; border-radius: 4px; }
@@ -118,15 +119,23 @@ def _cell(x: Any, unit: str = "") -> str:
     return f"<td>{html.escape(str(x))}{html.escape(unit)}</td>"
 
 
+def _row_class(r: CheckRow) -> str:
+    """A check row's table class: erratum, pass, not applicable (another scene's parameters)
+    or fail."""
+    if r.status == NOT_APPLICABLE:
+        return "na"
+    if r.status not in ("pass", "verified erratum"):
+        return "fail"
+    return "erratum" if r.kind == "erratum" else "pass"
+
+
 def _check_table(rows: Iterable[CheckRow], errata: Mapping[str, Mapping[str, Any]]) -> str:
     out = ['<div class="wide"><table><thead><tr><th>id</th><th>source</th><th>quoted</th>'
            "<th>reproduced</th>"
            "<th>method</th><th>independent</th><th>independent method</th>"
            "<th>error / agreement</th><th>status</th></tr></thead><tbody>"]
     for r in rows:
-        cls = "erratum" if r.kind == "erratum" else ("pass" if r.status == "pass" else "fail")
-        if r.status not in ("pass", "verified erratum"):
-            cls = "fail"
+        cls = _row_class(r)
         err = "" if r.error is None else f"{r.error:.3g}"
         agr = "" if r.agreement is None else f"{r.agreement:.3g}"
         ident = f'<a id="{html.escape(r.id)}"></a>{html.escape(r.id)}'
@@ -381,9 +390,7 @@ def _figure_checks(rows: list[CheckRow]) -> str:
     out = ["<table><thead><tr><th>checked value</th><th>source</th><th>quoted</th>"
            "<th>reproduced</th><th>independent</th><th>status</th></tr></thead><tbody>"]
     for r in rows:
-        cls = "erratum" if r.kind == "erratum" else ("pass" if r.status == "pass" else "fail")
-        if r.status not in ("pass", "verified erratum"):
-            cls = "fail"
+        cls = _row_class(r)
         unit = f" {r.unit}" if r.unit and r.kind == "quantity" else ""
         out.append(f'<tr class="{cls}"><td><a href="#{html.escape(r.id)}">{html.escape(r.id)}'
                    f"</a></td><td>{html.escape(r.source)}</td>"
@@ -475,10 +482,12 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
         if r.id in row_scene:
             rows_of.setdefault(row_scene[r.id], []).append(r)
     shown_checks: dict[str, str] = {}  # scene -> the first figure that shows its checks
-    n_q = sum(r.kind == "quantity" for r in rows)
-    n_pass = sum(r.kind == "quantity" and r.status == "pass" for r in rows)
-    n_err = sum(r.kind == "erratum" for r in rows)
-    n_ver = sum(r.status == "verified erratum" for r in rows)
+    applicable = [r for r in rows if r.status != NOT_APPLICABLE]
+    n_na = len(rows) - len(applicable)
+    n_q = sum(r.kind == "quantity" for r in applicable)
+    n_pass = sum(r.kind == "quantity" and r.status == "pass" for r in applicable)
+    n_err = sum(r.kind == "erratum" for r in applicable)
+    n_ver = sum(r.status == "verified erratum" for r in applicable)
     ok = n_pass == n_q and n_ver == n_err
     title = html.escape(layout.get("title", "flutterfriction"))
     parts = [f"<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\"><title>{title}"
@@ -494,6 +503,10 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
              'an independent computation. <a href="#check">Check table</a> · '
              '<a href="../checks/summary.md">summary.md</a> · '
              '<a href="../checks/summary.json">summary.json</a></p>',
+             *([f'<p class="summary na"><b>{n_na} checked values are not applicable</b>: '
+                "their scenes ran with other parameters than the chapter's (your own), so the "
+                "chapter's values do not apply; the check table names the changed keys.</p>"]
+               if n_na else []),
              *([_figure_check_line(figure_checks)] if figure_checks is not None else [])]
     if extra_links:
         parts.append("<p>" + " · ".join(f'<a href="{html.escape(h)}">{html.escape(t)}</a>'

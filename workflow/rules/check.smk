@@ -50,6 +50,8 @@ rule report:
     input:
         code=job_sources("flutterfriction.reference", "flutterfriction.report"),
         reference="workflow/reference.yaml",
+        # the parameters each quoted value belongs to (another scene's: not applicable)
+        reference_parameters="workflow/reference_parameters.json",
         layout="workflow/report.yaml",
         layout_schema="workflow/schemas/report.schema.yaml",
         coverage="workflow/coverage.yaml",

@@ -8,6 +8,7 @@ from flutterfriction.figure_offences import figure_problems, load_figure_checks
 from flutterfriction.io import log_job_output, read_json, write_json, write_text
 from flutterfriction.reference import (
     failed,
+    load_parameters,
     load_reference,
     load_scene_data,
     run_check,
@@ -31,7 +32,8 @@ Path(snakemake.params.passed).unlink(missing_ok=True)
 
 reference = load_reference(snakemake.input.reference)
 data = load_scene_data(snakemake.input.data)
-rows = run_check(reference, data, snakemake.params.fidelity)
+rows = run_check(reference, data, snakemake.params.fidelity,
+                 load_parameters(snakemake.input.reference_parameters))
 figure_checks = load_figure_checks(snakemake.input.figure_checks)
 # first: the report links it
 write_summary(rows, snakemake.output.json, snakemake.output.md, figure_checks=figure_checks)

@@ -15,7 +15,11 @@ if problems:
     sys.exit("the check failed (see results/reports/index.html and results/checks/summary.md):"
              "\n  " + "\n  ".join(problems))
 figures = summary.get("figures", {"n_figures": 0})
+skipped = summary.get("n_not_applicable", 0)
+checked = summary["n_entries"] - skipped
 write_text(snakemake.output[0],
-           f"{summary['n_entries'] - summary['n_failed']} of {summary['n_entries']} entries "
-           f"pass; {figures['n_figures']} figures pass the figure check; every figure shown, "
+           f"{checked - summary['n_failed']} of {checked} entries pass"
+           + (f" ({skipped} not applicable: their scenes ran with other parameters than the "
+              "chapter's)" if skipped else "")
+           + f"; {figures['n_figures']} figures pass the figure check; every figure shown, "
            "every report link resolves\n")
