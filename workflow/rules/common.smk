@@ -110,9 +110,20 @@ def clear_paper_pdfs():
             print(f"removed {pdf}: the quick preset draws PNG only", file=sys.stderr)
 
 
+def clear_temporary_files(root=Path("results")):
+    """The temporary files of atomic writes (flutterfriction.io: ``.<name>.<random><suffix>``
+    beside the output) that a killed job left behind (an outside audit found a 0-byte
+    ``.fig07.png.10anujk6.png``): never mistaken for outputs, but litter."""
+    for tmp in root.rglob(".*.*"):
+        if tmp.is_file():
+            tmp.unlink()
+            print(f"removed {tmp}: a killed job's temporary file", file=sys.stderr)
+
+
 WORK_PRECISION_PDF = "results/benchmarks/work_precision.pdf"
 if may_clear_interrupted_outputs():
     clear_interrupted_outputs()
+    clear_temporary_files()
     if DRAFT:
         clear_paper_pdfs()
 
