@@ -307,3 +307,22 @@ def test_a_scene_with_other_parameters_is_not_applicable_not_failed():
     data["eq47"]["params"] = recorded["paper"]["eq47"]
     assert [r.status for r in run_check({"quantities": [entry]}, data, "paper", recorded)] == [
         "FAIL"]
+
+
+def test_figures_name_a_chapter_list_only_for_its_parameters():
+    """A figure of a researcher's own pendulum or rod must not say 'list (47)' (an outside
+    audit: eq47's title did): the recorded chapter parameters give the list's name, others
+    'your own pendulum (...)' with the values."""
+    from flutterfriction.plotting import list47, list119
+    from flutterfriction.reference import load_parameters
+
+    recorded = load_parameters(ROOT / "workflow" / "reference_parameters.json")["paper"]
+    assert list47({"params": recorded["eq47"]}) == "list (47)"
+    assert list119({"params": recorded["fig11"]}) == "list (119)"
+    own = json.loads(json.dumps(recorded["eq47"]))
+    own["pendulum"]["k1"] = 0.25
+    assert list47({"params": own}).startswith("your own pendulum (")
+    assert "k1 = 0.25 N m" in list47({"params": own})
+    rod = json.loads(json.dumps(recorded["fig11"]))
+    rod["rod"]["tip_mass"] = 0.02  # a key list (119) does not have, not zero
+    assert list119({"params": rod}).startswith("your own rod (")

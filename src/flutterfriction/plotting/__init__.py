@@ -5,6 +5,7 @@ from __future__ import annotations
 import os
 import time
 from pathlib import Path
+from typing import Any
 
 import matplotlib
 import numpy as np
@@ -50,6 +51,44 @@ def pendulum_text(pendulum: dict[str, float] | None) -> str:
         else:
             parts.append(f"{name} = {value:g} {unit}")
     return ", ".join(parts)
+
+
+def chapter_list(data: dict[str, Any], key: str, name: str, shown: str) -> str:
+    """``shown`` (e.g. ``"list (47)"``) when the data's parameters ``key`` are the chapter's
+    list ``name`` (:data:`flutterfriction.parameters.LISTS`), else ``"your own pendulum
+    (l1 = ...)"``: a figure of a researcher's own parameters must not say it is the chapter's
+    (an outside audit). Data without parameters (drawn by hand): ``shown``."""
+    from flutterfriction.parameters import LISTS, parameter_list
+
+    used = (data.get("params") or {}).get(key)
+    if not isinstance(used, dict):
+        return shown
+    ref = parameter_list(name)
+    same = all(used.get(k) == v for k, v in ref.items()) and all(
+        not used[k] for k in set(used) - set(ref))  # an extra key (tip mass, kappa) set to 0
+    if same:
+        return shown
+    kind = LISTS[name].kind
+    values = (pendulum_text(used) if kind == "pendulum"
+              else ", ".join(f"{k} = {v:g}" for k, v in sorted(used.items())
+                             if isinstance(v, int | float)))
+    return f"your own {kind} ({values})"
+
+
+def list47(data: dict[str, Any], shown: str = "list (47)") -> str:
+    """:func:`chapter_list` for the pendulum of list (47)."""
+    return chapter_list(data, "pendulum", "list47", shown)
+
+
+def list47_viscous(data: dict[str, Any],
+                   shown: str = "list (47), c1 = c2 = 0.006 N m s") -> str:
+    """:func:`chapter_list` for the viscous pendulum of §2.10."""
+    return chapter_list(data, "pendulum", "list47_viscous", shown)
+
+
+def list119(data: dict[str, Any], shown: str = "list (119)") -> str:
+    """:func:`chapter_list` for the rod of list (119)."""
+    return chapter_list(data, "rod", "list119", shown)
 
 
 def tidy_log_axis(axis, values) -> None:

@@ -8,6 +8,8 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.figure import Figure
 
+from flutterfriction.plotting import list119
+
 
 def plot_beck_branch(data: dict[str, Any]) -> Figure:
     """Tip amplitude and period of the limit cycles against the follower load, from the Hopf
@@ -55,8 +57,8 @@ def plot_beck_branch(data: dict[str, Any]) -> Figure:
     ax2.set_ylabel("period [ms]")
     ax1.legend(fontsize=7, loc="lower right")
     ax2.legend(fontsize=7, loc="upper right")
-    fig.suptitle(f"Beck rod, list (119), {data['n_elements']} P2 elements: the branch of limit "
-                 "cycles from the Hopf point (periodic-orbit continuation, Floquet "
+    fig.suptitle(f"Beck rod, {list119(data)}, {data['n_elements']} P2 elements: the branch of "
+                 "limit cycles from the Hopf point (periodic-orbit continuation, Floquet "
                  "multipliers)", fontsize=9)
     return fig
 

@@ -8,7 +8,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.figure import Figure
 
-from flutterfriction.plotting import REGIME_COLOURS, tidy_log_axis
+from flutterfriction.plotting import REGIME_COLOURS, list119, tidy_log_axis
 
 
 def _mode_of_branch(im: np.ndarray) -> np.ndarray:
@@ -228,7 +228,7 @@ def _title(data, fig: str, what: str) -> str:
     c, tr = data["cycle"], data["transient"]
     n = data["history_mesh"]
     err = data["mesh_error"][str(n)]
-    return (f"{fig}: nonlinear Beck rod, list (119), P = {data['P']:g} N: {what}\n"
+    return (f"{fig}: nonlinear Beck rod, {list119(data)}, P = {data['P']:g} N: {what}\n"
             f"black: the limit cycle on the transient's {n} P2 elements (Newton; within "
             f"{100 * max(err.values()):.2f}% of the {data['meshes'][-1]}-element one); on "
             f"{data['meshes'][-2]} elements A = {c['tip_amplitude_m'] * 1000:.1f} mm, "
@@ -346,7 +346,7 @@ def plot_beck_work_precision(data: dict[str, Any]) -> Figure:
                    reverse=True)
     dts = sorted({r["setting"] for r in data["runs"] if r["method"] == "generalized-alpha"},
                  reverse=True)
-    fig.suptitle("Nonlinear Beck rod, list (119), 5.5 N: one return to the Poincaré section "
+    fig.suptitle(f"Nonlinear Beck rod, {list119(data)}, 5.5 N: one return to the Poincaré section "
                  "near the cycle (dotted: the 0.1% target)\nalong each line: LSODA, BDF, "
                  f"Radau at rtol {', '.join(f'{x:g}' for x in rtols)}; generalized-α "
                  f"(ρ∞ = 0.8, second order) at fixed steps "
@@ -378,7 +378,7 @@ def plot_beck_hopf(data: dict[str, Any]) -> Figure:
     ax2.set_xlabel("tip amplitude A [mm]")
     ax2.set_ylabel(r"$1 - \mu$: distance inside the unit circle [-]")
     ax2.legend(fontsize=7)
-    fig.suptitle(f"Beck rod, list (119), {data['n_elements']} P2 elements: the Hopf "
+    fig.suptitle(f"Beck rod, {list119(data)}, {data['n_elements']} P2 elements: the Hopf "
                  "bifurcation at the damped flutter load is supercritical (stable cycles, "
                  "branch towards higher loads)", fontsize=9)
     return fig
@@ -405,7 +405,7 @@ def plot_beck_linearisation(data: dict[str, Any]) -> Figure:
 
 
 def plot_fig11(data: dict[str, Any]) -> Figure:
-    return plot_branches(data, "Fig. 11: the Beck rod, list (119)")
+    return plot_branches(data, f"Fig. 11: the Beck rod, {list119(data)}")
 
 
 def _one_rad_note(data: dict[str, Any]) -> str:
@@ -426,8 +426,8 @@ def plot_fig12(data: dict[str, Any]) -> Figure:
     fitted = data["cases"]
     t_fit = fitted["undamped"]["groups"]["tan_alpha"]
     if "stated" not in data:  # data from before the stated case was added
-        return plot_branches(data, f"Fig. 12: the Pflüger rod, list (119), tan α = {t_fit:.4g} "
-                                   "(see errata)")
+        return plot_branches(data, f"Fig. 12: the Pflüger rod, {list119(data)}, "
+                                   f"tan α = {t_fit:.4g} (see errata)")
     stated = data["stated"]["cases"]
     t_st = data["stated"]["tan_alpha"]
     fig, axes = plt.subplots(4, 2, figsize=(9.6, 11.0), sharex="col")
@@ -449,7 +449,7 @@ def plot_fig12(data: dict[str, Any]) -> Figure:
         u, d = cases["undamped"]["critical"], cases["damped"]["critical"]
         return (f"{u['p_flu']:.2f} / {u['p_div']:.2f}, damped {d['p_flu']:.2f} / "
                 f"{d['p_div']:.2f}")
-    fig.suptitle("Fig. 12: the Pflüger rod, list (119), tip mass tan α = M/(ρl); "
+    fig.suptitle(f"Fig. 12: the Pflüger rod, {list119(data)}, tip mass tan α = M/(ρl); "
                  "flutter / divergence loads p\n"
                  f"Erratum: the caption's tan α = {t_st:g} gives {loads(stated)}; the loads "
                  f"the chapter quotes are those at tan α = {t_fit:.4g}: {loads(fitted)}"

@@ -16,6 +16,8 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Rectangle
 from matplotlib.text import Annotation
 
+from flutterfriction.plotting import list119
+
 MM = 1e3  # m -> mm
 ROD = "#222222"
 REF = "0.6"
@@ -534,7 +536,7 @@ def plot_fig09(data: dict[str, Any]) -> Figure:
     ax.set_xlabel(r"$x_1$ [mm]")
     ax.set_ylabel(r"$x_2$ [mm]")
     ax.set_title(f"The clamped elastica, l = {l:g} mm, B = {data['rod']['B']:g} N m² "
-                 "(list 119)", fontsize=8.5)
+                 f"({list119(data, 'list 119')})", fontsize=8.5)
     # small loads
     lim = data["linear_limit"]
     pts = lim["points"]

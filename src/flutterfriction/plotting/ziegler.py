@@ -11,7 +11,7 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Arc
 
-from flutterfriction.plotting import REGIME_COLOURS, pendulum_text
+from flutterfriction.plotting import REGIME_COLOURS, list47, pendulum_text
 from flutterfriction.plotting.pendulum import MASS, ROD, draw_pendulum
 
 
@@ -136,7 +136,8 @@ def plot_fig03(data: dict[str, Any]) -> Figure:
     top.set_xlabel("P [N]")
     ax.legend(loc="lower left", bbox_to_anchor=(0.0, 0.12))
     co = data["coefficients"]
-    title = (rf"Eq. (34) for list (47): $a$ = {co['a']:.4f}, $\beta_1$ = {co['beta1']:.4f}, "
+    title = (f"Eq. (34) for {list47(data)}: "
+             + rf"$a$ = {co['a']:.4f}, $\beta_1$ = {co['beta1']:.4f}, "
              rf"$\beta_2$ = {co['beta2']:.4f}")
     printed = data.get("gammas_as_printed")
     if printed is not None:  # the erratum of eq. (37), stated where its values show
@@ -251,7 +252,8 @@ def plot_fig04(data: dict[str, Any]) -> Figure:
                  f"{label.get(name, name)}: P = {case['P']:g} N, initially "
                  f"α1 = α2 = {alpha[0, 0]:+.1f}°; every {dt:.2f} s (α1, α2 at the lower "
                  "left of each frame)", fontsize=8, va="bottom")
-    fig.suptitle("Linear eq. (11) solved exactly (matrix exponential), list (47); "
+    fig.suptitle("Linear eq. (11) solved exactly (matrix exponential), "
+                 f"{list47(data)}; "
                  "drawn as in Fig. 2 with the follower load P at C", fontsize=8.5, y=1.0)
     return fig
 
@@ -324,7 +326,9 @@ def plot_eq46(data: dict[str, Any]) -> Figure:
 
 
 def plot_eq47(data: dict[str, Any]) -> Figure:
-    return plot_follower_spectrum(data, "List (47): the device of §2.10", in_newtons=True)
+    return plot_follower_spectrum(
+        data, f"{list47(data, 'List (47): the device of §2.10')}",
+        in_newtons=True)
 
 
 def plot_eq48(data: dict[str, Any]) -> Figure:

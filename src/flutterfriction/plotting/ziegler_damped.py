@@ -9,6 +9,8 @@ import numpy as np
 from matplotlib.colors import Normalize
 from matplotlib.figure import Figure
 
+from flutterfriction.plotting import list47
+
 COLOURS = ["black", "C0", "C3", "C2", "C1"]
 
 
@@ -117,7 +119,8 @@ def plot_fig19_theory(data: dict[str, Any]) -> Figure:
     ax1.set_ylabel("critical follower load P [N]")
     ax1.set_ylim(0, 1.25 * max(b.values()))
     ax1.legend(loc="upper left", fontsize=7)
-    ax1.set_title("List (47): theoretical bars of Fig. 19", fontsize=8)
+    ax1.set_title(f"{list47(data, 'List (47)')}: theoretical "
+                  "bars of Fig. 19", fontsize=8)
     c = np.array(data["c"])
     ax2.semilogx(c, data["flutter_ratio"], color="C0", label="flutter ratio")
     ax2.semilogx(c, data["divergence_ratio"], color="C3", label="divergence ratio")

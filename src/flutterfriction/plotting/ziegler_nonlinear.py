@@ -9,7 +9,7 @@ import numpy as np
 from matplotlib.collections import LineCollection
 from matplotlib.figure import Figure
 
-from flutterfriction.plotting import pendulum_text
+from flutterfriction.plotting import list47_viscous, pendulum_text
 
 
 def time_coloured(ax, x, y, t, lw=0.8):
@@ -115,7 +115,7 @@ def plot_fig20(data: dict[str, Any]) -> Figure:
         ax.set_ylabel(r"transverse acceleration of C [m/s$^2$]")
     ax1.legend(fontsize=7, loc="lower left")
     a0 = data.get("alpha0_deg", 0.5)  # (data from before the key was stored: the default)
-    fig.suptitle(f"Fig. 20: list (47), c1 = c2 = 0.006 N m s, P = {data['P']:.3f} N (middle of "
+    fig.suptitle(f"Fig. 20: {list47_viscous(data)}, P = {data['P']:.3f} N (middle of "
                  f"the flutter interval {data['P_flu']:.2f}–{data['P_div']:.2f} N), from "
                  f"α1 = α2 = {a0:g}° at rest\nsimulations only: the measured acceleration of "
                  "the printed figure is an experiment, not reproduced", fontsize=8)
