@@ -193,6 +193,7 @@ def test_the_workflow_refuses_bad_reference_coverage_and_scatter_before_any_job(
                          env={**os.environ, "PYTHONPATH": str(tmp_path / "src")},
                          capture_output=True, text=True)
     assert run.returncode != 0 and expected in run.stdout + run.stderr
+    assert "Traceback" not in run.stdout + run.stderr  # one line (sweep=0 had a traceback)
 
 
 def _one_quantity(key="k", scene="sc"):

@@ -9,6 +9,16 @@ scattergather:
     sweep=config.get("sweep_parts", 2),
 
 
+# `--set-scatter sweep=N` bypasses the config's check of sweep_parts: refused here, in one line
+# before any job (as an input function's error it came with a traceback; an outside audit).
+_sweep_parts = getattr(workflow, "_scatter", {}).get("sweep", 1)
+if not (isinstance(_sweep_parts, int) and 1 <= _sweep_parts <= 10000):
+    sys.exit(
+        f"invalid configuration:\n  sweep parts (sweep_parts or --set-scatter sweep=N) must be "
+        f"in [1, 10000], got {_sweep_parts!r}"
+    )
+
+
 # The nonlinear rod's compiled kernels (models/rod_kernel.py), built once into numba's cache
 # before the jobs that import them (~9 s of compilation; side by side, each would compile).
 rule compile_kernels:
