@@ -308,6 +308,12 @@ def test_a_scene_with_other_parameters_is_not_applicable_not_failed():
     data["eq47"]["params"] = recorded["paper"]["eq47"]
     assert [r.status for r in run_check({"quantities": [entry]}, data, "paper", recorded)] == [
         "FAIL"]
+    # a resolution key (one a preset overrides: n_points) changed: still the chapter's values,
+    # checked (a smoother curve must not make the chapter's loads 'not applicable')
+    data["eq47"]["params"] = dict(recorded["paper"]["eq47"], n_points=2001)
+    assert "n_points" in recorded["resolution_keys"]["eq47"]
+    assert [r.status for r in run_check({"quantities": [entry]}, data, "paper", recorded)] == [
+        "FAIL"]
 
 
 def test_figures_name_a_chapter_list_only_for_its_parameters():

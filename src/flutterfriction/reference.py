@@ -72,13 +72,26 @@ REFERENCE_PARAMETERS = Path("workflow/reference_parameters.json")
 
 def record_parameters(config: Mapping[str, Any]) -> dict[str, dict[str, Any]]:
     """``{preset: {scene: parameters}}`` as ``config`` (loaded, chapter lists resolved)
-    resolves them for each preset: what the workflow's solve jobs record in the data."""
+    resolves them for each preset: what the workflow's solve jobs record in the data; and
+    ``resolution_keys``: ``{scene: keys a preset overrides}``, the resolution keys (``n_points``,
+    meshes, tolerances), whose change leaves the chapter's values applicable (checked at the
+    entry's tolerances: more resolution passes, less may not)."""
     from flutterfriction.config import scene_params
 
-    out = {}
-    for fidelity in sorted(config.get("fidelity_presets") or {}):
+    presets = config.get("fidelity_presets") or {}
+    scenes = sorted(config.get("scenes", {}))
+    out: dict[str, Any] = {}
+    for fidelity in sorted(presets):
         resolved = dict(config, fidelity=fidelity)
-        out[fidelity] = {s: scene_params(resolved, s) for s in sorted(config.get("scenes", {}))}
+        out[fidelity] = {s: scene_params(resolved, s) for s in scenes}
+    keys: dict[str, set] = {s: set() for s in scenes}
+    for preset in presets.values():
+        preset = dict(preset or {})
+        per_scene = preset.pop("scenes", None) or {}
+        for s in scenes:
+            params = config["scenes"].get(s) or {}
+            keys[s] |= {k for k in preset if k in params} | set(per_scene.get(s) or {})
+    out["resolution_keys"] = {s: sorted(k) for s, k in keys.items() if k}
     return out
 
 
@@ -310,12 +323,16 @@ def run_check(reference: dict[str, Any], data: Mapping[str, Any],
     With ``parameters`` (:func:`record_parameters`' record), an entry whose scene ran with
     other parameters than those recorded for ``fidelity`` is not applicable."""
     recorded = (parameters or {}).get(fidelity, {})
+    resolution = (parameters or {}).get("resolution_keys", {})
 
     def changes(entry: dict[str, Any]) -> list[str]:
         scene = entry["scene"]
         if scene not in recorded or scene not in data or "params" not in data[scene]:
             return []
-        return parameter_changes(recorded[scene], data[scene]["params"])
+        skip = set(resolution.get(scene, []))  # resolution: the chapter's values still apply
+        return parameter_changes({k: v for k, v in recorded[scene].items() if k not in skip},
+                                 {k: v for k, v in data[scene]["params"].items()
+                                  if k not in skip})
 
     rows = []
     for kind, check in (("quantities", lambda e: _check_quantity(e, data, fidelity)),
