@@ -212,13 +212,15 @@ def beck_limit_cycle(rod: Rod, P: float, n_elements: int = 8, method: str = "BDF
                 continue
             crossings.append((float(te), float(tip_state(model, ye)[1]), ye.copy()))
             chunk = 4 * (crossings[-1][0] - crossings[-2][0]) if len(crossings) > 1 else chunk
-            lag = _repeating_lag(crossings)
-            if lag is None:
+            found = _repeating_lag(crossings)
+            if found is None and len(crossings) < 4:
                 continue
             # Four crossings of one phase: three periods and four amplitudes agree to tol
             # (after a mesh change the sequence beats, and two agreeing crossings can be a
             # coincidence), and the geometric tail of a steadily contracting sequence is below
-            # tol too.
+            # tol too. Until the crossings repeat at some lag, consecutive ones are reported
+            # (the progress lines) but never taken for a cycle.
+            lag = found or 1
             phase = crossings[-1::-lag][:4][::-1]
             ts = np.array([c[0] for c in phase])
             us = np.array([c[1] for c in phase])
@@ -233,8 +235,8 @@ def beck_limit_cycle(rod: Rod, P: float, n_elements: int = 8, method: str = "BDF
                          f"{np.ptp(us) / us[-1]:.1e}, tail {tail / us[-1]:.1e} "
                          f"(converged below {tol:g})"
                          + (f"; {lag} maxima per period" if lag > 1 else ""))
-            if (np.ptp(periods) <= tol * periods[-1] and np.ptp(us) <= tol * us[-1]
-                    and tail <= tol * us[-1] and mu < 1):
+            if (found is not None and np.ptp(periods) <= tol * periods[-1]
+                    and np.ptp(us) <= tol * us[-1] and tail <= tol * us[-1] and mu < 1):
                 converged = True
                 break
         y, t0 = sol.y[:, -1], sol.t[-1]
