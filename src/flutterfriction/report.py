@@ -2,9 +2,10 @@
 
 It opens with the coverage table (every chapter figure: reproduced, in part or not, by which
 of our figures, from which computation, and why not; ``workflow/coverage.yaml``) and the table of
-the chapter's parameter lists; then every figure at full width with its caption, links to its
-PNG, PDF and data, the checked values its data carry and the parameters it was drawn with; every
-executed notebook, the stress report and the tolerance check (quoted value, reproduced value,
+the chapter's parameter lists; then every figure at full width with its caption (what it
+draws), the chapter's printed caption of the figure it reproduces, links to its PNG, PDF and
+data, the checked values its data carry and the parameters it was drawn with; every executed
+notebook, the stress report and the tolerance check (quoted value, reproduced value,
 independent method, status), with the errata highlighted next to their evidence. All links are
 relative, so the ``results/`` folder can be moved or archived as a whole; :func:`broken_links`
 checks that every one of them resolves. :func:`coverage_markdown` and
@@ -25,6 +26,7 @@ from flutterfriction.config import safe_load
 from flutterfriction.errors import ParameterError
 from flutterfriction.figure_offences import RULES as FIGURE_RULES
 from flutterfriction.figure_offences import Offence
+from flutterfriction.notebook_export import math_to_mathml
 from flutterfriction.reference import NOT_APPLICABLE, CheckRow
 
 STYLE = """
@@ -51,6 +53,7 @@ table.coverage td:nth-child(5) { overflow-wrap: normal; }
 table.coverage td.st-reproduced { background: #e6f4e6; }
 table.coverage td.st-part { background: #fff6d6; } table.coverage td.st-not { background: #f3f3f3; }
 .params { font-size: .8em; color: #444; }
+.printed { font-size: .9em; color: #333; border-left: 3px solid #bbb; padding-left: .5em; }
 figure.anim img { height: auto; }
 table { border-collapse: collapse; font-size: .8em; width: 100%; }
 th, td { border: 1px solid #ddd; padding: .25em .4em; vertical-align: top; text-align: left; }
@@ -554,6 +557,10 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
                 checks = _figure_checks(mine) + checks
             params = (f'<p class="params">Drawn with: {_named_lists(figure_params[data])}</p>'
                       if figure_params.get(data) else "")
+            printed = "".join(
+                f'<p class="printed"><b>The chapter\'s Fig. {e["number"]}, as printed:</b> '
+                f'{math_to_mathml(html.escape(e["caption"], quote=False))}</p>'
+                for e in coverage or () if scene in e["figures"] and e.get("caption"))
             parts.append(
                 f'<figure class="big" id="fig-{scene}"><a href="../figures/{scene}.png" '
                 f'title="open the PNG"><img src="../figures/{scene}.png" alt="{scene}" '
@@ -561,7 +568,7 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
                 f'<div class="links"><a href="../figures/{scene}.png">PNG</a>'
                 + (f'<a href="../figures/{scene}.pdf">PDF</a>' if "pdf" in formats else "")
                 + f'<a href="../data/{data}.json">data ({html.escape(data)})</a></div>'
-                f"{checks}{params}</figcaption></figure>")
+                f"{printed}{checks}{params}</figcaption></figure>")
         for path, spec in section.get("images", {}).items():
             links = "".join(f'<a href="../{html.escape(h)}">{html.escape(t)}</a>'
                             for t, h in spec.get("links", {}).items()
