@@ -77,6 +77,18 @@ def test_console_script_runs_as_a_process():
     assert set(json.loads(proc.stdout)) >= {"P_flu", "P_div", "H_cr", "H_sup"}
 
 
+@pytest.mark.parametrize("module", ["flutterfriction", "flutterfriction.cli"])
+def test_python_dash_m_runs_the_command_line(module):
+    """``python -m flutterfriction`` as well as the module (an outside audit found the package
+    without a __main__: exit 1, "No module named flutterfriction.__main__")."""
+    proc = subprocess.run([sys.executable, "-m", module, "--help"], capture_output=True,
+                          text=True)
+    assert proc.returncode == 0 and "ziegler" in proc.stdout
+    proc = subprocess.run([sys.executable, "-m", module, *_args(m1=-1)], capture_output=True,
+                          text=True)
+    assert proc.returncode == 2 and "m1" in proc.stderr and "Traceback" not in proc.stderr
+
+
 def test_rod_json(capsys):
     assert main(["rod", "--mass-ratio", "0", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
