@@ -251,3 +251,45 @@ def test_linear_and_perturbation_deflections_refuse_overflow():
     # eq. (95): -P2 l^3 / (3 B)
     assert el.linear_tip_deflection(0.35, 0.0332, el.ElasticaLoads(P2=1.0)) == pytest.approx(
         -0.35**3 / (3 * 0.0332), rel=1e-15)
+
+
+def test_the_stability_eigenvalue_of_the_straight_rod_is_eulers():
+    """mu = pi^2/4 - P1 l^2/B for the straight rod under an end thrust (zero at the Euler
+    load), to the extrapolated discretisation's 1e-8."""
+    for P1 in (0.0, 0.5, 2.4):
+        sol = el.solve_shooting(1.0, 1.0, el.ElasticaLoads(P1=P1))
+        assert el.stability_eigenvalue(sol) == pytest.approx(math.pi**2 / 4 - P1, abs=1e-8)
+
+
+def test_past_the_euler_load_the_stable_bent_equilibrium_is_returned():
+    """An outside audit: P1 just past the Euler load with a tiny P2 gave the unstable, nearly
+    straight equilibrium bent against the push (theta(l) = +5.2e-6) from both solvers. Shooting
+    now returns the stable one (the closed form's -0.0283, the post-buckling estimate
+    -sqrt(8e-4)); collocation refuses instead of returning the unstable one."""
+    from flutterfriction.errors import ConvergenceError
+
+    euler = math.pi**2 / 4
+    for P1, P2 in ((1.0001 * euler, 1e-9), (20 * euler, 1e-4 * euler)):
+        loads = el.ElasticaLoads(P1=P1, P2=P2)
+        sol = el.solve_shooting(1.0, 1.0, loads)
+        closed = el.tip_force_closed_form(1.0, 1.0, P1, P2)
+        assert sol.tip_rotation == pytest.approx(closed.tip_rotation, rel=1e-9)
+        assert el.stability_eigenvalue(sol) > 0
+    assert sol.tip_rotation < -3.1  # 20 Euler loads: the end turned nearly back on itself
+    with pytest.raises(ConvergenceError, match="unstable equilibrium"):
+        el.solve_collocation(1.0, 1.0, el.ElasticaLoads(P1=1.0001 * euler, P2=1e-9))
+    with pytest.raises(ConvergenceError, match="either side"):
+        el.solve_shooting(1.0, 1.0, el.ElasticaLoads(P1=2 * euler))
+
+
+def test_a_wandering_newton_ends_in_the_stable_equilibrium_not_a_hang():
+    """An outside audit's loads (3 Euler loads, distributed loads): Newton wandered to
+    theta(l) ~ 1e7 rad and the integrations there took minutes. Now the stable equilibrium,
+    which collocation (independent) confirms."""
+    loads = el.ElasticaLoads(P1=3 * math.pi**2 / 4, P2=0.01, q1=2.0, q2=-1.0)
+    sol = el.solve_shooting(1.0, 1.0, loads)
+    assert el.stability_eigenvalue(sol) > 1.0
+    colloc = el.solve_collocation(1.0, 1.0, loads)
+    assert sol.tip_rotation == pytest.approx(colloc.tip_rotation, rel=1e-9)
+    s = np.linspace(0.0, 1.0, 11)
+    assert np.max(np.abs(sol.position(s) - colloc.position(s))) < 1e-9

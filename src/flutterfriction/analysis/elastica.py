@@ -19,11 +19,16 @@ Three solvers, independent of each other:
 - :func:`solve_shooting` (primary): the one unknown is the end rotation ``theta(l)``;
   ``theta, M`` and the positions are integrated from the free end to the clamp (DOP853,
   dimensionless, ``rtol = 1e-12``) and Newton, with the exact derivative from the variational
-  equations, makes ``theta(0) = 0``. The loads are applied in steps from zero, so the
-  solution is the one connected to the straight rod (no jump to another branch).
+  equations, makes ``theta(0) = 0``. The loads are applied in steps from zero, following the
+  equilibrium connected to the straight rod. Past the Euler load with a small transverse load
+  the steps can land on the unstable, nearly straight equilibrium instead (an outside audit):
+  every solution is therefore checked for stability (:func:`stability_eigenvalue`, the second
+  variation of the energy) and an unstable one is replaced by the stable equilibrium on the
+  side the loads bent the rod towards, found among all roots in ``theta(l)``.
 - :func:`solve_collocation`: ``scipy.integrate.solve_bvp`` on the six states
   ``x1, x2, theta, M, a1, a2`` (the internal force is a state here, eq. 77), continued in the
-  load from the straight rod as well.
+  load from the straight rod as well; an unstable result is refused
+  (:class:`~flutterfriction.errors.ConvergenceError`), never returned.
 - :func:`tip_force_closed_form`: a tip force of fixed direction only (``q = 0``): the classical
   solution by elliptic integrals (eq. 92 is the pendulum equation in ``s``), exact up to the
   one root for the end rotation, found by Brent's method to round-off.
@@ -182,6 +187,54 @@ class ElasticaSolution:
         return self.position(self.length)[0] - np.array([self.length, 0.0])
 
 
+#: Elements of the stability check's discretisation (two meshes, Richardson-extrapolated:
+#: linear elements with a lumped mass converge as h^2; the extrapolated eigenvalue's error is
+#: below 1e-8 (l^2/B units) up to 50 Euler loads, measured against 8000 elements).
+_STABILITY_ELEMENTS = (1000, 2000)
+
+
+def stability_eigenvalue(sol: ElasticaSolution) -> float:
+    """The lowest eigenvalue ``mu`` [-] of the second variation of the energy at the
+    equilibrium ``sol``: positive for a stable equilibrium (a minimum), negative for an
+    unstable one.
+
+    The dead loads have the potential ``-int a(s) . t(theta(s)) ds`` (``a = P + (l - s) q``, the
+    module docstring), so the energy is ``int [B theta'^2/2 - a . t] ds`` (its first variation
+    is eq. 91) and its second variation ``int [B dtheta'^2 + N dtheta^2] ds`` with ``N = a . t``
+    the normal force (eq. 73; compression ``N < 0``), ``dtheta(0) = 0``. ``mu`` is the lowest
+    eigenvalue of ``-dtheta'' + N l^2/B dtheta = mu dtheta`` on ``xi = s/l`` in [0, 1] with
+    ``dtheta'(1) = 0`` (natural), by linear elements (lumped) on two meshes, extrapolated. The
+    straight rod under an end thrust ``P1`` gives ``mu = pi^2/4 - P1 l^2/B``: zero at the Euler
+    load."""
+    from scipy.linalg import eigh_tridiagonal
+
+    l, B = sol.length, sol.B
+    mus = []
+    for n in _STABILITY_ELEMENTS:
+        h = 1.0 / n
+        xi = np.linspace(0.0, 1.0, n + 1)[1:]  # dtheta(0) = 0: the clamp's node is removed
+        N = sol.normal_and_shear(xi * l)[0] * l * l / B
+        w = np.full(n, h)
+        w[-1] = h / 2  # lumped mass; the free end's node has half an element
+        diag = np.full(n, 2.0 / h)
+        diag[-1] = 1.0 / h
+        diag = diag + N * w
+        off = np.full(n - 1, -1.0 / h)
+        # D^-1/2 (K + G) D^-1/2: a symmetric tridiagonal standard problem
+        d = 1.0 / np.sqrt(w)
+        mus.append(float(eigh_tridiagonal(diag * d * d, off * d[:-1] * d[1:], eigvals_only=True,
+                                          select="i", select_range=(0, 0))[0]))
+    return (4.0 * mus[1] - mus[0]) / 3.0
+
+
+def _stability_tolerance(sol: ElasticaSolution) -> float:
+    """What ``mu`` is resolved to: 1e-7 of the problem's scale (1 plus the largest ``|N|
+    l^2/B``), above the discretisation's error (1e-8 up to 50 Euler loads, measured)."""
+    s = np.linspace(0.0, sol.length, 201)
+    return 1e-7 * (1.0 + float(np.max(np.abs(sol.normal_and_shear(s)[0]))) * sol.length**2
+                   / sol.B)
+
+
 def _dimensionless(length: float, B: float, loads: ElasticaLoads) -> tuple[NDArray, NDArray]:
     """``a(l) l^2/B`` and ``q l^3/B``: the loads in units of ``B/l^2`` and ``B/l^3``."""
     return loads.tip_force() * length**2 / B, loads.distributed() * length**3 / B
@@ -231,7 +284,9 @@ def solve_shooting(length: float, B: float, loads: ElasticaLoads, *, load_steps:
     ParameterError
         Bad input (before any work).
     ConvergenceError
-        Newton fails, or the branch folds (``d theta(0)/d theta(l)`` vanishes).
+        Newton fails or the branch folds (``d theta(0)/d theta(l)`` vanishes), and the search
+        among all roots finds no stable equilibrium on the loads' side (or there is no side: no
+        transverse load past the Euler load; or loads above ``_SCAN_LIMIT`` B/l^2).
     """
     length, B = _check_rod(length, B)
     if not isinstance(loads, ElasticaLoads):
@@ -241,8 +296,34 @@ def solve_shooting(length: float, B: float, loads: ElasticaLoads, *, load_steps:
     rtol = check_positive("rtol", rtol)
     tol = check_positive("tol", tol, "rad")
     fP1, g1 = _dimensionless(length, B, loads)
+    try:
+        th, iterations = _continue_from_straight(fP1, g1, load_steps, rtol, tol, max_iter)
+        out = _shooting_solution(length, B, loads, th, rtol, iterations)
+        if stability_eigenvalue(out) >= -_stability_tolerance(out):
+            return out
+    except ConvergenceError as exc:
+        # a fold or a failed Newton step past the Euler load (the straight rod's branch meets
+        # the bent one there): the stable equilibrium is sought among all roots as well
+        failure = str(exc)
+    else:
+        failure = "the continuation reached an unstable equilibrium"
+    # The steps landed on an unstable equilibrium (past the Euler load, the nearly straight one
+    # beside the bent one) or failed: the stable equilibrium on the side the loads bend the rod.
+    th = _stable_root(length, B, loads, fP1, g1, rtol, tol, max_iter, failure)
+    out = _shooting_solution(length, B, loads, th, rtol, 0)
+    if stability_eigenvalue(out) < -_stability_tolerance(out):
+        raise ConvergenceError("the elastica's stable equilibrium was not found (the root "
+                               "chosen is unstable)")
+    return out
+
+
+def _continue_from_straight(fP1: NDArray, g1: NDArray, load_steps: int, rtol: float,
+                            tol: float, max_iter: int) -> tuple[float, int]:
+    """The end rotation at the full loads, the loads applied in ``load_steps`` equal steps
+    from the straight rod (Newton from the secant predictor), and the Newton iterations."""
     history = [(0.0, 0.0)]  # (load factor, end rotation): the straight rod
     iterations = 0
+    th = 0.0
     for k in range(1, load_steps + 1):
         lam = k / load_steps
         fP, g = lam * fP1, lam * g1
@@ -261,11 +342,22 @@ def solve_shooting(length: float, B: float, loads: ElasticaLoads, *, load_steps:
             th -= r / dr
             if abs(r) <= tol:
                 break
+            if not abs(th) <= 4 * math.pi:
+                # a wandering Newton (an outside audit: theta(l) ~ 1e7 rad, integrations of
+                # minutes at that magnitude's round-off): the stable root is searched instead
+                raise ConvergenceError(f"Newton on theta(0) = 0 left |theta(l)| <= 4 pi at "
+                                       f"load factor {lam:g}")
         else:
             raise ConvergenceError(f"Newton on theta(0) = 0 did not converge at load factor "
                                    f"{lam:g} (residual {r:.3g} rad)")
         history.append((lam, th))
-    sol = _integrate_from_tip(th, fP1, g1, rtol, dense=True)
+    return th, iterations
+
+
+def _shooting_solution(length: float, B: float, loads: ElasticaLoads, th: float, rtol: float,
+                       iterations: int) -> ElasticaSolution:
+    fP, g = _dimensionless(length, B, loads)
+    sol = _integrate_from_tip(th, fP, g, rtol, dense=True)
     y0 = sol.y[2:4, -1]  # the clamp's position relative to the end
 
     def dense(s: NDArray) -> NDArray:
@@ -275,6 +367,64 @@ def solve_shooting(length: float, B: float, loads: ElasticaLoads, *, load_steps:
 
     return ElasticaSolution(length, B, loads, "shooting (DOP853, Newton on theta(l))", dense,
                             float(th), float(abs(sol.y[0, -1])), iterations)
+
+
+#: End rotations scanned for every equilibrium when the continuation lands on an unstable one
+#: [rad]: two turns each way in steps of 1 degree; loads up to ``_SCAN_LIMIT`` B/l^2 (their
+#: equilibria, ~sqrt(load)/pi per turn, are then several scan steps apart; the scan takes
+#: ~1-4 s there, measured).
+_SCAN = np.linspace(-4 * math.pi, 4 * math.pi, 1441)
+_SCAN_LIMIT = 200.0
+
+
+def _stable_root(length: float, B: float, loads: ElasticaLoads, fP: NDArray, g: NDArray,
+                 rtol: float, tol: float, max_iter: int, failure: str) -> float:
+    """The end rotation of the stable equilibrium the loading path reaches: among every root
+    of ``theta(0; theta(l)) = 0`` on :data:`_SCAN` (sign changes, then Newton), the stable
+    ones bent to the side the loads bend the rod at the start (the linear response at a load
+    factor of 1e-6); of those, the least rotated. A perfect column (no transverse load) past its
+    Euler load has two mirror-image equilibria: refused."""
+    scale = float(np.max(np.abs(np.r_[fP, g])))
+    if scale > _SCAN_LIMIT:
+        raise ConvergenceError(
+            f"{failure}; the loads ({scale:.3g} B/l^2) exceed the range searched for the "
+            f"stable equilibrium ({_SCAN_LIMIT:g} B/l^2, ~{_SCAN_LIMIT / (math.pi**2 / 4):.0f} "
+            "Euler loads)")
+    z = _integrate_from_tip(0.0, 1e-6 * fP, 1e-6 * g, rtol).y[:, -1]
+    start = -z[0] / z[4]
+    if abs(start) <= 1e-12 * 1e-6 * (1.0 + scale):
+        raise ConvergenceError(
+            f"{failure}; with no transverse load (P2 = {loads.P2:g} N, q2 = {loads.q2:g} N/m) "
+            "a rod past its Euler load may buckle to either side: give a transverse load to "
+            "choose one")
+    side = math.copysign(1.0, start)
+    def residual(t: float) -> float:
+        return float(_integrate_from_tip(t, fP, g, 1e-9).y[0, -1])
+
+    r = [residual(t) for t in _SCAN]
+    # Sign changes on the scan (a pair of roots closer than a degree, where theta(l) nears the
+    # loads' direction far past the Euler load, can hide between two points: then no stable
+    # root is found and the solver says so rather than return an unstable one)
+    brackets = [(float(_SCAN[i]), float(_SCAN[i + 1]), r[i], r[i + 1])
+                for i in range(len(_SCAN) - 1) if r[i] * r[i + 1] <= 0]
+    candidates = []
+    for a, b, ra, rb in brackets:
+        th = brentq(residual, a, b, xtol=1e-12) if ra != rb else a
+        for _ in range(max_iter):  # Newton at the full tolerance
+            zz = _integrate_from_tip(th, fP, g, rtol).y[:, -1]
+            th -= zz[0] / zz[4]
+            if abs(zz[0]) <= tol:
+                break
+        if th * side <= 0:
+            continue
+        cand = _shooting_solution(length, B, loads, th, rtol, 0)
+        if stability_eigenvalue(cand) > _stability_tolerance(cand):
+            candidates.append(th)
+    if not candidates:
+        raise ConvergenceError(
+            f"{failure}, and no stable equilibrium bent the loads' way was found for "
+            "|theta(l)| <= 4 pi")
+    return min(candidates, key=abs)
 
 
 def solve_collocation(length: float, B: float, loads: ElasticaLoads, *, load_steps: int = 4,
@@ -324,8 +474,15 @@ def solve_collocation(length: float, B: float, loads: ElasticaLoads, *, load_ste
     def force(s: NDArray) -> NDArray:
         return sol.sol(s / length)[4:6] * B / length**2
 
-    return ElasticaSolution(length, B, loads, f"collocation (solve_bvp, tol {tol:g})", dense,
-                            float(sol.sol(1.0)[2]), 0.0, load_steps, force)
+    out = ElasticaSolution(length, B, loads, f"collocation (solve_bvp, tol {tol:g})", dense,
+                           float(sol.sol(1.0)[2]), 0.0, load_steps, force)
+    mu = stability_eigenvalue(out)
+    if mu < -_stability_tolerance(out):
+        raise ConvergenceError(
+            f"collocation reached an unstable equilibrium (lowest eigenvalue of the second "
+            f"variation {mu:.3g} l^2/B): past the Euler load the continuation from the straight "
+            f"rod jumped to the nearly straight branch; solve_shooting finds the stable one")
+    return out
 
 
 # ---------------------------------------------------------------------- closed form
