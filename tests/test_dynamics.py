@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 import pytest
-from conftest import pendulums
+from conftest import ROOT, pendulums
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -194,3 +194,29 @@ def test_bifurcation_diagram_does_not_depend_on_the_unit_of_time():
     assert slow["quantities"]["hopf_type"]["value"] == "supercritical"
     assert slow["below"]["envelope_last"] == pytest.approx(ref["below"]["envelope_last"],
                                                            rel=1e-6)
+
+
+def test_section29_cycle_load_is_a_multiple_of_the_pendulums_own_flutter_load():
+    """An outside audit: Figs. 13-14 took P*_flu from eq. (54) for any pendulum, but eq. (54)
+    is the symmetric pendulum's closed form: with c1 = 2 c2, 1.2 x eq. 54 = 3.13 N lies below
+    the true damped flutter load 3.24 N (stable: the scene died), and with l2 = 0.12 m the
+    figure's "1.5 P*_flu" was 1.62 P_flu. Now the exact damped flutter load (Routh-Hurwitz),
+    equal to eq. (54) for §2.9's pendulum."""
+    from flutterfriction.analysis.ziegler import damped_flutter_load
+    from flutterfriction.closed_forms.ziegler_damped import eq54_flutter_gamma, viscosity_groups
+    from flutterfriction.config import load_config, scene_params
+    from flutterfriction.scenes.common import pendulum_of
+    from flutterfriction.scenes.ziegler_nonlinear import damped_flutter_load_star, fig13
+
+    params = scene_params(load_config(ROOT / "workflow" / "config.yaml"), "fig13")
+    p = pendulum_of(params)
+    star, is_eq54 = damped_flutter_load_star(p)
+    assert is_eq54 and star == pytest.approx(
+        eq54_flutter_gamma(viscosity_groups(p)[0]) * p.load_unit, rel=1e-12)
+    own = {**params, "pendulum": {**p.as_dict(), "c1": 2 * p.c1}, "load_factor": 1.2,
+           "tol": 1e-6, "n_samples": 200}
+    d = fig13(own)
+    exact = damped_flutter_load(pendulum_of(own), "routh")
+    assert d["P_star_flu"] == pytest.approx(exact, rel=1e-12) and not d["P_star_is_eq54"]
+    assert d["P"] == pytest.approx(1.2 * exact, rel=1e-12)
+    assert d["limit_cycle"]["alpha1_amplitude_rad"] > 0

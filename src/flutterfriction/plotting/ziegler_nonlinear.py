@@ -57,6 +57,14 @@ def _section29_text(data: dict[str, Any]) -> str:
     return text
 
 
+def _load_text(data: dict[str, Any]) -> str:
+    """The load as a multiple of P*_flu, and where P*_flu comes from."""
+    star = data["P_star_flu"]
+    source = ("eq. 54" if data.get("P_star_is_eq54", True)
+              else "the exact damped flutter load; eq. 54 is the symmetric pendulum's")
+    return f"P = {data['P']:.4g} N = {data['P'] / star:.3g} P*_flu ({source})"
+
+
 def plot_fig13(data: dict[str, Any]) -> Figure:
     """Fig. 13: trajectory in the alpha1-alpha2 plane reaching a stable limit cycle."""
     a1, a2 = np.degrees(data["alpha"])
@@ -70,7 +78,7 @@ def plot_fig13(data: dict[str, Any]) -> Figure:
     ax.set_ylabel(r"$\alpha_2$ [deg]")
     ax.legend(loc="upper left", fontsize=7, title="transient: until the α1 peaks\nare within "
               f"{100 * TRANSIENT_TOL:g} % of the cycle's", title_fontsize=6.5)
-    ax.set_title(f"Fig. 13: P = {data['P']:.4g} N = 1.5 P*_flu (eq. 54); limit cycle, "
+    ax.set_title(f"Fig. 13: {_load_text(data)}; limit cycle, "
                  f"period {T:.4f} s\n{_section29_text(data)}", fontsize=7)
     return fig
 
@@ -91,7 +99,8 @@ def plot_fig14(data: dict[str, Any]) -> Figure:
     fig.legend(loc="lower center", bbox_to_anchor=(0.45, -0.04), fontsize=7, frameon=False,
                title=f"transient: until the α1 peaks are within {100 * TRANSIENT_TOL:g} % of "
                      "the cycle's", title_fontsize=6.5)
-    axes[0].set_title(f"Fig. 14: amplitudes {np.degrees(lcd['alpha1_amplitude_rad']):.2f}°, "
+    axes[0].set_title(f"Fig. 14: {_load_text(data)}; amplitudes "
+                      f"{np.degrees(lcd['alpha1_amplitude_rad']):.2f}°, "
                       f"{np.degrees(lcd['alpha2_amplitude_rad']):.2f}°\n"
                       f"{_section29_text(data)}", fontsize=7)
     return fig

@@ -23,25 +23,37 @@ from flutterfriction.scenes.common import median_wall_time, pendulum_of, quantit
 from flutterfriction.scenes.sweep import Sweep
 
 
-def _section29(params: dict[str, Any]):
-    """§2.9: P = (load factor) x P*_flu of eq. (54), initial rotations alpha0 (degrees)."""
-    p = pendulum_of(params)
+def damped_flutter_load_star(p: ZieglerPendulum) -> tuple[float, bool]:
+    """``P*_flu`` [N], the flutter load of the pendulum with its viscous hinges (exact
+    Routh–Hurwitz), and whether eq. (54) gives it: eq. (54) is the symmetric pendulum's closed
+    form (§2.9's), and for another pendulum it is not its flutter load (an outside audit: with
+    l2 = 0.12 m, 1.5 x eq. 54 was 1.62 P_flu; with c1 = 2 c2, 1.2 x eq. 54 was a stable load)."""
+    exact = damped_flutter_load(p, "routh")
     eps, _ = viscosity_groups(p)
-    P_star = eq54_flutter_gamma(eps) * p.load_unit
+    eq54 = eq54_flutter_gamma(eps) * p.load_unit
+    return exact, abs(eq54 - exact) <= 1e-9 * exact
+
+
+def _section29(params: dict[str, Any]):
+    """§2.9: P = (load factor) x P*_flu (eq. 54 for §2.9's symmetric pendulum; for any other,
+    its exact damped flutter load), initial rotations alpha0 (degrees)."""
+    p = pendulum_of(params)
+    P_star, is_eq54 = damped_flutter_load_star(p)
     P = check_positive("load_factor", params.get("load_factor", 1.5)) * P_star
     a0 = math.radians(check_real("alpha0_deg", params.get("alpha0_deg", 0.1)))
-    return p, P, P_star, np.array([a0, a0, 0.0, 0.0])
+    return p, P, P_star, is_eq54, np.array([a0, a0, 0.0, 0.0])
 
 
 def _cycle(params: dict[str, Any]) -> dict[str, Any]:
-    p, P, P_star, x0 = _section29(params)
+    p, P, P_star, is_eq54, x0 = _section29(params)
     lc = dy.limit_cycle(p, P, x0, tol=float(params.get("tol", 1e-8)))
     shot = dy.shoot_periodic_orbit(p, P, lc)
     t_end = lc.transient_s + 3 * lc.period_s
     n = int(params.get("n_samples", 6000))
     sol = dy.simulate(p, P, x0, t_end, t_eval=np.linspace(0, t_end, n))
     return {
-        "P": P, "P_star_flu": P_star, "limit_cycle": lc.as_dict(), "t": sol.t.tolist(),
+        "P": P, "P_star_flu": P_star, "P_star_is_eq54": is_eq54, "limit_cycle": lc.as_dict(),
+        "t": sol.t.tolist(),
         "alpha": sol.y[:2].tolist(), "alpha_dot": sol.y[2:].tolist(),
         "quantities": {
             "period": quantity(lc.period_s, shot.period_s, "Poincare section (DOP853)",
@@ -269,8 +281,7 @@ def pendulum_work_precision(params: dict[str, Any]) -> dict[str, Any]:
                          "setting": float(c), "error": abs(v - exact) / exact, "wall_s": t})
     # The §2.9 cycle: reference orbit by shooting, then one period per integrator.
     pc = ZieglerPendulum.from_mapping(params["cycle_pendulum"])
-    eps, _ = viscosity_groups(pc)
-    P = float(params.get("load_factor", 1.5)) * eq54_flutter_gamma(eps) * pc.load_unit
+    P = float(params.get("load_factor", 1.5)) * damped_flutter_load_star(pc)[0]
     lc = dy.limit_cycle(pc, P, [0.1, 0.1, 0.0, 0.0], tol=1e-9)
     ref = dy.shoot_periodic_orbit(pc, P, lc)
     x0 = np.array(ref.section_state)
