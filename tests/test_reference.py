@@ -84,9 +84,34 @@ def test_erratum_unverified_when_printed_form_is_right(testable, scene_data):
 @pytest.mark.slow  # uses every scene's data (built once for the module, ~1-2 min)
 def test_categorical_statement_fails_when_regime_differs(testable, scene_data):
     data = copy.deepcopy(scene_data)
-    data["eq47"]["quantities"]["regime_at_6.8N"]["value"] = "stable"
+    data["fig04"]["quantities"]["regime_flutter"]["value"] = "stable"
     rows = {r.id: r for r in run_check(testable, data)}
     assert rows["fig04_flutter_load_in_flutter_region"].status == "FAIL"
+
+
+def test_fig04_regimes_are_checked_on_fig04s_own_pendulum():
+    """An outside audit: the Fig. 4 entries read scene eq47, so with fig04's own pendulum
+    (k1 = k2 = 0.6 N m: its "flutter" load stable) they still passed. They read fig04 now,
+    whose parameters decide whether they apply."""
+    from flutterfriction.reference import load_reference
+
+    ref = {e["id"]: e for e in load_reference(ROOT / "workflow" / "reference.yaml")["quantities"]}
+    for rid in ("fig04_flutter_load_in_flutter_region",
+                "fig04_divergence_load_in_divergence_region"):
+        assert ref[rid]["scene"] == "fig04"
+    import matplotlib.pyplot as plt
+
+    from flutterfriction.config import load_config, scene_params
+    from flutterfriction.plotting.ziegler import plot_fig04
+    from flutterfriction.scenes.ziegler import fig04
+
+    params = scene_params(load_config(ROOT / "workflow" / "config.yaml"), "fig04")
+    own = fig04({**params, "pendulum": {**params["pendulum"], "k1": 0.6, "k2": 0.6}})
+    assert own["quantities"]["regime_flutter"]["value"] == "stable"
+    fig = plot_fig04({**own, "params": own.get("params", {})})
+    texts = " ".join(t.get_text() for t in fig.texts)
+    plt.close(fig)
+    assert "The chapter's flutter case (upper part), stable for this pendulum" in texts
 
 
 def test_quick_tolerance_applies_only_at_quick_fidelity():

@@ -247,9 +247,15 @@ def plot_fig04(data: dict[str, Any]) -> Figure:
             else:
                 fig.legend(handles=handles, loc="lower center", ncol=3, fontsize=6.5,
                            bbox_to_anchor=(0.5, 0.0))
-        label = {"flutter": "Flutter (upper part)", "divergence": "Divergence (lower part)"}
+        # The regime this pendulum has at this load (computed): the chapter's cases are
+        # flutter and divergence for list (47); with another pendulum they may not be (an
+        # outside audit: k1 = k2 = 0.6 N m made the "flutter" load stable).
+        computed = data.get("quantities", {}).get(f"regime_{name}", {}).get("value", name)
+        part = {"flutter": " (upper part)", "divergence": " (lower part)"}.get(name, "")
+        label = (f"{str(computed).capitalize()}{part}" if computed == name else
+                 f"The chapter's {name} case{part}, {computed} for this pendulum")
         fig.text(0.1, outer[k].get_position(fig).y1 + 0.008,
-                 f"{label.get(name, name)}: P = {case['P']:g} N, initially "
+                 f"{label}: P = {case['P']:g} N, initially "
                  f"α1 = α2 = {alpha[0, 0]:+.1f}°; every {dt:.2f} s (α1, α2 at the lower "
                  "left of each frame)", fontsize=8, va="bottom")
     fig.suptitle("Linear eq. (11) solved exactly (matrix exponential), "
