@@ -53,11 +53,27 @@ def pendulum_text(pendulum: dict[str, float] | None) -> str:
     return ", ".join(parts)
 
 
-def chapter_list(data: dict[str, Any], key: str, name: str, shown: str) -> str:
+def own_parameters_note(data: dict[str, Any], key: str, name: str, width: int = 150) -> str:
+    """``""`` when the data's parameters ``key`` are the chapter's list ``name``, else
+    "your own pendulum: l1 = ..." wrapped to lines of ``width`` characters: the values, once,
+    for a figure that names them in short ("your own pendulum") where space is short (a title
+    or a legend entry holding all of them broke Fig. 18's layout; an outside audit)."""
+    import textwrap
+
+    text = chapter_list(data, key, name, "")
+    if not text:
+        return ""
+    kind, _, values = text.partition(" (")
+    return textwrap.fill(f"{kind}: {values.removesuffix(')')}", width)
+
+
+def chapter_list(data: dict[str, Any], key: str, name: str, shown: str,
+                 short: bool = False) -> str:
     """``shown`` (e.g. ``"list (47)"``) when the data's parameters ``key`` are the chapter's
     list ``name`` (:data:`flutterfriction.parameters.LISTS`), else ``"your own pendulum
     (l1 = ...)"``: a figure of a researcher's own parameters must not say it is the chapter's
-    (an outside audit). Data without parameters (drawn by hand): ``shown``."""
+    (an outside audit). Data without parameters (drawn by hand): ``shown``. ``short``: "your
+    own pendulum" without the values (then :func:`own_parameters_note` gives them)."""
     from flutterfriction.parameters import LISTS, parameter_list
 
     used = (data.get("params") or {}).get(key)
@@ -69,15 +85,17 @@ def chapter_list(data: dict[str, Any], key: str, name: str, shown: str) -> str:
     if same:
         return shown
     kind = LISTS[name].kind
+    if short:
+        return f"your own {kind}"
     values = (pendulum_text(used) if kind == "pendulum"
               else ", ".join(f"{k} = {v:g}" for k, v in sorted(used.items())
                              if isinstance(v, int | float)))
     return f"your own {kind} ({values})"
 
 
-def list47(data: dict[str, Any], shown: str = "list (47)") -> str:
+def list47(data: dict[str, Any], shown: str = "list (47)", short: bool = False) -> str:
     """:func:`chapter_list` for the pendulum of list (47)."""
-    return chapter_list(data, "pendulum", "list47", shown)
+    return chapter_list(data, "pendulum", "list47", shown, short)
 
 
 def list47_viscous(data: dict[str, Any],

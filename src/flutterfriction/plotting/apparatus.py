@@ -13,7 +13,7 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Circle, FancyArrowPatch, Rectangle
 
-from flutterfriction.plotting import list47
+from flutterfriction.plotting import list47, own_parameters_note
 from flutterfriction.plotting.pendulum import MASS, ROD, SPRING, draw_ground, draw_pendulum
 
 FORCE = {"W": "C0", "R": "C2", "P": "C3", "O": "C4"}
@@ -79,7 +79,8 @@ def _top_view(ax: Axes, data: dict[str, Any], s: float) -> None:
                Line2D([], [], color="0.35", lw=1.2, label="plate velocity")]
     ax.legend(handles=handles, loc="lower left", fontsize=7)
     a1, a2 = top["alpha_deg"]
-    ax.set_title(f"top view (upper part): pendulum of {list47(data)} drawn at α1 = {a1:g}°, "
+    ax.set_title(f"top view (upper part): pendulum of {list47(data, short=True)} drawn at "
+                 f"α1 = {a1:g}°, "
                  f"α2 = {a2:g}°;\nthe plate transmits only the friction along BC "
                  f"(its component normal to BC: {top['force_transverse_to_BC']:.0f} N)",
                  fontsize=8)
@@ -177,7 +178,8 @@ def _calibration(ax: Axes, data: dict[str, Any]) -> None:
     for key, name, ls in (("flu", "flutter", ":"), ("div", "divergence", "-.")):
         Pc, Wc = c[f"P_{key}"], c[f"W_{key}"]
         ax.plot([0, Wc, Wc], [Pc, Pc, 0], ls, color="0.25", lw=0.9,
-                label=f"{name} load of {list47(data)}: P = {Pc:.2f} N at W = {Wc:.1f} N")
+                label=f"{name} load of {list47(data, short=True)}: P = {Pc:.2f} N at "
+                      f"W = {Wc:.1f} N")
     ax.set_xlim(0, 1.02 * W[-1])
     ax.set_ylim(0, 1.07 * P[-1])
     ax.set_xlabel("hanging weight W [N]")
@@ -202,5 +204,8 @@ def plot_fig18(data: dict[str, Any]) -> Figure:
     _side_view(ax_side, data, s)
     fig.suptitle("Fig. 18: a follower force from sliding friction, and its lever calibration "
                  "W → R → P", fontsize=10)
-    fig.tight_layout()
+    note = own_parameters_note(data, "pendulum", "list47")
+    fig.tight_layout(rect=(0, 0.03 if note else 0, 1, 1))
+    if note:
+        fig.text(0.5, 0.005, note, ha="center", va="bottom", fontsize=8)
     return fig

@@ -9,7 +9,7 @@ import numpy as np
 from matplotlib.colors import Normalize
 from matplotlib.figure import Figure
 
-from flutterfriction.plotting import list47
+from flutterfriction.plotting import list47, own_parameters_note
 
 COLOURS = ["black", "C0", "C3", "C2", "C1"]
 
@@ -119,7 +119,7 @@ def plot_fig19_theory(data: dict[str, Any]) -> Figure:
     ax1.set_ylabel("critical follower load P [N]")
     ax1.set_ylim(0, 1.25 * max(b.values()))
     ax1.legend(loc="upper left", fontsize=7)
-    ax1.set_title(f"{list47(data, 'List (47)')}: theoretical "
+    ax1.set_title(f"{list47(data, 'List (47)', short=True)}: theoretical "
                   "bars of Fig. 19", fontsize=8)
     c = np.array(data["c"])
     ax2.semilogx(c, data["flutter_ratio"], color="C0", label="flutter ratio")
@@ -129,7 +129,7 @@ def plot_fig19_theory(data: dict[str, Any]) -> Figure:
                                (data["quoted_ratios"][1], "c_from_divergence_ratio", "C3")):
         ax2.axhline(ratio, color=colour, ls=":", lw=0.8)
         ax2.plot(q[key]["value"], ratio, "o", color=colour, ms=5)
-        ax2.annotate(f"quoted {ratio:g}\n→ c = {q[key]['value'] * 1e3:.2f}e-3 N m s",
+        ax2.annotate(f"quoted {ratio:.2f}\n→ c = {q[key]['value'] * 1e3:.2f}e-3 N m s",
                      (q[key]["value"], ratio), xytext=(-118, 8),
                      textcoords="offset points", fontsize=7, color=colour)
     ax2.axvline(data["c_reference"], color="k", ls="--", lw=0.8)
@@ -143,7 +143,10 @@ def plot_fig19_theory(data: dict[str, Any]) -> Figure:
     ax2.set_title("Ratios against viscosity", fontsize=8)
     fig.suptitle("Fig. 19, theory only: the experimental spots of the printed figure are "
                  "measurements, not reproduced", fontsize=8)
-    fig.tight_layout()
+    note = own_parameters_note(data, "pendulum", "list47", width=170)
+    fig.tight_layout(rect=(0, 0.05 if note else 0, 1, 1))
+    if note:
+        fig.text(0.5, 0.005, note, ha="center", va="bottom", fontsize=7.5)
     return fig
 
 
