@@ -8,6 +8,7 @@ import math
 import mpmath as mp
 import numpy as np
 import pytest
+from conftest import ROOT
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -383,3 +384,24 @@ def test_critical_loads_print_no_numpy_warnings():
         warnings.simplefilter("error", RuntimeWarning)
         c = ar.critical_loads(RodGroups(tan_alpha=5.0, eta=0.01), p_max=40)
     assert c.p_flu is not None and 0 < c.p_flu < 40
+
+
+def test_fig12_says_it_reproduces_the_quoted_loads_only_where_it_does():
+    """An outside audit: with your own tan(alpha) = 1.2 Fig. 12 said "tan α = 1.2: reproduces
+    the loads the chapter quotes" and "the loads the chapter quotes are those at tan α = 1.2"."""
+    import matplotlib.pyplot as plt
+
+    from flutterfriction.config import load_config, scene_params
+    from flutterfriction.plotting.rod import plot_fig12
+    from flutterfriction.scenes.rod import fig12
+
+    params = scene_params(load_config(ROOT / "workflow" / "config.yaml"), "fig12")
+    for tan_alpha, reproduces in ((params["tan_alpha"], True), (1.2, False)):
+        data = fig12({**params, "tan_alpha": tan_alpha, "n_points": 41})
+        assert data["reproduces_quoted"] is reproduces
+        fig = plot_fig12(data)
+        texts = " ".join([fig._suptitle.get_text()] + [t.get_text() for ax in fig.axes
+                                                        for t in ax.texts])
+        plt.close(fig)
+        assert ("reproduces the loads the chapter quotes" in texts) is reproduces
+        assert ("your choice: not the quoted loads" in texts) is not reproduces

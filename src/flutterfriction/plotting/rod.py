@@ -433,9 +433,12 @@ def plot_fig12(data: dict[str, Any]) -> Figure:
     fig, axes = plt.subplots(4, 2, figsize=(9.6, 11.0), sharex="col")
     titles = _damping_titles(data["eta"])
     p_st = np.array(data["stated"].get("p", data["p"]))
+    quoted = data.get("reproduces_quoted", True)
     for col, (cases, pc, head) in enumerate((
-            (stated, p_st, f"as the caption states: tan α = {t_st:g}"),
-            (fitted, p, f"tan α = {t_fit:.4g}: reproduces the loads the chapter quotes"))):
+            (stated, p_st, f"as the caption states: tan α = {t_st:g}" if t_st == 1.0
+             else f"tan α = {t_st:g} (the caption states 1)"),
+            (fitted, p, f"tan α = {t_fit:.4g}: reproduces the loads the chapter quotes"
+             if quoted else f"tan α = {t_fit:.4g} (your choice: not the quoted loads)"))):
         axes[0, col].annotate(head, (0.5, 1.0), xycoords="axes fraction", xytext=(0, 26),
                               textcoords="offset points", ha="center", fontsize=9,
                               fontweight="bold")
@@ -447,13 +450,18 @@ def plot_fig12(data: dict[str, Any]) -> Figure:
 
     def loads(cases):
         u, d = cases["undamped"]["critical"], cases["damped"]["critical"]
-        return (f"{u['p_flu']:.2f} / {u['p_div']:.2f}, damped {d['p_flu']:.2f} / "
-                f"{d['p_div']:.2f}")
+
+        def f(v):
+            return "none" if v is None else f"{v:.2f}"
+        return f"{f(u['p_flu'])} / {f(u['p_div'])}, damped {f(d['p_flu'])} / {f(d['p_div'])}"
     fig.suptitle(f"Fig. 12: the Pflüger rod, {list119(data)}, tip mass tan α = M/(ρl); "
                  "flutter / divergence loads p\n"
-                 f"Erratum: the caption's tan α = {t_st:g} gives {loads(stated)}; the loads "
-                 f"the chapter quotes are those at tan α = {t_fit:.4g}: {loads(fitted)}"
-                 + _one_rad_note(data), fontsize=8.5)
+                 + (f"Erratum: the caption's tan α = {t_st:g} gives {loads(stated)}; the loads "
+                    f"the chapter quotes are those at tan α = {t_fit:.4g}: {loads(fitted)}"
+                    + _one_rad_note(data) if quoted and t_st == 1.0 else
+                    f"tan α = {t_st:g}: {loads(stated)}; tan α = {t_fit:.4g}: {loads(fitted)} "
+                    "(the chapter quotes 16.51 / 30.22, damped 7.78 / 30.52; see the errata)"),
+                 fontsize=8.5)
     fig.tight_layout(rect=(0, 0.04, 1, 0.985), h_pad=1.6)
     _branch_legend(fig, len(fitted["undamped"]["re"]) // 2,
                    _shows_divergence(stated.values(), p_st)
