@@ -142,7 +142,8 @@ display(Markdown(
     "| load | quoted | tan α = 1 (stated) | α = 1 rad (tan α = 1.5574) | inferred tan α | "
     "window of tan α |\n|---|---|---|---|---|---|\n" + rows))
 display(Markdown(f"All four windows intersect in tan α ∈ [{e['common_window'][0]:.5f}, "
-                 f"{e['common_window'][1]:.5f}]; the figure is drawn at tan α = 1.5608. A "
+                 f"{e['common_window'][1]:.5f}]; the figure is drawn at tan α = "
+                 f"{scene('fig12')['cases']['undamped']['groups']['tan_alpha']:.5g}. A "
                  "plausible origin is α = 1 rad instead of tan α = 1: it reproduces both flutter "
                  "loads to the printed digits, and the divergence loads to 0.06%."))
 

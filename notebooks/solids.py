@@ -117,8 +117,11 @@ display(Markdown("| ε | % of the ±20° patch that flutters |\n|---|---|\n" + "
 # checked $g_1$, $g_2$ and $g^E_{cr}$):
 
 # %%
-P = so.voigt_to_tensor([1, -0.5, -0.5, 0, 0, 0.8])
-Q = so.voigt_to_tensor([0.6, -0.3, -0.3, 0, 0, -0.8])
-n = np.array([1.0, 0.0, 0.0])
-display(Markdown(f"flutter interval {so.flutter_interval_isotropic(1.0, 1.0, P, Q, n)}, "
-                 f"g_localization {so.localization_modulus_isotropic(1.0, 1.0, P, Q, n):.6f}"))
+# the parameters the figure was drawn with (the workflow's data: your own, if you set them)
+ae = scene("acoustic_eigenvalues")["params"]
+P, Q = so.voigt_to_tensor(ae["P"]), so.voigt_to_tensor(ae["Q"])
+n = np.array(ae["n"], dtype=float)
+lam, mu = ae["lam"], ae["mu"]
+display(Markdown(f"λ = {lam:g}, μ = {mu:g}: flutter interval "
+                 f"{so.flutter_interval_isotropic(lam, mu, P, Q, n)}, "
+                 f"g_localization {so.localization_modulus_isotropic(lam, mu, P, Q, n):.6f}"))

@@ -31,6 +31,7 @@ from IPython.display import Image, Markdown, display
 from flutterfriction import ZieglerPendulum
 from flutterfriction.analysis.ziegler import critical_loads, regime, spectrum
 from flutterfriction.closed_forms import ziegler as cf
+from flutterfriction.plotting import chapter_list
 
 DATA, FIGS = Path("results/data"), Path("results/figures")
 
@@ -62,11 +63,13 @@ def show(name, width=620):
 show("fig02")
 
 # %%
+# "list (47)" only when the data's pendulum is that list (else "your own pendulum (...)")
+LIST47 = chapter_list(scene("eq47"), "pendulum", "list47", "list (47)")
 p47 = ZieglerPendulum.from_mapping(scene("eq47")["params"]["pendulum"])
 M, K = p47.mass_matrix(), p47.stiffness_matrix()
 G = p47.geometric_matrix(P=1.0)
 display(Markdown(
-    f"For the device of list (47): $\\mathbf{{M}}$ = {np.array2string(M, precision=5)} kg m², "
+    f"For the device of {LIST47}: $\\mathbf{{M}}$ = {np.array2string(M, precision=5)} kg m², "
     f"$\\mathbf{{K}}$ = {np.array2string(K, precision=4)} N m, and the follower load enters "
     f"through the unsymmetric $\\mathbf{{G}}/P$ = {np.array2string(G, precision=3)} m."))
 
@@ -104,7 +107,7 @@ display(Markdown(
 show("fig03")
 
 # %%
-for name, label in (("eq46", "eq. (46)"), ("eq47", "list (47)"), ("eq48", "eq. (48)")):
+for name, label in (("eq46", "eq. (46)"), ("eq47", LIST47), ("eq48", "eq. (48)")):
     q = scene(name)["quantities"]
     display(Markdown(
         f"**{label}**: $P_{{flu}}$ = {q['P_flu']['value']:.12g} N "
