@@ -341,6 +341,26 @@ def test_a_scene_with_other_parameters_is_not_applicable_not_failed():
         "FAIL"]
 
 
+def test_numerical_settings_no_preset_overrides_keep_the_entries_checked():
+    """An outside audit: fig10's fe_elements 32 -> 48, elastica's load_steps, localization's
+    n_search and fig05's plotted gamma_max made 28 entries 'not applicable' with unchanged
+    values: the numerical settings of every scene are resolution keys too."""
+    from flutterfriction.reference import load_parameters, load_reference, run_check
+
+    recorded = load_parameters(ROOT / "workflow" / "reference_parameters.json")
+    for scene, key in (("fig10", "fe_elements"), ("elastica", "load_steps"),
+                       ("localization_directions", "n_search"), ("fig05", "gamma_max")):
+        assert key in recorded["resolution_keys"][scene]
+    reference = load_reference(ROOT / "workflow" / "reference.yaml")
+    entry = next(e for e in reference["quantities"] if e["scene"] == "fig10")
+    params = dict(recorded["paper"]["fig10"], fe_elements=48)
+    data = {"fig10": {"scene": "fig10", "params": params, "quantities": {entry["key"]: {
+        "value": -1.0, "independent": -1.0, "method": "m", "independent_method": "i",
+        "unit": ""}}}}
+    assert [r.status for r in run_check({"quantities": [entry]}, data, "paper", recorded)] == [
+        "FAIL"]  # checked (and a wrong value fails), not 'not applicable'
+
+
 def test_figures_name_a_chapter_list_only_for_its_parameters():
     """A figure of a researcher's own pendulum or rod must not say 'list (47)' (an outside
     audit: eq47's title did): the recorded chapter parameters give the list's name, others

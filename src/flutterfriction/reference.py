@@ -70,6 +70,18 @@ NOT_APPLICABLE = "not applicable"
 REFERENCE_PARAMETERS = Path("workflow/reference_parameters.json")
 
 
+#: Numerical settings (discretisation, tolerances, iteration and sample counts, plotted
+#: ranges) in any scene: a change leaves the chapter's values applicable, checked at the
+#: entry's tolerances (an outside audit: fe_elements 32 -> 48, load_steps, n_search and
+#: fig05's plotted gamma_max made 28 entries "not applicable" with unchanged values). The keys
+#: a preset overrides are added per scene (:func:`record_parameters`).
+NUMERICAL_SETTINGS = frozenset({
+    "n_points", "n_grid", "n_samples", "n_search", "n_modes", "n_elements", "n_lines",
+    "fe_elements", "elements", "meshes", "load_steps", "max_points", "repeats", "tol", "rtol",
+    "newton_tol", "variational_rtol", "transient_rtol", "transient_tol", "samples_per_period",
+    "error_target", "check_elements", "check_extremes", "dt", "gamma_max"})
+
+
 def record_parameters(config: Mapping[str, Any]) -> dict[str, dict[str, Any]]:
     """``{preset: {scene: parameters}}`` as ``config`` (loaded, chapter lists resolved)
     resolves them for each preset: what the workflow's solve jobs record in the data; and
@@ -91,6 +103,8 @@ def record_parameters(config: Mapping[str, Any]) -> dict[str, dict[str, Any]]:
         for s in scenes:
             params = config["scenes"].get(s) or {}
             keys[s] |= {k for k in preset if k in params} | set(per_scene.get(s) or {})
+    for s in scenes:
+        keys[s] |= NUMERICAL_SETTINGS & set(config["scenes"].get(s) or {})
     out["resolution_keys"] = {s: sorted(k) for s, k in keys.items() if k}
     return out
 
