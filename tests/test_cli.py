@@ -538,3 +538,19 @@ def test_the_cost_estimate_is_deterministic(monkeypatch):
         monkeypatch.setattr(time, name, lambda: pytest.fail("the clock was read"))
     assert beck_cost_estimate(*audit) == first == pytest.approx(623.3, abs=0.05)
     assert first > BECK_BUDGET_S >= beck_cost_estimate(95.79, 158.96, 16, 1.357e-3, 1.855)
+
+
+def test_acoustic_near_incompressible_limit_is_accurate_or_refused(capsys):
+    """An outside audit: at lam/mu = 1e20 an eigenvalue came out with the wrong sign (k =
+    (lam' + 1)/(lam' + 2) rounds at eps lam/mu). lam/mu is now limited to 1e8, where A =
+    diag(mu, mu, lam + 2 mu - 0.6/g) for n = e3 is reproduced to 2e-9 (measured 1e-9)."""
+    args = ["acoustic", "--mu", "1", "--P", "1,-0.5,-0.5,0,0,0.8", "--Q",
+            "0.6,-0.3,-0.3,0,0,-0.8", "--n", "0,0,1", "--g", "1e-9", "--json"]
+    assert main([*args, "--lam", "1e8"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["g_localization"] == pytest.approx(0.6 / (1e8 + 2), rel=2e-9)
+    eig = sorted(e[0] for e in out["eigenvalues"])
+    assert eig[1:] == pytest.approx([1.0, 1.0], rel=2e-9)
+    assert eig[0] == pytest.approx(1e8 + 2 - 0.6e9, rel=1e-9)
+    assert main([*args, "--lam", "1e9"]) == 2
+    assert "lam/mu <= 1e+08" in capsys.readouterr().err

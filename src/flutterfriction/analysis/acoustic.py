@@ -269,8 +269,11 @@ def flutter_interval_bruteforce(E: NDArray, P: ArrayLike, Q: ArrayLike, n: Array
 #: Results and scales are kept within [RANGE_MIN, RANGE_MAX] (floats end at 1.8e308 and lose
 #: precision below 2.2e-308); what would leave that range is refused, never rounded to 0/inf.
 RANGE_MIN, RANGE_MAX = 1e-300, 1e300
-#: Largest lam/mu: the scaled vectors grow like lam/mu and their products like its square.
-LAM_OVER_MU_MAX = 1e150
+#: Largest lam/mu. The products stay in range up to ~1e150, but k = (lam' + 1)/(lam' + 2) in
+#: ``uv - k pn qn`` rounds at eps lam/mu (an outside audit: at lam/mu = 1e20 an eigenvalue
+#: came out with the wrong sign, at 1e12 g_E was off by 6e-5): 1e8 keeps that error near
+#: 1e-8 and is nu = 1/2 - 5e-9, beyond any solid (rubber: lam/mu ~ 5e3).
+LAM_OVER_MU_MAX = 1e8
 
 
 def classify_eigenvalues(eta: ArrayLike, rtol: float = 1e-10) -> Regime:
@@ -370,8 +373,8 @@ def isotropic_acoustic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike, n: Arr
     if not (lr > -2.0 / 3.0 and lr <= LAM_OVER_MU_MAX):
         raise ParameterError(
             f"{nm['lam']} must satisfy -2/3 < lam/mu <= {LAM_OVER_MU_MAX:g} (positive definite "
-            f"elasticity; beyond, the scaled products leave the float range), got lam/mu = "
-            f"{lr:.6g}")
+            f"elasticity; beyond, the near-incompressible terms lose their digits), got "
+            f"lam/mu = {lr:.6g}")
     arrays = {}
     for key, value, size in (("P", P, 6), ("Q", Q, 6), ("n", n, 3)):
         a = np.asarray(value, dtype=float)
