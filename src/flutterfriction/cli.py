@@ -189,7 +189,7 @@ def build_parser() -> argparse.ArgumentParser:
                     "Q/max|Q|): results must lie within [1e-300, 1e300] in magnitude, inputs "
                     "that would leave it are refused.")
     a.add_argument("--lam", type=_number, required=True,
-                   help="Lame constant lambda [Pa], -2/3 < lam/mu <= 1e150, |lam| <= 1e300")
+                   help="Lame constant lambda [Pa], -2/3 < lam/mu <= 1e8, |lam| <= 1e300")
     a.add_argument("--mu", type=_number, required=True,
                    help="shear modulus mu [Pa], 1e-300 <= mu <= 1e300")
     vector = {"nargs": "+", "action": _VectorAction, "required": True}
