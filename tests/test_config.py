@@ -193,6 +193,14 @@ def test_the_config_names_the_lists_and_an_unknown_name_is_refused(config):
     ("rod_fe_convergence", "elements", [4, 4, 4], "elements: must be strictly increasing"),
     ("elastica", "part", [0.75, 0.3], "part: must be strictly increasing"),
     ("acoustic_eigenvalues", "n", [0, 0, 0], "n: must be a non-zero direction"),
+    # a second outside audit: each of these ended in a traceback in its job's log
+    ("acoustic_eigenvalues", "lam", -5.0, "acoustic_eigenvalues: needs mu > 0 and -2/3 < lam/mu"),
+    ("acoustic_eigenvalues", "lam", 1e9, "acoustic_eigenvalues: needs mu > 0 and -2/3 < lam/mu"),
+    ("flutter_map", "plane_case", {"lam": -5.0, "mu": 1.0, "P": [1.0, -0.5, -0.5, 0.0, 0.0, 0.8],
+                                   "Q": [0.6, -0.3, -0.3, 0.0, 0.0, -0.8]},
+     "flutter_map.plane_case: needs mu > 0 and -2/3 < lam/mu"),
+    ("fig04", "dt", 1000.0, "fig04.dt: must be <= cases.divergence.duration = 0.2 s"),
+    ("fig18", "wheel_radius", 1.0, "fig18.wheel_radius: mu * wheel_radius = 0.25 m must be <"),
 ])
 def test_values_the_scenes_refuse_are_refused_before_any_job(config, scene, key, value, match):
     """Outside audit: these passed `snakemake -n` and failed (or computed nonsense) only when

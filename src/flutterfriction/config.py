@@ -265,10 +265,50 @@ def _physical_problems(scene: str, params: dict[str, Any], prefix: str) -> list[
                 and all(isinstance(v, int | float) for v in value) \
                 and not all(a < b for a, b in zip(value, value[1:], strict=False)):
             lines.append(f"{where}: must be strictly increasing, got {value}")
+        if isinstance(value, dict) and all(isinstance(value.get(k), int | float)
+                                           for k in ("lam", "mu")):
+            # an isotropic solid: positive definite (the acoustic tensor's numerical range)
+            from flutterfriction.analysis.acoustic import LAM_OVER_MU_MAX
+
+            lam, mu = value["lam"], value["mu"]
+            if not mu > 0 or not -2.0 / 3.0 < lam / mu <= LAM_OVER_MU_MAX:
+                lines.append(f"{where}: needs mu > 0 and -2/3 < lam/mu <= {LAM_OVER_MU_MAX:g} "
+                             f"(positive definite isotropic elasticity), got lam = {lam}, "
+                             f"mu = {mu}")
         if isinstance(key, str) and key.endswith("_min") and isinstance(value, int | float):
             upper = _lookup(params, (*path[:-1], key[:-4] + "_max"))
             if isinstance(upper, int | float) and not value < upper:
                 lines.append(f"{where}: must be < {key[:-4]}_max = {upper}, got {value}")
+    return lines + _scene_specific_problems(scene, params, prefix)
+
+
+def _scene_specific_problems(scene: str, params: dict[str, Any], prefix: str) -> list[str]:
+    """Constraints between one scene's keys that its job would otherwise fail on (an outside
+    audit: each ended in a traceback in a job's log): Fig. 4's drawing interval within each
+    case's duration; Fig. 18's lever not wedged (mu r < l1 + l2)."""
+    where = f"{prefix}scenes.{scene}"
+    lines = []
+    if scene == "fig04" and isinstance(params.get("dt"), int | float) \
+            and isinstance(params.get("cases"), dict):
+        for name, case in params["cases"].items():
+            duration = case.get("duration") if isinstance(case, dict) else None
+            if isinstance(duration, int | float) and not params["dt"] <= duration:
+                lines.append(f"{where}.dt: must be <= cases.{name}.duration = {duration} s "
+                             f"(a frame at least), got {params['dt']}")
+    if scene == "fig18":
+        pend = params.get("pendulum")
+        if isinstance(pend, str):  # a chapter list by name
+            from flutterfriction.parameters import LISTS, parameter_list
+
+            pend = parameter_list(pend) if pend in LISTS else None
+        mu, r = params.get("mu", 0.25), params.get("wheel_radius", 0.02)
+        if isinstance(pend, dict) and all(isinstance(pend.get(k), int | float)
+                                          for k in ("l1", "l2")) \
+                and isinstance(mu, int | float) and isinstance(r, int | float) \
+                and not mu * r < pend["l1"] + pend["l2"]:
+            lines.append(f"{where}.wheel_radius: mu * wheel_radius = {mu * r:g} m must be < "
+                         f"l1 + l2 = {pend['l1'] + pend['l2']:g} m (else the friction's moment "
+                         "wedges the lever)")
     return lines
 
 
