@@ -287,7 +287,8 @@ def plot_localization_directions(data: dict[str, Any]) -> Figure:
                  f"(Rudnicki–Rice: {q['independent']:.6f} Pa)", fontsize=8)
     ax.set_xlabel(r"angle of n from the $\sigma_1$ axis [deg]")
     ax.set_ylabel(r"$g^E_{cr}(n)$ [Pa]")
-    ax.legend(fontsize=7)
+    # under the axes: inside, it hid the curve's rising branch (a figure review)
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.17), ncol=2)
     return fig
 
 

@@ -148,8 +148,9 @@ def plot_fig03(data: dict[str, Any]) -> Figure:
     return fig
 
 
-#: Frames whose linear angles exceed this are not drawn: there the linearisation of eq. (11)
-#: (sin a ~ a) is meaningless (the divergence's last frame reaches +188 / -221 degrees).
+#: Frames whose linear angles exceed this are flagged: there the linearisation of eq. (11)
+#: (sin a ~ a) is meaningless (the divergence's last frame reaches +188 / -221 degrees), but
+#: the printed figure draws it, so it is drawn (as printed) with the flag.
 FIG04_MAX_DEG = 45.0
 
 
@@ -161,7 +162,7 @@ def plot_fig04(data: dict[str, Any]) -> Figure:
     kinematics of eq. 1). Beside each sequence, alpha1(t) and alpha2(t) of the same solution
     with the drawn instants marked, so the growing oscillation (flutter) and the exponential
     departure (divergence) read off the drawing. Frames with an angle beyond
-    ``FIG04_MAX_DEG`` are not drawn (their angles are printed instead).
+    ``FIG04_MAX_DEG`` are drawn as printed and flagged: the linearisation is invalid there.
     """
     cases = data["cases"]
     order = [n for n in ("flutter", "divergence") if n in cases] + \
@@ -193,19 +194,29 @@ def plot_fig04(data: dict[str, Any]) -> Figure:
             for side in ax.spines.values():
                 side.set_color("0.8")
             a1, a2 = alpha[i]
-            ax.text(0.02, 0.96, f"t = {t:.2f} s", transform=ax.transAxes, fontsize=7,
-                    va="top")
+            beyond = max(abs(a1), abs(a2)) > FIG04_MAX_DEG
+            ax.text(0.02, 0.96, f"t = {t:.2f} s" + (f": |α| > {FIG04_MAX_DEG:g}°, the linear "
+                                                   "solution\nis invalid (drawn as printed)"
+                                                   if beyond else ""),
+                    transform=ax.transAxes, fontsize=7 if not beyond else 5.5, va="top",
+                    color="C3" if beyond else "black")
             ax.text(0.02, 0.04, f"{a1:+.1f}°, {a2:+.1f}°", transform=ax.transAxes,
                     fontsize=6.5, ha="left", va="bottom", color="0.35")
-            if max(abs(a1), abs(a2)) > FIG04_MAX_DEG:
-                ax.text(0.5, 0.5, f"|α| > {FIG04_MAX_DEG:g}°:\nlinear solution\nnot drawn",
-                        transform=ax.transAxes, ha="center", va="center", fontsize=7,
-                        color="0.35")
-                continue
+            if beyond:
+                # drawn, as in the printed figure, and flagged (a figure review asked for the
+                # printed frame rather than a note in its place)
+                for side in ax.spines.values():
+                    side.set_color("C3")
             ax.plot([0, span], [0, 0], color="0.7", lw=0.6, ls="--")
             frame = {key: v[i] for key, v in pts.items()}
             draw_pendulum(ax, frame, data["masses"], scale=0.5 * L, springs=False,
                           loads={"P": 0.3 * L})
+            if beyond:  # the whole (folded back) pendulum in its frame, at the same scale
+                xy = np.array([np.asarray(v, dtype=float) for v in frame.values()])
+                cx, cy = 0.5 * (xy[:, 0].min() + xy[:, 0].max()), 0.5 * (xy[:, 1].min()
+                                                                      + xy[:, 1].max())
+                ax.set_xlim(cx - 0.7 * span, cx + 0.7 * span)
+                ax.set_ylim(cy - 0.35 * span, cy + 0.55 * span)  # room for the flag above
         ax_t = fig.add_subplot(sub[:, ncol + 1])
         t_d = np.array(case["t_dense"])
         a_d = np.degrees(np.array(case["alpha_dense"]))
@@ -218,7 +229,7 @@ def plot_fig04(data: dict[str, Any]) -> Figure:
         if np.abs(alpha).max() > FIG04_MAX_DEG:
             for sgn in (1, -1):
                 ax_t.axhspan(sgn * FIG04_MAX_DEG, sgn * lim, color="0.88", lw=0)
-            ax_t.text(0.03, 0.97, f"beyond ±{FIG04_MAX_DEG:g}°: not drawn",
+            ax_t.text(0.03, 0.97, f"beyond ±{FIG04_MAX_DEG:g}°: linearisation invalid",
                       transform=ax_t.transAxes, fontsize=6.5, va="top", color="0.3")
         ax_t.set_xlim(0, times[-1])
         ax_t.set_xlabel("time t [s]")

@@ -92,7 +92,8 @@ def plot_paradox_limit(data: dict[str, Any]) -> Figure:
     ax.set_xlabel(r"viscosity $\epsilon = c_2/(l_2\sqrt{k_2 m_2})$ [-]")
     ax.set_ylabel(r"flutter load $P_{flu}\,L/K$ [-]")
     ax.set_ylim(1.2, 2.6)
-    ax.legend(loc="upper right", fontsize=7)
+    # under the axes: at the upper right it hid eq. (54)'s curve (a figure review)
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.17), ncol=2, fontsize=7)
     ax.set_title("Flutter load with vanishing hinge viscosity (symmetric pendulum)")
     return fig
 
@@ -142,7 +143,8 @@ def plot_fig19_theory(data: dict[str, Any]) -> Figure:
     ax2.legend(loc="upper left", fontsize=7)
     ax2.set_title("Ratios against viscosity", fontsize=8)
     fig.suptitle("Fig. 19, theory only: the experimental spots of the printed figure are "
-                 "measurements, not reproduced", fontsize=8)
+                 "measurements, not reproduced; its horizontal theory bars are drawn here as "
+                 "columns", fontsize=8)
     note = own_parameters_note(data, "pendulum", "list47", width=170)
     fig.tight_layout(rect=(0, 0.05 if note else 0, 1, 1))
     if note:
@@ -181,7 +183,8 @@ def plot_paradox_map(data: dict[str, Any]) -> Figure:
                     or (ax is axes[1] and pt["m1_over_m2"] == 1.0)]
         for pt in on_panel:
             yy = np.log10(pt["m1_over_m2"]) if ax is axes[0] else pt["d_over_l1"]
-            ax.plot(np.log10(pt["c_ratio"]), yy, "x", color="w", ms=7, mew=1.8)
+            ax.plot(np.log10(pt["c_ratio"]), yy, "X", color="k", mfc="w", mec="k", mew=0.8, ms=8,
+                    clip_on=False)  # on the frame too (it was half cut off)
         ax.set_xlabel(r"damping distribution $\log_{10}(c_1/c_2)$ [-]")
         ax.set_ylabel(ylabel)
     fig.subplots_adjust(wspace=0.38)

@@ -113,7 +113,7 @@ def plot_fig20(data: dict[str, Any]) -> Figure:
     tl, al = np.array(data["t_linear"]), np.array(data["acc_linear"])
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(9.0, 3.4),
                                    gridspec_kw={"width_ratios": [2, 1]})
-    lim = 1.3 * np.max(np.abs(acc))
+    lim = 1.45 * np.max(np.abs(acc))  # room for the legend above the peaks
     for ax, tmax in ((ax1, t[-1]), (ax2, tl[-1])):
         ax.plot(t[t <= tmax], acc[t <= tmax], color="C3", lw=0.8, label="nonlinear, eq. (10)")
         ax.plot(tl, al, color="C0", lw=0.8, label="linear, eqs. (11)+(26)")
@@ -122,7 +122,7 @@ def plot_fig20(data: dict[str, Any]) -> Figure:
         ax.set_xlabel("t [s]")
     for ax in (ax1, ax2):
         ax.set_ylabel(r"transverse acceleration of C [m/s$^2$]")
-    ax1.legend(fontsize=7, loc="lower left")
+    ax1.legend(fontsize=7, loc="upper left", ncol=2)  # lower left, it hid the first peaks
     a0 = data.get("alpha0_deg", 0.5)  # (data from before the key was stored: the default)
     fig.suptitle(f"Fig. 20: {list47_viscous(data)}, P = {data['P']:.3f} N (middle of "
                  f"the flutter interval {data['P_flu']:.2f}–{data['P_div']:.2f} N), from "
@@ -179,7 +179,8 @@ def plot_limit_cycle_amplitude(data: dict[str, Any]) -> Figure:
     ax1.axvline(Pf, color="k", ls="--", lw=0.8, label=f"damped flutter load P_flu = {Pf:.4g} N")
     ax1.set_xlabel("follower load P [N]")
     ax1.set_ylabel("limit-cycle amplitude [deg]")
-    ax1.legend(fontsize=7)
+    # under the axes: inside, it hid the alpha2 branch (a figure review)
+    ax1.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=2)
     q = data["quantities"]
     text = pendulum_text(data.get("params", {}).get("pendulum"))
     if text:
