@@ -133,32 +133,41 @@ def discriminant_polynomial(E: NDArray, P: ArrayLike, Q: ArrayLike, n: ArrayLike
 def _secular_end(x0: float, Ael: NDArray, p: NDArray, q: NDArray, a: NDArray,
                  s: NDArray) -> float:
     """The coalescence of two eigenvalues of ``A_el - x p (x) q`` nearest ``x0``: Newton on
-    ``S2(eta) = sum s_k/(a_k - eta)^2 = 0`` from the mean of A(x0)'s closest eigenvalue pair,
-    then ``x = 1 / sum s_k/(a_k - eta)`` (sums: no cancellation of large terms). Refused
-    (:class:`ConvergenceError`) if Newton fails or lands more than 1e-3 away from ``x0``."""
-    eta_all = np.linalg.eigvals(Ael - x0 * np.outer(p, q))
-    gaps = np.abs(eta_all[:, None] - eta_all[None, :]) + np.diag([np.inf] * eta_all.size)
-    i, j = np.unravel_index(np.argmin(gaps), gaps.shape)
-    eta = 0.5 * float((eta_all[i] + eta_all[j]).real)
+    ``S2(eta) = sum s_k/(a_k - eta)^2 = 0``, then ``x = 1 / sum s_k/(a_k - eta)`` (sums: no
+    cancellation of large terms), started from each eigenvalue of A(x0) and each pair's mean
+    (an isotropic A_el keeps one eigenvalue mu fixed, which may lie closer than the coalescing
+    pair). The converged ``x`` nearest ``x0``; refused (:class:`ConvergenceError`) if none
+    lands within 1e-3 of ``x0``."""
+    eta_all = np.linalg.eigvals(Ael - x0 * np.outer(p, q)).real
+    starts = [*eta_all, *(0.5 * (eta_all[i] + eta_all[j]) for i in range(eta_all.size)
+                          for j in range(i + 1, eta_all.size))]
     keep = s != 0.0
     a, s = a[keep], s[keep]
-    for _ in range(60):
-        d = a - eta
-        if np.any(d == 0.0):
-            break
-        s2, s3 = float(np.sum(s / d**2)), 2.0 * float(np.sum(s / d**3))
-        if s3 == 0.0:
-            break
-        step = s2 / s3
-        eta -= step
-        if abs(step) <= 4 * np.finfo(float).eps * max(abs(eta), float(np.max(np.abs(a)))):
-            x = 1.0 / float(np.sum(s / (a - eta)))
-            if abs(x - x0) <= 1e-3 * abs(x0):
-                return x
-            break
-    raise ConvergenceError(f"the flutter interval's end near g = {1 / x0:.6g} was not resolved "
-                           "(the secular equation's Newton did not confirm it); use "
-                           "flutter_interval_isotropic (isotropic solids)")
+    found = []
+    for eta in starts:
+        for _ in range(60):
+            d = a - eta
+            if np.any(d == 0.0):
+                break
+            with np.errstate(over="ignore", under="ignore"):
+                s2, s3 = float(np.sum(s / d**2)), 2.0 * float(np.sum(s / d**3))
+            if s3 == 0.0 or not (np.isfinite(s2) and np.isfinite(s3)):
+                break
+            step = s2 / s3
+            eta -= step
+            if np.any(a == eta):
+                break
+            # S2's terms cancel at its root: the step settles at ~1e-14 of the scale, not eps
+            if abs(step) <= 1e-11 * max(abs(eta), float(np.max(np.abs(a)))):
+                s1 = float(np.sum(s / (a - eta)))
+                if s1 != 0.0 and abs(1.0 / s1 - x0) <= 1e-3 * abs(x0):
+                    found.append(1.0 / s1)
+                break
+    if not found:
+        raise ConvergenceError(f"the flutter interval's end near g = {1 / x0:.6g} was not "
+                               "resolved (the secular equation's Newton did not confirm it); "
+                               "use flutter_interval_isotropic (isotropic solids)")
+    return min(found, key=lambda x: abs(x - x0))
 
 
 def flutter_interval_bruteforce(E: NDArray, P: ArrayLike, Q: ArrayLike, n: ArrayLike,
