@@ -297,19 +297,13 @@ def solve_shooting(length: float, B: float, loads: ElasticaLoads, *, load_steps:
     tol = check_positive("tol", tol, "rad")
     fP1, g1 = _dimensionless(length, B, loads)
     try:
-        th, iterations = _continue_from_straight(fP1, g1, load_steps, rtol, tol, max_iter)
-        out = _shooting_solution(length, B, loads, th, rtol, iterations)
-        if stability_eigenvalue(out) >= -_stability_tolerance(out):
-            return out
-    except ConvergenceError as exc:
-        # a fold or a failed Newton step past the Euler load (the straight rod's branch meets
-        # the bent one there): the stable equilibrium is sought among all roots as well
-        failure = str(exc)
-    else:
-        failure = "the continuation reached an unstable equilibrium"
-    # The steps landed on an unstable equilibrium (past the Euler load, the nearly straight one
-    # beside the bent one) or failed: the stable equilibrium on the side the loads bend the rod.
-    th = _stable_root(length, B, loads, fP1, g1, rtol, tol, max_iter, failure)
+        th, iterations = _follow_loading_path(length, B, loads, load_steps, rtol, tol,
+                                              max_iter)
+        return _shooting_solution(length, B, loads, th, rtol, iterations)
+    except _PathLost as exc:
+        # the stable equilibrium on the side the path last bent the rod to, among all roots
+        failure, last = str(exc), exc.theta_l
+    th = _stable_root(length, B, loads, fP1, g1, rtol, tol, max_iter, failure, last)
     out = _shooting_solution(length, B, loads, th, rtol, 0)
     if stability_eigenvalue(out) < -_stability_tolerance(out):
         raise ConvergenceError("the elastica's stable equilibrium was not found (the root "
@@ -317,40 +311,78 @@ def solve_shooting(length: float, B: float, loads: ElasticaLoads, *, load_steps:
     return out
 
 
-def _continue_from_straight(fP1: NDArray, g1: NDArray, load_steps: int, rtol: float,
-                            tol: float, max_iter: int) -> tuple[float, int]:
-    """The end rotation at the full loads, the loads applied in ``load_steps`` equal steps
-    from the straight rod (Newton from the secant predictor), and the Newton iterations."""
-    history = [(0.0, 0.0)]  # (load factor, end rotation): the straight rod
+class _PathLost(ConvergenceError):
+    """The loading path could not be followed further; ``theta_l`` its last end rotation."""
+
+    def __init__(self, message: str, theta_l: float) -> None:
+        super().__init__(message)
+        self.theta_l = theta_l
+
+
+def _newton_on_theta(th: float, fP: NDArray, g: NDArray, rtol: float, tol: float,
+                     max_iter: int) -> tuple[float, int]:
+    """Newton on ``theta(0) = 0`` in the end rotation, from ``th``; raises on a fold, a
+    wandering iterate (|theta(l)| > 4 pi: an outside audit saw 1e7 rad and integrations of
+    minutes) or no convergence."""
+    for k in range(1, max_iter + 1):
+        z = _integrate_from_tip(th, fP, g, rtol).y[:, -1]
+        r, dr = z[0], z[4]
+        if not (np.isfinite(dr) and dr != 0.0):
+            # (no threshold: far past the Euler load d theta(0)/d theta(l) is legitimately
+            # ~exp(-sqrt(load)), and an absolute 1e-8 refused P2 = 1000 B/l^2; an audit)
+            raise ConvergenceError(f"the elastica's branch folds (d theta(0)/d theta(l) = "
+                                   f"{dr:.3g})")
+        # converged: theta(0) within tol, or a correction of theta(l) below 1e-12 rad (far
+        # past the Euler load theta(0) amplifies the integration's round-off by ~exp(k l), so
+        # its own noise can exceed tol: P2 = 69 B/l^2 gave 4e-9 rad at dr = 1.8e3)
+        if abs(r) <= tol or abs(r / dr) <= 1e-12:
+            return th - r / dr, k
+        # steps capped at 0.1 rad: near the loads' direction the residual is steep and full
+        # steps overshot to another root (P2 = 69 B/l^2 from -1.56 to -0.83 rad; an audit)
+        th -= float(np.clip(r / dr, -0.1, 0.1))
+        if not abs(th) <= 4 * math.pi:
+            raise ConvergenceError("Newton on theta(0) = 0 left |theta(l)| <= 4 pi")
+    raise ConvergenceError(f"Newton on theta(0) = 0 did not converge (residual {r:.3g} rad)")
+
+
+def _follow_loading_path(length: float, B: float, loads: ElasticaLoads, load_steps: int,
+                         rtol: float, tol: float, max_iter: int) -> tuple[float, int]:
+    """The end rotation at the full loads, reached along the loading path from the straight
+    rod: load factor steps of at most ``1/load_steps`` (Newton from the secant predictor), a
+    step accepted only if its equilibrium is stable and Newton's correction is small against
+    the predicted change (a quarter of it, plus 1e-6 rad), else halved. Past the Euler load
+    with a small transverse load the path turns sharply, and equal steps landed on the
+    unstable nearly straight equilibrium or jumped to the stable one on the other side
+    (outside audits); halving follows the turn. Raises :class:`_PathLost` (with
+    the last end rotation) below a step of 1e-9."""
+    fP1, g1 = _dimensionless(length, B, loads)
+    lam, th, prev = 0.0, 0.0, None
+    h = 1.0 / load_steps
     iterations = 0
-    th = 0.0
-    for k in range(1, load_steps + 1):
-        lam = k / load_steps
-        fP, g = lam * fP1, lam * g1
-        if len(history) >= 2:  # secant predictor in the load factor
-            (l0, t0), (l1, t1) = history[-2:]
-            th = t1 + (t1 - t0) * (lam - l1) / (l1 - l0)
+    while lam < 1.0:
+        h = min(h, 1.0 - lam)
+        pred = th + (th - prev[1]) * h / (lam - prev[0]) if prev is not None else th
+        try:
+            new, k = _newton_on_theta(pred, (lam + h) * fP1, (lam + h) * g1, rtol, tol,
+                                      max_iter)
+            iterations += k
+            # the correction small against the predicted change: a jump to another branch
+            # (the complementary stable one appears beside the path past the Euler load) is
+            # not, whatever the step; a smooth path's is, once the step is small enough
+            ok = abs(new - pred) <= 0.25 * abs(pred - th) + 1e-6
+            if ok:
+                sol = _shooting_solution(length, B, loads.scaled(lam + h), new, rtol, 0)
+                ok = stability_eigenvalue(sol) >= -_stability_tolerance(sol)
+        except ConvergenceError:
+            ok = False
+        if ok:
+            prev, lam, th = (lam, th), lam + h, new
+            h = min(2.0 * h, 1.0 / load_steps)
         else:
-            th = history[-1][1]
-        for _ in range(max_iter):
-            iterations += 1
-            z = _integrate_from_tip(th, fP, g, rtol).y[:, -1]
-            r, dr = z[0], z[4]
-            if abs(dr) < 1e-8:
-                raise ConvergenceError(f"the elastica's branch folds at load factor {lam:g} "
-                                       f"(d theta(0)/d theta(l) = {dr:.3g})")
-            th -= r / dr
-            if abs(r) <= tol:
-                break
-            if not abs(th) <= 4 * math.pi:
-                # a wandering Newton (an outside audit: theta(l) ~ 1e7 rad, integrations of
-                # minutes at that magnitude's round-off): the stable root is searched instead
-                raise ConvergenceError(f"Newton on theta(0) = 0 left |theta(l)| <= 4 pi at "
-                                       f"load factor {lam:g}")
-        else:
-            raise ConvergenceError(f"Newton on theta(0) = 0 did not converge at load factor "
-                                   f"{lam:g} (residual {r:.3g} rad)")
-        history.append((lam, th))
+            h *= 0.5
+            if h < 1e-9:
+                raise _PathLost(f"the loading path was lost at load factor {lam:.9g} (no stable "
+                                f"equilibrium within a step of 1e-9)", th)
     return th, iterations
 
 
@@ -378,12 +410,14 @@ _SCAN_LIMIT = 200.0
 
 
 def _stable_root(length: float, B: float, loads: ElasticaLoads, fP: NDArray, g: NDArray,
-                 rtol: float, tol: float, max_iter: int, failure: str) -> float:
-    """The end rotation of the stable equilibrium the loading path reaches: among every root
-    of ``theta(0; theta(l)) = 0`` on :data:`_SCAN` (sign changes, then Newton), the stable
-    ones bent to the side the loads bend the rod at the start (the linear response at a load
-    factor of 1e-6); of those, the least rotated. A perfect column (no transverse load) past its
-    Euler load has two mirror-image equilibria: refused."""
+                 rtol: float, tol: float, max_iter: int, failure: str,
+                 last: float = 0.0) -> float:
+    """Where the loading path was lost (``last``: its last end rotation), the stable
+    equilibrium it leads to: among every root of ``theta(0; theta(l)) = 0`` on :data:`_SCAN`
+    (sign changes, then Newton), the stable ones on the side of ``last`` (or, if the path was
+    still straight, of the linear response at a load factor of 1e-6); of those, the least
+    rotated. A perfect column (no transverse load) past its Euler load has two mirror-image
+    equilibria: refused."""
     scale = float(np.max(np.abs(np.r_[fP, g])))
     if scale > _SCAN_LIMIT:
         raise ConvergenceError(
@@ -397,7 +431,7 @@ def _stable_root(length: float, B: float, loads: ElasticaLoads, fP: NDArray, g: 
             f"{failure}; with no transverse load (P2 = {loads.P2:g} N, q2 = {loads.q2:g} N/m) "
             "a rod past its Euler load may buckle to either side: give a transverse load to "
             "choose one")
-    side = math.copysign(1.0, start)
+    side = math.copysign(1.0, last if abs(last) > 1e-9 else start)
     def residual(t: float) -> float:
         return float(_integrate_from_tip(t, fP, g, 1e-9).y[0, -1])
 
