@@ -299,9 +299,9 @@ def test_the_loading_path_is_followed_through_its_turn_to_the_right_side():
     """A second outside audit: with tip and distributed transverse loads of opposite signs
     the stable equilibrium on the wrong side was returned (+3.0423 rad; the auditor's own
     arc-length continuation of the loading path reaches -3.0578), and a pure transverse tip
-    load P2 = 1000 B/l^2 (here -300) was refused (a fold test on an absolute 1e-8 and a residual below the
-    integration's amplified round-off). The path is now followed with halved steps through the
-    turn; the tip-load cases against the closed form."""
+    load P2 = 1000 B/l^2 (here -300) was refused (a fold test on an absolute 1e-8 and a
+    residual below the integration's amplified round-off). The path is now followed with
+    halved steps through the turn; the tip-load cases against the closed form."""
     for loads, path in (((20.0, -0.35, 0.0, -1.0), -3.0578), ((8.0, -0.0035, 0.0, -0.01),
                                                                    -2.6509)):
         sol = el.solve_shooting(1.0, 1.0, el.ElasticaLoads(*loads))
