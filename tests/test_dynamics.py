@@ -220,3 +220,27 @@ def test_section29_cycle_load_is_a_multiple_of_the_pendulums_own_flutter_load():
     assert d["P_star_flu"] == pytest.approx(exact, rel=1e-12) and not d["P_star_is_eq54"]
     assert d["P"] == pytest.approx(1.2 * exact, rel=1e-12)
     assert d["limit_cycle"]["alpha1_amplitude_rad"] > 0
+
+
+@pytest.mark.slow  # ~13 s: the transient is tried first (12000 tau simulated)
+def test_a_pendulum_damped_at_one_hinge_only_is_answered_or_refused_quickly():
+    """An outside audit: c1 > 0, c2 = 0 (allowed: "c1 or c2 > 0") hung limit-cycle ziegler
+    (its flutter mode barely moves alpha1: alpha2/alpha1 ~ 2e12 made a start state that
+    integrated for minutes), and P*_flu of Figs. 13-14 raised on eq. (54)'s groups although the
+    exact load was known. Now one line, exit 1, within seconds; and P*_flu is the exact one."""
+    import subprocess
+    import sys
+
+    from flutterfriction.analysis.ziegler import damped_flutter_load
+    from flutterfriction.scenes.ziegler_nonlinear import damped_flutter_load_star
+
+    proc = subprocess.run(
+        [sys.executable, "-m", "flutterfriction", "limit-cycle", "ziegler", "--l1", "1",
+         "--l2", "1", "--d", "1", "--h", "0", "--m1", "2", "--m2", "1", "--m3", "0", "--k1",
+         "1", "--k2", "1", "--c1", "0.01", "--c2", "0", "--P", "3", "--json"],
+        capture_output=True, text=True, timeout=120)
+    assert proc.returncode == 1 and "Traceback" not in proc.stderr
+    assert "barely moves alpha1" in proc.stderr
+    p = ZieglerPendulum(l1=1, l2=1, d=1, h=0, m1=2, m2=1, m3=0, k1=1, k2=1, c1=0.01, c2=0.0)
+    star, is_eq54 = damped_flutter_load_star(p)
+    assert star == pytest.approx(damped_flutter_load(p, "routh"), rel=1e-14) and not is_eq54

@@ -297,7 +297,9 @@ def _amplitude_orbit(pendulum: ZieglerPendulum, A: float, z0: NDArray, rtol: flo
     def residual(z: NDArray) -> NDArray:
         # Only periods in (0, T_max) and loads in (0, P_max) are integrated: each evaluation
         # is bounded (a huge trial load would make one period arbitrarily stiff).
-        if not (0 < z[2] < T_max and 0 < z[3] < P_max and np.isfinite(z).all()):
+        # And no trial state of wild size (|alpha2|, its rate > 1e3: minutes of integration)
+        if not (0 < z[2] < T_max and 0 < z[3] < P_max and np.isfinite(z).all()
+                and abs(z[0]) < 1e3 and abs(z[1]) < 1e3):
             return np.full(4, 1e3)
         x0 = np.array([A, z[0], 0.0, z[1]])
         sol = simulate(pendulum, float(z[3]), x0, float(z[2]), rtol=rtol, atol=atol)
@@ -329,6 +331,13 @@ def limit_cycle_by_continuation(pendulum: ZieglerPendulum, P: float, P_flu: floa
     ``4 (2 pi / Omega)`` and trial loads below ``4 max(P, P_flu)`` only (the cycles of the
     §2.9 pendulum shorten with amplitude)."""
     omega, mode = linear_flutter_mode(pendulum, P_flu)
+    if not np.all(np.abs(mode) < 1e6):
+        # the flutter mode hardly moves alpha1 (an outside audit: c2 = 0 gave alpha2/alpha1
+        # ~ 2e12 and a start state that integrated for minutes): alpha1's amplitude cannot
+        # parametrise its cycle
+        raise ConvergenceError(f"the flutter mode barely moves alpha1 (|alpha2/alpha1| = "
+                               f"{abs(mode[1]):.3g}): the continuation in alpha1's amplitude "
+                               "cannot follow its cycle")
     T_max = 4 * 2 * np.pi / omega
     P_max = 4 * max(P, P_flu)
     A = A_start

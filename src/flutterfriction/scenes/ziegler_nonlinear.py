@@ -17,7 +17,7 @@ from flutterfriction.analysis.ziegler import (
     spectrum,
 )
 from flutterfriction.closed_forms.ziegler_damped import eq54_flutter_gamma, viscosity_groups
-from flutterfriction.errors import ConvergenceError, check_positive, check_real
+from flutterfriction.errors import ConvergenceError, ParameterError, check_positive, check_real
 from flutterfriction.models.ziegler import ZieglerPendulum
 from flutterfriction.scenes.common import median_wall_time, pendulum_of, quantity, take
 from flutterfriction.scenes.sweep import Sweep
@@ -29,7 +29,10 @@ def damped_flutter_load_star(p: ZieglerPendulum) -> tuple[float, bool]:
     form (§2.9's), and for another pendulum it is not its flutter load (an outside audit: with
     l2 = 0.12 m, 1.5 x eq. 54 was 1.62 P_flu; with c1 = 2 c2, 1.2 x eq. 54 was a stable load)."""
     exact = damped_flutter_load(p, "routh")
-    eps, _ = viscosity_groups(p)
+    try:
+        eps, _ = viscosity_groups(p)
+    except ParameterError:  # eq. (29)'s groups need c2 > 0: not eq. (54)'s pendulum
+        return exact, False
     eq54 = eq54_flutter_gamma(eps) * p.load_unit
     return exact, abs(eq54 - exact) <= 1e-9 * exact
 
