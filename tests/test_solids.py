@@ -348,3 +348,15 @@ def test_the_bruteforce_flutter_interval_is_right_or_refuses_never_displaced():
         answered += 1
         assert len(found) == 1 and found[0] == pytest.approx(closed, rel=1e-9)
     assert answered >= 40
+
+
+def test_the_bruteforce_range_beyond_the_floats_is_refused_in_one_line():
+    """An outside audit: decades = 300 with g_max = 1e-5 made 1/g overflow and raised a bare
+    LinAlgError."""
+    from flutterfriction.analysis import acoustic as ac
+    from flutterfriction.errors import ParameterError
+    from flutterfriction.models import solid as so
+
+    with pytest.raises(ParameterError, match="must be >= 1e-300"):
+        ac.flutter_interval_bruteforce(so.isotropic_elasticity(1, 1), np.diag([1.0, 0, -1]),
+                                       np.diag([1.0, 0.5, 0]), [0.6, 0.8, 0], 1e-5, 300)

@@ -188,9 +188,12 @@ def flutter_interval_bruteforce(E: NDArray, P: ArrayLike, Q: ArrayLike, n: Array
         raise ParameterError(f"g_max must be finite and > 0, got {g_max}")
     if not (np.isfinite(decades) and 0.0 < decades <= 300.0):
         raise ParameterError(f"decades must be in (0, 300], got {decades}")
+    lo, hi = 1.0 / g_max, 10.0**decades / g_max
+    if not (lo <= 1e300 and hi <= 1e300):  # 1/g beyond the floats (an audit: a LinAlgError)
+        raise ParameterError(f"g_max 10^-decades = {g_max:.3g} x 1e-{decades:g} must be >= "
+                             "1e-300 (the range of 1/g)")
     disc = discriminant_polynomial(E, P, Q, n)
     ddisc = disc.deriv()
-    lo, hi = 1.0 / g_max, 10.0**decades / g_max
 
     def polish(x: float) -> float:  # Newton on the polynomial, kept only when it helps
         for _ in range(3):
