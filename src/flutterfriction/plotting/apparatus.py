@@ -158,7 +158,7 @@ def _side_view(ax: Axes, data: dict[str, Any], s: float) -> None:
         ("W", "hanging weight W"), ("R", "contact force R of the plate"),
         ("P", "friction P = μR (the follower force)"), ("O", "reaction of the fulcrum"))]
     ax.legend(handles=handles, loc="lower right", fontsize=7.5)
-    ax.text(0.005, 0.015, f"μ = {mu:g}, a = {a:g} m, r = {r:g} m: our choice\n"
+    ax.text(0.012, 0.02, f"μ = {mu:g}, a = {a:g} m, r = {r:g} m: our choice\n"
             "(the chapter gives no lever arms);\nthe lever's own weight is not modelled",
             transform=ax.transAxes, ha="left", va="bottom", fontsize=7.5,
             bbox={"fc": "white", "ec": "0.7", "lw": 0.6})

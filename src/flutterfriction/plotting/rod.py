@@ -79,7 +79,10 @@ def _draw_branch_case(ax_re, ax_im, p: np.ndarray, case: dict[str, Any], title: 
         ax.axhline(0, color="k", lw=0.6)
         for e, sub in ((crit["p_flu"], "f"), (crit["p_div"], "d")):
             if e is not None and e < p[-1]:
-                ax.axvline(e, color="k", ls="--", lw=0.8)
+                # under the inset (its own p_f line continues it) and not through the inset's
+                # tick labels above it (a figure review saw "13.5" crossed)
+                top = 0.57 if zoom and ax is ax_re and sub == "f" else 1.0
+                ax.axvline(e, ymax=top, color="k", ls="--", lw=0.8)
                 if ax is ax_re:
                     _critical_label(ax, e, sub, p)
         ax.set_ylabel(ylabel)
