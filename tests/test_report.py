@@ -55,7 +55,7 @@ def _tree(tmp_path, figures=("figA", "figB")):
 
 
 def _coverage():
-    return [{"number": 1, "title": "the A figure", "caption": "Branches of $\\tilde{\\omega}$ & co",
+    return [{"number": 1, "title": "the A figure", "caption": "Branches of $\\tilde{\\omega}$ & co, stick for $a < 0$",
              "status": "reproduced", "figures": ["figA"], "shows": "all of it"},
             {"number": 2, "title": "a photograph", "caption": "Two silos.",
              "status": "not reproduced", "figures": [], "missing": "a photograph"}]
@@ -104,6 +104,8 @@ def test_each_figure_shows_the_chapter_caption_it_reproduces_with_its_math(tmp_p
     a, b = _figure_block(text, "figA"), _figure_block(text, "figB")
     assert "The chapter's Fig. 1, as printed:</b> Branches of <math" in a  # TeX -> MathML
     assert "&amp; co" in a and "$" not in a.split("as printed")[1]
+    # the math converted unescaped: its "<" is MathML's operator, not a stray "&lt;"
+    assert "<mo>&#x0003C;</mo>" in a and "&lt;" not in a.split("as printed")[1]
     assert "as printed" not in b  # figB reproduces no chapter figure listed in the coverage
 
 

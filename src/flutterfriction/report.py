@@ -380,6 +380,20 @@ def _figures_named(source: str) -> set[int]:
     return out
 
 
+def _caption_html(text: str) -> str:
+    """A printed caption as HTML: the text escaped, its TeX math (``$...$``) as MathML (the
+    TeX converted unescaped: an escaped ``<`` came out as "&lt;" inside the math)."""
+    from flutterfriction.notebook_export import _MATH
+
+    out, pos = [], 0
+    for m in _MATH.finditer(text):
+        out.append(html.escape(text[pos:m.start()], quote=False))
+        out.append(math_to_mathml(m.group(0)))
+        pos = m.end()
+    out.append(html.escape(text[pos:], quote=False))
+    return "".join(out)
+
+
 def _chapter_number(figure: str) -> int | None:
     """The chapter figure our figure ``figNN`` (or ``figNN_...``) draws, else None."""
     import re
@@ -559,7 +573,7 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
                       if figure_params.get(data) else "")
             printed = "".join(
                 f'<p class="printed"><b>The chapter\'s Fig. {e["number"]}, as printed:</b> '
-                f'{math_to_mathml(html.escape(e["caption"], quote=False))}</p>'
+                f'{_caption_html(e["caption"])}</p>'
                 for e in coverage or () if scene in e["figures"] and e.get("caption"))
             parts.append(
                 f'<figure class="big" id="fig-{scene}"><a href="../figures/{scene}.png" '
