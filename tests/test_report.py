@@ -55,7 +55,8 @@ def _tree(tmp_path, figures=("figA", "figB")):
 
 
 def _coverage():
-    return [{"number": 1, "title": "the A figure", "caption": "Branches of $\\tilde{\\omega}$ & co, stick for $a < 0$",
+    return [{"number": 1, "title": "the A figure",
+             "caption": "Branches of $\\tilde{\\omega}$ & co, stick for $a < 0$",
              "status": "reproduced", "figures": ["figA"], "shows": "all of it"},
             {"number": 2, "title": "a photograph", "caption": "Two silos.",
              "status": "not reproduced", "figures": [], "missing": "a photograph"}]
