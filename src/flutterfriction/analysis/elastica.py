@@ -20,11 +20,12 @@ Three solvers, independent of each other:
   ``theta, M`` and the positions are integrated from the free end to the clamp (DOP853,
   dimensionless, ``rtol = 1e-12``) and Newton, with the exact derivative from the variational
   equations, makes ``theta(0) = 0``. The loads are applied in steps from zero, following the
-  equilibrium connected to the straight rod. Past the Euler load with a small transverse load
-  the steps can land on the unstable, nearly straight equilibrium instead (an outside audit):
-  every solution is therefore checked for stability (:func:`stability_eigenvalue`, the second
-  variation of the energy) and an unstable one is replaced by the stable equilibrium on the
-  side the loads bent the rod towards, found among all roots in ``theta(l)``.
+  loading path from the straight rod: a step is halved until its equilibrium is stable
+  (:func:`stability_eigenvalue`, the second variation of the energy) and Newton's correction
+  small. Past the Euler load with a small transverse load the path turns sharply, and equal
+  steps landed on the unstable nearly straight equilibrium or on the stable one of the other
+  side (outside audits). Where the path is lost, the stable equilibrium on its side is sought
+  among all roots in ``theta(l)``.
 - :func:`solve_collocation`: ``scipy.integrate.solve_bvp`` on the six states
   ``x1, x2, theta, M, a1, a2`` (the internal force is a state here, eq. 77), continued in the
   load from the straight rod as well; an unstable result is refused
@@ -272,8 +273,9 @@ def solve_shooting(length: float, B: float, loads: ElasticaLoads, *, load_steps:
     loads : ElasticaLoads
         ``P1, P2`` [N], ``q1, q2`` [N/m].
     load_steps : int
-        The loads are applied in this many equal steps from zero (Newton starts each from the
-        extrapolation of the previous two), so that the branch of the straight rod is followed.
+        The loads are applied from zero in steps of at most ``1/load_steps`` of them (Newton
+        starts each from the extrapolation of the previous two), halved until each lands on a
+        stable equilibrium near the prediction: the loading path is followed.
     rtol : float
         Relative tolerance of the integration (dimensionless; absolute ``rtol/100``).
     tol : float
