@@ -125,6 +125,29 @@ def test_the_coverage_file_quotes_the_chapter_captions_verbatim():
     assert {e["number"]: e["caption"] for e in entries} == printed
 
 
+def test_a_figure_of_your_own_parameters_says_its_captions_are_the_chapters(tmp_path):
+    """A second outside audit: with your own parameters the report's captions still quoted the
+    chapter's loads and lists next to your figure, and rows checked on another scene's data
+    (fig13 shows fig14's) read as checks of your figure. Now a note names your changed keys and
+    such rows say whose data they check."""
+    res, layout = _tree(tmp_path)
+    rows = _rows()
+    text = build_index(layout, rows, {}, figure_data={"figB": "shared"},
+                       row_scene={"q1": "figA", "e1": "other"},
+                       own_parameters={"shared": ["pendulum.k1: 0.189 -> 0.25"]})
+    b, a = _figure_block(text, "figB"), _figure_block(text, "figA")
+    assert "Drawn with your own parameters</b> (pendulum.k1: 0.189 -&gt; 0.25)" in b
+    assert "your own parameters" not in a
+    # a row naming Fig. 13 but computed from another scene's data, under your own fig13
+    row = CheckRow(id="sec29_period", kind="quantity", source="§2.9 Fig. 13", quoted=1.0,
+                   unit="s", reproduced=1.0, independent=1.0, method="m", independent_method="i",
+                   error=0.0, agreement=0.0, status="pass")
+    layout13 = {"title": "T", "sections": [{"title": "S", "figures": {"fig13": "c"}}]}
+    text = build_index(layout13, [row], {}, row_scene={"sec29_period": "fig14"},
+                       own_parameters={"fig13": ["pendulum.l2: 0.1 -> 0.12"]})
+    assert "(checked on fig14's data, not this figure's)" in _figure_block(text, "fig13")
+
+
 def test_figures_drawing_the_same_data_show_its_checks_once(tmp_path):
     res, layout = _tree(tmp_path)
     page = res / "reports" / "index.html"

@@ -329,6 +329,20 @@ def _check_erratum(entry: dict[str, Any], data: Mapping[str, Any]) -> CheckRow:
         status="verified erratum" if verified else "UNVERIFIED erratum")
 
 
+def scene_parameter_changes(parameters: Mapping[str, Any] | None, fidelity: str, scene: str,
+                            params: Mapping[str, Any] | None) -> list[str]:
+    """The physical keys where a scene's ``params`` differ from those the chapter's values
+    belong to (:func:`record_parameters`' record for ``fidelity``), one line each; its
+    resolution keys are left out (the chapter's values still apply). Empty for a scene not
+    recorded or without parameters."""
+    recorded = (parameters or {}).get(fidelity, {})
+    if scene not in recorded or not isinstance(params, Mapping):
+        return []
+    skip = set((parameters or {}).get("resolution_keys", {}).get(scene, []))
+    return parameter_changes({k: v for k, v in recorded[scene].items() if k not in skip},
+                             {k: v for k, v in params.items() if k not in skip})
+
+
 def run_check(reference: dict[str, Any], data: Mapping[str, Any],
               fidelity: str = "paper",
               parameters: Mapping[str, Any] | None = None) -> list[CheckRow]:
@@ -336,17 +350,10 @@ def run_check(reference: dict[str, Any], data: Mapping[str, Any],
     tolerances of ``fidelity`` (an entry's ``quick`` block applies at ``"quick"`` only).
     With ``parameters`` (:func:`record_parameters`' record), an entry whose scene ran with
     other parameters than those recorded for ``fidelity`` is not applicable."""
-    recorded = (parameters or {}).get(fidelity, {})
-    resolution = (parameters or {}).get("resolution_keys", {})
-
     def changes(entry: dict[str, Any]) -> list[str]:
         scene = entry["scene"]
-        if scene not in recorded or scene not in data or "params" not in data[scene]:
-            return []
-        skip = set(resolution.get(scene, []))  # resolution: the chapter's values still apply
-        return parameter_changes({k: v for k, v in recorded[scene].items() if k not in skip},
-                                 {k: v for k, v in data[scene]["params"].items()
-                                  if k not in skip})
+        return scene_parameter_changes(parameters, fidelity, scene,
+                                       (data.get(scene) or {}).get("params"))
 
     rows = []
     for kind, check in (("quantities", lambda e: _check_quantity(e, data, fidelity)),

@@ -53,6 +53,7 @@ table.coverage td:nth-child(5) { overflow-wrap: normal; }
 table.coverage td.st-reproduced { background: #e6f4e6; }
 table.coverage td.st-part { background: #fff6d6; } table.coverage td.st-not { background: #f3f3f3; }
 .params { font-size: .8em; color: #444; }
+.own { font-size: .9em; color: #8a4b00; }
 .printed { font-size: .9em; color: #333; border-left: 3px solid #bbb; padding-left: .5em; }
 figure.anim img { height: auto; }
 table { border-collapse: collapse; font-size: .8em; width: 100%; }
@@ -402,15 +403,33 @@ def _chapter_number(figure: str) -> int | None:
     return int(m.group(1)) if m else None
 
 
-def _figure_checks(rows: list[CheckRow]) -> str:
-    """The check rows of one figure's data, as a small table linking to the full check."""
+def _own_note(changes: list[str]) -> str:
+    """Under a figure drawn with other parameters than the chapter's: its captions (ours and
+    the printed one) describe the chapter's figure (an outside audit read chapter loads and
+    lists in them next to a user's figure)."""
+    if not changes:
+        return ""
+    return ('<p class="own"><b>Drawn with your own parameters</b> (' +
+            html.escape("; ".join(changes[:6]) + ("; ..." if len(changes) > 6 else "")) +
+            "): the captions above describe the chapter's figure; the figure, its title and "
+            "the values below are yours.</p>")
+
+
+def _figure_checks(rows: list[CheckRow], own_scene: str | None = None,
+                   row_scene: Mapping[str, str] | None = None) -> str:
+    """The check rows of one figure's data, as a small table linking to the full check. With
+    ``own_scene`` (the figure's data ran with other parameters), rows of another scene's data
+    say so (they check that scene, not this figure)."""
     out = ["<table><thead><tr><th>checked value</th><th>source</th><th>quoted</th>"
            "<th>reproduced</th><th>independent</th><th>status</th></tr></thead><tbody>"]
     for r in rows:
         cls = _row_class(r)
         unit = f" {r.unit}" if r.unit and r.kind == "quantity" else ""
         out.append(f'<tr class="{cls}"><td><a href="#{html.escape(r.id)}">{html.escape(r.id)}'
-                   f"</a></td><td>{html.escape(r.source)}</td>"
+                   f"</a></td><td>{html.escape(r.source)}"
+                   + (f" (checked on {html.escape(row_scene[r.id])}'s data, not this figure's)"
+                      if own_scene and row_scene and row_scene.get(r.id, own_scene) != own_scene
+                      else "") + "</td>"
                    f'<td class="num">{html.escape(_short(r.quoted) + unit)}</td>'
                    f'<td class="num">{html.escape(_short(r.reproduced))}</td>'
                    f'<td class="num">{html.escape(_short(r.independent))}</td>'
@@ -451,6 +470,7 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
                 coverage: list[Mapping[str, Any]] | None = None,
                 row_scene: Mapping[str, str] | None = None,
                 figure_params: Mapping[str, Mapping[str, Any]] | None = None,
+                own_parameters: Mapping[str, list[str]] | None = None,
                 footer: str = "",
                 figure_checks: Mapping[str, list[Offence]] | None = None,
                 formats: Iterable[str] = ("pdf", "png")) -> str:
@@ -483,6 +503,10 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
         of the scene it draws.
     figure_params
         Scene -> the parameters its data were computed with, shown under its figures.
+    own_parameters
+        Scene -> its changed physical keys (:func:`flutterfriction.reference.scene_parameter_
+        changes`): its figures then say that their captions describe the chapter's figure and
+        which check rows come from another scene's data.
     footer
         Provenance (commit, versions, date), shown at the bottom.
     figure_checks
@@ -567,8 +591,9 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
                 checks = ""
                 if rows_of.get(data):
                     shown_checks[data] = scene
+            own = (own_parameters or {}).get(data, [])
             if mine:
-                checks = _figure_checks(mine) + checks
+                checks = _figure_checks(mine, data if own else None, row_scene or {}) + checks
             params = (f'<p class="params">Drawn with: {_named_lists(figure_params[data])}</p>'
                       if figure_params.get(data) else "")
             printed = "".join(
@@ -582,7 +607,7 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
                 f'<div class="links"><a href="../figures/{scene}.png">PNG</a>'
                 + (f'<a href="../figures/{scene}.pdf">PDF</a>' if "pdf" in formats else "")
                 + f'<a href="../data/{data}.json">data ({html.escape(data)})</a></div>'
-                f"{printed}{checks}{params}</figcaption></figure>")
+                f"{printed}{_own_note(own)}{checks}{params}</figcaption></figure>")
         for path, spec in section.get("images", {}).items():
             links = "".join(f'<a href="../{html.escape(h)}">{html.escape(t)}</a>'
                             for t, h in spec.get("links", {}).items()

@@ -12,6 +12,7 @@ from flutterfriction.reference import (
     load_reference,
     load_scene_data,
     run_check,
+    scene_parameter_changes,
     write_summary,
 )
 from flutterfriction.report import (
@@ -55,12 +56,16 @@ problems += figure_problems(figure_checks)
 errata = {e["id"]: e for e in reference.get("errata", [])}
 stress = read_json(snakemake.input.stress)
 params = {name: d.get("params", {}) for name, d in data.items()}
+recorded = load_parameters(snakemake.input.reference_parameters)
+own = {name: scene_parameter_changes(recorded, snakemake.params.fidelity, name, p)
+       for name, p in params.items()}
 
 
 def index(problems):
     return build_index(layout, rows, errata, figure_data=snakemake.params.figure_data,
                        stress=stress, problems=problems, coverage=coverage,
                        row_scene=row_scenes(reference), figure_params=params,
+                       own_parameters=own,
                        footer=provenance(), figure_checks=figure_checks,
                        formats=snakemake.params.formats)
 

@@ -79,8 +79,9 @@ def _top_view(ax: Axes, data: dict[str, Any], s: float) -> None:
                Line2D([], [], color="0.35", lw=1.2, label="plate velocity")]
     ax.legend(handles=handles, loc="lower left", fontsize=7)
     a1, a2 = top["alpha_deg"]
-    ax.set_title(f"top view (upper part): pendulum of {list47(data, short=True)} drawn at "
-                 f"α1 = {a1:g}°, "
+    which = list47(data, short=True)
+    which = which if which.startswith("your own") else f"the pendulum of {which}"
+    ax.set_title(f"top view (upper part): {which} drawn at α1 = {a1:g}°, "
                  f"α2 = {a2:g}°;\nthe plate transmits only the friction along BC "
                  f"(its component normal to BC: {top['force_transverse_to_BC']:.0f} N)",
                  fontsize=8)
