@@ -147,16 +147,22 @@ show("eq48")
 #
 # The linear equations (11) are solved exactly, $\mathbf{x}(t) = e^{\mathbf{A}t}\mathbf{x}_0$,
 # at the drawn instants (no time stepping), from $\alpha_1 = \alpha_2 = \pm 0.5°$ at rest, for
-# $P$ = 6.8 N (flutter) and 15.4 N (divergence). The drawings use the exact rigid-rod
+# the chapter's $P$ = 6.8 N (flutter) and 15.4 N (divergence) of list (47); with your own
+# pendulum or loads the cell below gives their regimes. The drawings use the exact rigid-rod
 # kinematics with the linear solution's angles: past a few tens of degrees (20° after about
 # 0.37 s in flutter, 0.15 s in divergence) the linear model is outside its range of validity,
 # which is the point of §2.9.
 
 # %%
 show("fig04", width=900)
-for P in (6.8, 15.4):
-    s = spectrum(p47, P)
-    display(Markdown(f"P = {P} N: {regime(p47, P)}; eigenvalues $\\tilde\\Omega$ = "
+# the pendulum and the loads the figure was drawn with (the workflow's data)
+f4 = scene("fig04")
+p4 = ZieglerPendulum.from_mapping(f4["params"]["pendulum"])
+for name, case in sorted(f4["cases"].items(), key=lambda kv: kv[0] != "flutter"):
+    s = spectrum(p4, case["P"])
+    display(Markdown(f"{name} case, P = {case['P']:g} N: {regime(p4, case['P'])} for "
+                     f"{chapter_list(f4, 'pendulum', 'list47', 'list (47)')}; eigenvalues "
+                     "$\\tilde\\Omega$ = "
                      + ", ".join(f"{z.real:+.3f}{z.imag:+.3f}i" for z in s) + " 1/s"))
 
 # %% [markdown]
