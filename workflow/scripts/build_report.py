@@ -33,8 +33,8 @@ Path(snakemake.params.passed).unlink(missing_ok=True)
 
 reference = load_reference(snakemake.input.reference)
 data = load_scene_data(snakemake.input.data)
-rows = run_check(reference, data, snakemake.params.fidelity,
-                 load_parameters(snakemake.input.reference_parameters))
+recorded = load_parameters(snakemake.input.reference_parameters)
+rows = run_check(reference, data, snakemake.params.fidelity, recorded)
 figure_checks = load_figure_checks(snakemake.input.figure_checks)
 # first: the report links it
 write_summary(rows, snakemake.output.json, snakemake.output.md, figure_checks=figure_checks)
@@ -56,7 +56,6 @@ problems += figure_problems(figure_checks)
 errata = {e["id"]: e for e in reference.get("errata", [])}
 stress = read_json(snakemake.input.stress)
 params = {name: d.get("params", {}) for name, d in data.items()}
-recorded = load_parameters(snakemake.input.reference_parameters)
 own = {name: scene_parameter_changes(recorded, snakemake.params.fidelity, name, p)
        for name, p in params.items()}
 

@@ -306,11 +306,7 @@ def solve_shooting(length: float, B: float, loads: ElasticaLoads, *, load_steps:
         # the stable equilibrium on the side the path last bent the rod to, among all roots
         failure, last = str(exc), exc.theta_l
     th = _stable_root(length, B, loads, fP1, g1, rtol, tol, max_iter, failure, last)
-    out = _shooting_solution(length, B, loads, th, rtol, 0)
-    if stability_eigenvalue(out) < -_stability_tolerance(out):
-        raise ConvergenceError("the elastica's stable equilibrium was not found (the root "
-                               "chosen is unstable)")
-    return out
+    return _shooting_solution(length, B, loads, th, rtol, 0)  # its stability checked there
 
 
 class _PathLost(ConvergenceError):
@@ -434,6 +430,7 @@ def _stable_root(length: float, B: float, loads: ElasticaLoads, fP: NDArray, g: 
             "a rod past its Euler load may buckle to either side: give a transverse load to "
             "choose one")
     side = math.copysign(1.0, last if abs(last) > 1e-9 else start)
+
     def residual(t: float) -> float:
         return float(_integrate_from_tip(t, fP, g, 1e-9).y[0, -1])
 
@@ -446,11 +443,10 @@ def _stable_root(length: float, B: float, loads: ElasticaLoads, fP: NDArray, g: 
     candidates = []
     for a, b, ra, rb in brackets:
         th = brentq(residual, a, b, xtol=1e-12) if ra != rb else a
-        for _ in range(max_iter):  # Newton at the full tolerance
-            zz = _integrate_from_tip(th, fP, g, rtol).y[:, -1]
-            th -= zz[0] / zz[4]
-            if abs(zz[0]) <= tol:
-                break
+        try:  # polished at the full tolerance
+            th, _ = _newton_on_theta(th, fP, g, rtol, tol, max_iter)
+        except ConvergenceError:
+            continue
         if th * side <= 0:
             continue
         cand = _shooting_solution(length, B, loads, th, rtol, 0)
