@@ -282,16 +282,23 @@ class NonlinearRod:
         return M0, C, self.K.copy(), K1
 
     # ------------------------------------------------------------------ energy
-    def power_balance(self, q: NDArray, v: NDArray, P: float) -> tuple[float, float]:
-        """Power of the follower force and viscous dissipation rate [W] at one state."""
-        theta, t, G, G_tip = self.kinematics(q)
-        xdot_tip = G_tip @ v
-        power_P = -P * np.array([np.cos(q[-1]), np.sin(q[-1])]) @ xdot_tip
-        dissipation = v @ self.C @ v
+    def power_balance(self, q: NDArray, v: NDArray, P: float):
+        """Power of the follower force and viscous dissipation rate [W] at one state (floats),
+        or at ``m`` states at once for ``q``, ``v`` of shape ``(n_dof, m)`` (arrays (m,))."""
+        batch = np.ndim(q) == 2
+        q2 = np.asarray(q, dtype=float).reshape(self.n_dof, -1)
+        v2 = np.asarray(v, dtype=float).reshape(self.n_dof, -1)
+        theta, t, G, G_tip = self.kinematics(q2)  # G (n_q, m, 2, n), G_tip (m, 2, n)
+        xdot_tip = np.einsum("mci,im->mc", G_tip, v2)
+        power_P = -P * (np.cos(q2[-1]) * xdot_tip[:, 0] + np.sin(q2[-1]) * xdot_tip[:, 1])
+        dissipation = np.einsum("im,ij,jm->m", v2, self.C, v2)
         if self.rod.kappa > 0:
-            xdot = np.einsum("qci,i->qc", G, v)
-            dissipation += self.rod.kappa * np.einsum("q,qc,qc->", self.w, xdot, xdot)
-        return float(power_P), float(dissipation)
+            xdot = np.einsum("qmci,im->qmc", G, v2)
+            dissipation = dissipation + self.rod.kappa * np.einsum("q,qmc,qmc->m", self.w,
+                                                                   xdot, xdot)
+        if batch:
+            return power_P, dissipation
+        return float(power_P[0]), float(dissipation[0])
 
 
 def compile_kernels() -> dict[str, float]:
