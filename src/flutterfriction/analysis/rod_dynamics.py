@@ -20,6 +20,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.integrate import solve_ivp
 
+from flutterfriction.analysis.quadrature import integrate_vectorised
 from flutterfriction.analysis.rod_cycles import (
     Floquet,
     _gradient,
@@ -28,7 +29,6 @@ from flutterfriction.analysis.rod_cycles import (
     tip_lateral,
     variational_flow,
 )
-from flutterfriction.analysis.quadrature import integrate_vectorised
 from flutterfriction.errors import ConvergenceError, ParameterError, check_integer, check_real
 from flutterfriction.models.rod import Rod
 from flutterfriction.models.rod_nonlinear import NonlinearRod
