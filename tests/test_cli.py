@@ -554,3 +554,15 @@ def test_acoustic_near_incompressible_limit_is_accurate_or_refused(capsys):
     assert eig[0] == pytest.approx(1e8 + 2 - 0.6e9, rel=1e-9)
     assert main([*args, "--lam", "1e9"]) == 2
     assert "lam/mu <= 1e+08" in capsys.readouterr().err
+
+
+def test_rod_si_errors_name_the_option_and_the_help_states_the_group_ranges(capsys):
+    from flutterfriction.cli import main
+
+    for args, option in ((["--D", "-1"], "--D"), (["--tip-mass", "-1"], "--tip-mass")):
+        assert main(["rod", "--length", "1", "--B", "1", "--rho", "1", *args]) == 2
+        assert capsys.readouterr().err.startswith(f"flutterfriction: error: {option}: ")
+    with pytest.raises(SystemExit):
+        main(["rod", "--help"])
+    out = " ".join(capsys.readouterr().out.split())
+    assert "tan(alpha), in [0, 10000]" in out and "internal viscosity, 0 or in [1e-100, 1]" in out

@@ -246,7 +246,7 @@ def test_an_unknown_list_name_does_not_hide_the_other_problems():
      "scenes.rod_stability_map.eta_small: must be in [1e-06, 1]"),
     # eq. (106)'s eta of the rod out of range (D = 7e6 N m^2 s)
     ("errata_rods", "rod", {"length": 0.35, "B": 0.0332, "rho": 0.0546, "D": 7.0e6},
-     "scenes.errata_rods.rod: eta must be 0 or [1e-100, 1] (the rod solver's numerical "
+     "scenes.errata_rods.rod: eta must be 0 or in [1e-100, 1] (the rod solver's numerical "
      "range, analysis.rod.GROUP_RANGES), got 1.34214e+09; eta = D/(B l^2) sqrt(B/rho)"),
     # the damped rod of Fig. 11 below the FE twin's damping floor
     ("fig11", "rod", {"length": 0.35, "B": 0.0332, "rho": 0.0546, "D": 1.0e-12},
@@ -285,7 +285,7 @@ def test_a_fe_convergence_case_below_the_damping_floor_is_refused():
     problems = validate_config(raw, SCHEMA_PATH, scenes=SCENES)
     assert sorted(problems) == [
         "config (fidelity paper): scenes.rod_fe_convergence.cases.huge: tan_alpha must be "
-        "[0, 10000] (the rod solver's numerical range, analysis.rod.GROUP_RANGES), got 1e+06",
+        "in [0, 10000] (the rod solver's numerical range, analysis.rod.GROUP_RANGES), got 1e+06",
         "config (fidelity paper): scenes.rod_fe_convergence.cases.tiny: the damping "
         "max(eta, gamma) = 1e-09 (eq. 106) must be 0 or >= 1e-06: the scene's "
         "finite-element twin cannot resolve the flutter crossing below "

@@ -40,6 +40,7 @@ from flutterfriction.errors import (
     ParameterError,
     check_nonnegative,
 )
+from flutterfriction.models.rod import GROUP_RANGES
 from flutterfriction.parameters import LIST_119, LIST_119_LOAD
 
 ZIEGLER_PARAMS = {
@@ -163,15 +164,22 @@ def build_parser() -> argparse.ArgumentParser:
         description="Flutter and divergence loads of a cantilever with a tangential follower "
                     "force (chapter §2.7), from the exact characteristic function, eq. (118). "
                     "Give either the dimensionless groups of eq. (106) or SI parameters.")
+    ranges = {k: f"in [0, {hi:g}]" if lo == 0 else f"0 or in [{lo:g}, {hi:g}]"
+              for k, (lo, hi) in GROUP_RANGES.items()}
     r.add_argument("--mass-ratio", type=_number, default=None,
-                   help="tip-mass ratio M/(rho l) = tan(alpha), >= 0 (dimensionless mode)")
-    r.add_argument("--eta", type=_number, default=None, help="internal viscosity, >= 0")
-    r.add_argument("--gamma", type=_number, default=None, help="external damping, >= 0")
+                   help=f"tip-mass ratio M/(rho l) = tan(alpha), {ranges['tan_alpha']} "
+                        f"(dimensionless mode)")
+    r.add_argument("--eta", type=_number, default=None,
+                   help=f"internal viscosity, {ranges['eta']}")
+    r.add_argument("--gamma", type=_number, default=None,
+                   help=f"external damping, {ranges['gamma']}")
     r.add_argument("--length", type=_number, default=None, help="rod length [m], > 0 (SI mode)")
     r.add_argument("--B", type=_number, default=None, help="bending stiffness [N m^2], > 0")
     r.add_argument("--rho", type=_number, default=None, help="mass per length [kg/m], > 0")
-    r.add_argument("--D", type=_number, default=None, help="Kelvin-Voigt viscosity [N m^2 s]")
-    r.add_argument("--kappa", type=_number, default=None, help="external damping [N s/m^2]")
+    r.add_argument("--D", type=_number, default=None,
+                   help="Kelvin-Voigt viscosity [N m^2 s], >= 0 (its group eta as --eta)")
+    r.add_argument("--kappa", type=_number, default=None,
+                   help="external damping [N s/m^2], >= 0 (its group gamma as --gamma)")
     r.add_argument("--tip-mass", type=_number, default=None, help="tip mass [kg], >= 0")
     r.add_argument("--p-max", type=_number, default=80.0,
                    help="largest dimensionless load searched, in (0, 1000] (default 80); "
@@ -598,7 +606,11 @@ def _rod(args: argparse.Namespace) -> dict:
         missing = [f"--{k}" for k in ("length", "B", "rho") if si[k] is None]
         if missing:
             raise ParameterError(f"SI mode needs {', '.join(missing)}")
-        rod = Rod(**{k: v for k, v in si.items() if v is not None})  # finite, signs
+        try:
+            rod = Rod(**{k: v for k, v in si.items() if v is not None})  # finite, signs
+        except ParameterError as e:  # named as the option the user typed
+            key = str(e).split()[0]
+            raise ParameterError(f"--{key.replace('_', '-')}: {e}") from None
         lg = {k: math.log10(getattr(rod, k)) if getattr(rod, k) > 0 else None
               for k in ("length", "B", "rho", "D", "kappa", "tip_mass")}
         ll, lB, lr = lg["length"], lg["B"], lg["rho"]
@@ -613,7 +625,7 @@ def _rod(args: argparse.Namespace) -> dict:
         for option, name, text, lv in log_groups:
             low, high = GROUP_RANGES[name]
             if lv is not None and (lv > math.log10(high) or (low > 0 and lv < math.log10(low))):
-                allowed = f"[0, {high:g}]" if low == 0 else f"0 or [{low:g}, {high:g}]"
+                allowed = f"in [0, {high:g}]" if low == 0 else f"0 or in [{low:g}, {high:g}]"
                 raise ParameterError(f"{option} (with --length, --B, --rho): {name} = {text} = "
                                      f"10^{lv:.4g} must be {allowed} (eq. 106)")
         # The SI units of the answer must be normal floats too (P = p B/l^2, t = T tau).

@@ -32,7 +32,7 @@ from flutterfriction.errors import (
     check_positive,
     check_real,
 )
-from flutterfriction.models.rod import RodGroups, characteristic_function
+from flutterfriction.models.rod import GROUP_RANGES, RodGroups, characteristic_function
 from flutterfriction.models.rod_fe import assemble
 
 
@@ -125,7 +125,12 @@ def refine_eigenvalues(p: float, g: RodGroups, guesses: NDArray, tol: float = 1e
             w = w - step
             if np.all(np.abs(step) <= tol * np.maximum(1.0, np.abs(w))):
                 return w
-    raise ConvergenceError(f"Newton on eq. (118) did not converge at p = {p} from {guesses}")
+    # one line a reader can act on (the guesses' array, printed whole, was a screenful)
+    raise ConvergenceError(f"Newton on eq. (118) did not converge at p = {p:.10g} from "
+                           f"{np.size(guesses)} guesses: nearly coincident roots (next to a "
+                           f"double root, where a regime changes) or a flat point of eq. "
+                           f"(118); a slightly different p_max or step moves the loads "
+                           f"tried")
 
 
 #: Largest FE mesh of the eigenvalue helpers (:func:`eigenvalues`, :func:`branches`,
@@ -547,16 +552,7 @@ def _fe_scan(g: RodGroups, n_elements: int, p_max: float, step: float,
 
 
 #: The groups' numerical range (eq. 106): ``(smallest positive, largest)``, 0 always allowed.
-#: Where the numbers come from (measured with p_max up to 1000, see the stress report):
-#: tan(alpha) <= 1e4: beyond it the tip mode's Omega^2 ~ 1/tan(alpha) sinks to the pencil's
-#: round-off (eps ||A|| ~ 1e-12) and its flutter/divergence verdict is lost (1e5 fails at
-#: p ~ 119); eta <= 1: at eta = 2 the damped-flutter Newton leaves for p -> 0 at p_max = 1000
-#: (eta = 10 gives overdamped roots that the exact regime check cannot separate);
-#: gamma <= 1e4: checked alone and with eta = 1, tan(alpha) = 1e4; the smallest positive
-#: damping 1e-100 keeps every O(damping) imaginary part of eq. (118) (products with
-#: omega~^3 ~ 1e6 or its inverse) a normal float, far above 1e-300.
-GROUP_RANGES: dict[str, tuple[float, float]] = {
-    "tan_alpha": (0.0, 1e4), "eta": (1e-100, 1.0), "gamma": (1e-100, 1e4)}
+# GROUP_RANGES (the solver's numerical range of eq. 106's groups) lives with RodGroups.
 
 
 def check_groups(g: RodGroups) -> RodGroups:
@@ -567,7 +563,7 @@ def check_groups(g: RodGroups) -> RodGroups:
     for name, (low, high) in GROUP_RANGES.items():
         v = getattr(g, name)
         if v > high or 0 < v < low:
-            allowed = f"[0, {high:g}]" if low == 0 else f"0 or [{low:g}, {high:g}]"
+            allowed = f"in [0, {high:g}]" if low == 0 else f"0 or in [{low:g}, {high:g}]"
             raise ParameterError(f"{name} must be {allowed} (the rod solver's numerical range,"
                                  f" analysis.rod.GROUP_RANGES), got {v:g}")
     return g

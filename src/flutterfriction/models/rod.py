@@ -33,6 +33,18 @@ from numpy.typing import ArrayLike, NDArray
 
 from flutterfriction.errors import ParameterError, check_nonnegative, check_positive
 
+#: The rod solver's numerical range of the groups (analysis.rod checks it). Where the
+#: numbers come from (measured with p_max up to 1000, see the stress report):
+#: tan(alpha) <= 1e4: beyond it the tip mode's Omega^2 ~ 1/tan(alpha) sinks to the pencil's
+#: round-off (eps ||A|| ~ 1e-12) and its flutter/divergence verdict is lost (1e5 fails at
+#: p ~ 119); eta <= 1: at eta = 2 the damped-flutter Newton leaves for p -> 0 at p_max = 1000
+#: (eta = 10 gives overdamped roots that the exact regime check cannot separate);
+#: gamma <= 1e4: checked alone and with eta = 1, tan(alpha) = 1e4; the smallest positive
+#: damping 1e-100 keeps every O(damping) imaginary part of eq. (118) (products with
+#: omega~^3 ~ 1e6 or its inverse) a normal float, far above 1e-300.
+GROUP_RANGES: dict[str, tuple[float, float]] = {
+    "tan_alpha": (0.0, 1e4), "eta": (1e-100, 1.0), "gamma": (1e-100, 1e4)}
+
 
 @dataclass(frozen=True)
 class RodGroups:
