@@ -22,11 +22,13 @@ DRAFT = config.get("fidelity", "paper") == "quick"
 FIGURE_FORMATS = ["png"] if DRAFT else ["pdf", "png"]
 PDF = [] if DRAFT else ["pdf"]
 # The cheap scenes of each chapter part are solved by one job, and their figures drawn by one:
-# a job is a Python process whose start-up and imports (~1 s here) outweigh a cheap scene's
+# a job is a Python process whose start-up and imports (~0.5 s here) outweigh a cheap scene's
 # computation (~0.1-1 s), so 30 such jobs would spend most of their time starting. Slow scenes
-# and sweeps keep a job each (they start first, and scatter on a cluster).
+# and sweeps keep a job each (they start first, and scatter on a cluster). In the quick preset
+# no scene is slow (0.3-2 s each), so every scene but the sweeps joins its part's batch.
 BATCHES = {
-    part: [s.name for s in scenes_of(part) if not s.slow and s.sweep is None] for part in PARTS
+    part: [s.name for s in scenes_of(part) if (DRAFT or not s.slow) and s.sweep is None]
+    for part in PARTS
 }
 BATCHES = {part: names for part, names in BATCHES.items() if names}
 BATCHED = {name: part for part, names in BATCHES.items() for name in names}

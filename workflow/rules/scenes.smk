@@ -173,6 +173,9 @@ for _part in FIGURE_BATCHES:
             batch_figure_outputs(_part),
         log:
             f"results/logs/plot/{_part}.log",
+        # before the notebooks and the one-figure jobs: the batches are the longest plot jobs
+        # (2-5 s), and one started last leaves a serial tail (its notebook waits for it)
+        priority: 3
         conda:
             "../envs/flutterfriction.yaml"
         resources:
