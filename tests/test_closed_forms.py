@@ -196,3 +196,19 @@ def test_eq22_buckling_load_keeps_its_digits_at_extreme_ratios():
     e_cr, e_sup = cf.buckling_etas(p.groups())
     assert e_cr * p.load_unit == pytest.approx(H_cr, rel=1e-12)
     assert e_sup * p.load_unit == pytest.approx(H_sup, rel=1e-12)
+
+
+def test_the_closed_forms_refuse_a_damped_pendulum():
+    """The closed forms are the undamped pendulum's: for one with hinge viscosity they
+    returned the undamped loads under the damped fields' names (4.30 N where the damped
+    flutter load is 3.03 N; an outside audit)."""
+    from flutterfriction.errors import ParameterError
+    from flutterfriction.models.ziegler import ZieglerPendulum
+
+    base = dict(l1=1.0, l2=1.0, d=1.0, h=0.0, m1=1.0, m2=1.0, m3=0.0, k1=1.0, k2=1.0)
+    damped = ZieglerPendulum(**base, c1=0.01, c2=0.01)
+    with pytest.raises(ParameterError, match=r"undamped pendulum's, got c1 = 0.01"):
+        cf.critical_loads_closed_form(damped)
+    # eq. (46): 2 K/L without viscosity
+    assert cf.critical_loads_closed_form(damped.with_(c1=0.0, c2=0.0)).P_flu == pytest.approx(
+        2.0, rel=1e-12)

@@ -134,10 +134,18 @@ def optimal_two_mass_loads(l1: float, l2: float, k1: float, k2: float) -> tuple[
 
 def critical_loads_closed_form(pendulum: ZieglerPendulum) -> CriticalLoads:
     """Critical loads [N] of the undamped pendulum from eqs. (22), (39), (41), after refusing a
-    pendulum outside the model's numerical range, as the numerical twin does
+    pendulum with hinge viscosity (the closed forms are undamped) or outside the model's
+    numerical range, as the numerical twin does
     (:meth:`ZieglerPendulum.check_numerical_range`: one line naming the parameter)."""
     if not isinstance(pendulum, ZieglerPendulum):
         raise ParameterError(f"pendulum must be a ZieglerPendulum, got {type(pendulum).__name__}")
+    if pendulum.c1 != 0 or pendulum.c2 != 0:
+        # the undamped loads under the damped fields' names would be a silent wrong answer
+        # (an outside audit: 4.30 N for a pendulum whose damped flutter load is 3.03 N)
+        raise ParameterError(f"pendulum: the closed forms (eqs. 22, 39, 41) are the undamped "
+                             f"pendulum's, got c1 = {pendulum.c1:g}, c2 = {pendulum.c2:g} N m s; "
+                             f"use analysis.ziegler.critical_loads (damped loads) or "
+                             f"pendulum.with_(c1=0, c2=0)")
     pendulum.check_numerical_range()
     g = pendulum.groups()
     g_flu, g_div = flutter_divergence_gammas(g)

@@ -54,7 +54,12 @@ def fig18(params: dict[str, Any]) -> dict[str, Any]:
     P_closed = ratio * W
     P_system = np.array([_lever_equilibrium(lever, w)["P"] for w in W])
     drawn = _lever_equilibrium(lever, W_drawn)
-    crit = critical_loads_closed_form(pend)
+    if pend.c1 == 0 and pend.c2 == 0:
+        crit = critical_loads_closed_form(pend)
+    else:  # a pendulum with hinge viscosity flutters at its damped load (§2.8)
+        from flutterfriction.analysis.ziegler import critical_loads
+
+        crit = critical_loads(pend)
 
     # -- top view: the pendulum deflected, the plate sliding towards A
     pos = pend.positions(a1, a2)
