@@ -395,3 +395,40 @@ def test_scenes_that_are_not_a_mapping_are_one_line(config):
     bad = dict(config, scenes="foo")
     assert validate_config(bad, SCHEMA_PATH, scenes=SCENES) == [
         "config: scenes: 'foo' is not of type 'object'"]
+
+
+@pytest.mark.parametrize(("scene", "key", "value", "match"), [
+    # P = 100 P*_flu, beyond the damped divergence load: 92 s of integration, then a failure
+    ("fig13", "load_factor", 100.0, "scenes.fig13: load_factor must be in (1, 3.79856)"),
+    ("fig14", "load_factor", 4.0, "scenes.fig14: load_factor must be in (1, 3.79856)"),
+    ("fig13", "alpha0_deg", 0.0, "scenes.fig13: alpha0_deg must be non-zero"),
+    ("fig13", "pendulum", {"l1": 0.1, "l2": 0.1, "d": 0.1, "h": 0.0, "m1": 0.1, "m2": 0.1,
+                           "m3": 0.0, "k1": 0.2, "k2": 0.2},
+     "scenes.fig13: pendulum: a limit cycle needs hinge viscosity"),
+    # a motion of 1e300 s ran until killed
+    ("fig20", "t_nonlinear", 1.0e300, "scenes.fig20: t_nonlinear must be in (0, 493.3] s"),
+    ("fig20", "t_linear", 7.0, "scenes.fig20: t_linear must be <= t_nonlinear = 6 s"),
+    ("fig21", "duration", 1.0e300, "scenes.fig21: duration must be in (0, 493.3] s"),
+    # far above the rod's flutter load the stiff integration ran until killed; below it no cycle
+    # (the quick preset's first mesh has 2 elements: its own interval, its own line)
+    ("beck_limit_cycle", "P_N", 1.0e6, "scenes.beck_limit_cycle: P_N must be in ("),
+    ("beck_limit_cycle", "P_N", 1.0, "scenes.beck_limit_cycle: P_N must be in ("),
+])
+def test_a_scene_refuses_what_its_job_would_find_only_after_costly_work(scene, key, value,
+                                                                         match):
+    """Outside audit: these passed the configuration check and then hung or failed after
+    minutes in their job. Each scene's own check (registry `check`) now runs in the
+    configuration check, and first thing in the scene (a ParameterError, not an integration
+    that fails)."""
+    raw = yaml.safe_load((ROOT / "workflow" / "config.yaml").read_text())
+    raw["scenes"][scene][key] = value
+    problems = validate_config(raw, SCHEMA_PATH, scenes=SCENES)
+    assert problems and all(match in p and "\n" not in p for p in problems), problems
+    if scene == "beck_limit_cycle":
+        assert "P_N must be in (2.96454, 8.89361] N" in problems[0]  # paper: 4 elements
+    params = scene_params(load_config(ROOT / "workflow" / "config.yaml") | {
+        "scenes": {**load_config(ROOT / "workflow" / "config.yaml")["scenes"],
+                   scene: {**load_config(ROOT / "workflow" / "config.yaml")["scenes"][scene],
+                           key: value}}}, scene)
+    with pytest.raises(ParameterError, match=key if key != "pendulum" else "viscosity"):
+        build_scene(scene, params)

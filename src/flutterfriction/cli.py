@@ -40,7 +40,7 @@ from flutterfriction.errors import (
     ParameterError,
     check_nonnegative,
 )
-from flutterfriction.models.rod import GROUP_RANGES
+from flutterfriction.models.rod import CYCLE_LOAD_MAX, GROUP_RANGES
 from flutterfriction.parameters import LIST_119, LIST_119_LOAD
 
 ZIEGLER_PARAMS = {
@@ -59,7 +59,7 @@ ZIEGLER_PARAMS = {
 #: Ranges of `limit-cycle beck` (refused outside, before any integration): beyond them the
 #: integration could run for hours or lose accuracy (absolute tolerances in SI units).
 BECK_ELEMENTS = (1, 16)  # the chapter's meshes go to 16 (beck_limit_cycle scene)
-BECK_LOAD_MAX = 3.0  # P / P_flu; at 3 P_flu (8.9 N, list 119) the cycle takes ~14 s simulated
+BECK_LOAD_MAX = CYCLE_LOAD_MAX  # P / P_flu (models.rod)
 BECK_T_MAX_SCALES = 2000.0  # t_max / (l^2 sqrt(rho/B))
 BECK_T_MAX_DEFAULT_SCALES = 200.0
 BECK_ETA_MAX, BECK_GAMMA_MAX, BECK_TIP_MASS_RATIO_MAX = 1.0, 100.0, 100.0  # eta: as `rod`
@@ -286,8 +286,7 @@ def _limit_cycle_beck(args: argparse.Namespace) -> dict:
     import numpy as np
     from scipy.optimize import brentq
 
-    from flutterfriction.analysis.damped import flutter_onset
-    from flutterfriction.analysis.rod_dynamics import beck_limit_cycle
+    from flutterfriction.analysis.rod_dynamics import beck_limit_cycle, linearised_flutter_load
     from flutterfriction.models.rod import Rod
     from flutterfriction.models.rod_nonlinear import NonlinearRod
 
@@ -341,11 +340,9 @@ def _limit_cycle_beck(args: argparse.Namespace) -> dict:
 
     M, C, K, K1 = NonlinearRod(rod, args.elements).linear_matrices()
     try:
-        P_flu = flutter_onset(M, C, K, K1, load_max=40 * rod.load_unit, max_doublings=8)
-    except ConvergenceError:
-        raise ParameterError(f"--D, --kappa, --tip-mass: the linearised rod does not flutter "
-                             f"below {40 * 2**8 * rod.load_unit:.4g} N, so no cycle is "
-                             f"sought") from None
+        P_flu = linearised_flutter_load(rod, args.elements)
+    except ParameterError as exc:
+        raise ParameterError(f"--D, --kappa, --tip-mass: {exc}") from None
     P_top = BECK_LOAD_MAX * P_flu
     if not P_flu < args.P <= P_top:
         raise ParameterError(

@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 import copy
+import json
 import math
-from collections.abc import Iterable, Iterator
+from collections.abc import Iterable, Iterator, Mapping
 from pathlib import Path
 from typing import Any
 
@@ -448,7 +449,10 @@ def validate_config(config: dict[str, Any], schema_path: str | Path,
     (pendulum and rod geometry, finite numbers, ordered ranges) on each scene's parameters as
     that preset resolves them, so a misspelled or out-of-range override fails whichever preset
     is active. With ``scenes`` (the registered scene names), a section naming no registered
-    scene is refused too. An empty list means valid."""
+    scene is refused too; given as the registry's mapping (name -> Scene), each scene's own
+    ``check`` runs on its resolved parameters as well (a load outside the interval where its
+    cycle exists, a motion too long to integrate: refusals its job would reach only after
+    costly work). An empty list means valid."""
     with open(schema_path, encoding="utf-8") as fh:
         schema = safe_load(fh)
     config = copy.deepcopy(config)
@@ -471,6 +475,7 @@ def validate_config(config: dict[str, Any], schema_path: str | Path,
         _check_preset_scenes(config)
     except ParameterError as exc:
         return [f"config: {exc}"]
+    checked: dict[tuple, str | None] = {}  # a scene check's verdict per parameters
     for fidelity in sorted(config.get("fidelity_presets", {})):
         resolved = copy.deepcopy(config)
         resolved["fidelity"] = fidelity
@@ -478,8 +483,24 @@ def validate_config(config: dict[str, Any], schema_path: str | Path,
         prefix = f"config (fidelity {fidelity}): "
         lines = _schema_problems(resolved, schema, prefix)
         for scene, params in resolved["scenes"].items():
-            lines += _physical_problems(scene, params, prefix)
-            lines += _rod_scene_problems(scene, params, prefix)
+            found = _physical_problems(scene, params, prefix)
+            found += _rod_scene_problems(scene, params, prefix)
+            check = getattr(scenes.get(scene), "check", None) \
+                if isinstance(scenes, Mapping) else None
+            if check is not None and not found:
+                # the scene's own refusals of what it would find out only after costly work
+                # (once per distinct parameters: Figs. 13 and 14 share theirs, and so do
+                # presets that leave a scene alone)
+                key = (check, json.dumps(params, sort_keys=True, default=str))
+                if key not in checked:
+                    try:
+                        check(params)
+                        checked[key] = None
+                    except _MODEL_ERRORS as exc:
+                        checked[key] = " ".join(str(exc).split())
+                if checked[key] is not None:
+                    found.append(f"{prefix}scenes.{scene}: {checked[key]}")
+            lines += found
         seen = {p.split(": ", 1)[1] for p in problems}
         problems += [line for line in lines if line.split(": ", 1)[1] not in seen]
     return problems

@@ -90,6 +90,11 @@ class Scene:
         Tens of seconds or more: started first, and given a longer cluster runtime.
     draws_wall_times
         Its figures draw measured wall times, so they differ from run to run (the data do not).
+    check
+        ``check(params)``: raises :class:`~flutterfriction.errors.ParameterError` for
+        parameters ``compute`` would refuse only after costly work (a load outside the
+        interval where a cycle exists, a motion too long to integrate); the workflow's
+        configuration check calls it before any job, ``compute`` itself first thing.
     """
 
     name: str
@@ -99,6 +104,7 @@ class Scene:
     sweep: Sweep | None = None
     slow: bool = False
     draws_wall_times: bool = False
+    check: Callable[[dict[str, Any]], None] | None = None
 
 
 def _fig(plot: str, caption: str) -> FigureSpec:
@@ -219,10 +225,11 @@ _ENTRIES = [
     Scene("fig13", ziegler_nonlinear.fig13, "limit_cycles", {"fig13": _fig(
         "ziegler_nonlinear:plot_fig13",
         "Fig. 13: the viscous Ziegler pendulum at P = 1.5 P*_flu reaching a stable limit cycle "
-        "(α1 against α2).")}),
+        "(α1 against α2).")}, check=ziegler_nonlinear.check_section29),
     Scene("fig14", ziegler_nonlinear.fig14, "limit_cycles", {"fig14": _fig(
         "ziegler_nonlinear:plot_fig14",
-        "Fig. 14: angular velocities against rotations on the way to the limit cycle.")}),
+        "Fig. 14: angular velocities against rotations on the way to the limit cycle.")},
+          check=ziegler_nonlinear.check_section29),
     Scene("beck_limit_cycle", rod.beck_limit_cycle, "limit_cycles", {
         "fig15": _fig("rod:plot_fig15",
                       "Fig. 15: the nonlinear Beck rod of list (119) at P = 5.5 N: the tip's "
@@ -230,15 +237,17 @@ _ENTRIES = [
                       "into the limit cycle (periodic-orbit Newton)."),
         "fig16": _fig("rod:plot_fig16", "Fig. 16: tip velocities against tip displacements."),
         "fig17": _fig("rod:plot_fig17",
-                      "Fig. 17: the tip's lateral against axial velocity.")}, slow=True),
+                      "Fig. 17: the tip's lateral against axial velocity.")}, slow=True,
+          check=rod.check_beck_limit_cycle),
     Scene("fig20", ziegler_nonlinear.fig20, "limit_cycles", {"fig20": _fig(
         "ziegler_nonlinear:plot_fig20",
         "Fig. 20: transverse acceleration of the loaded end, linear (blows up) against "
-        "nonlinear (limit cycle), 6 s and a 1.5 s detail.")}),
+        "nonlinear (limit cycle), 6 s and a 1.5 s detail.")},
+          check=ziegler_nonlinear.check_fig20),
     Scene("fig21", ziegler_nonlinear.fig21, "limit_cycles", {"fig21": _fig(
         "ziegler_nonlinear:plot_fig21",
         "Fig. 21: the path of the loaded end and the scratch it leaves on the moving "
-        "plate.")}),
+        "plate.")}, check=ziegler_nonlinear.check_fig21),
     Scene("limit_cycle_amplitude", ziegler_nonlinear.limit_cycle_amplitude, "limit_cycles", {
         "limit_cycle_amplitude": _fig(
             "ziegler_nonlinear:plot_limit_cycle_amplitude",

@@ -615,6 +615,20 @@ def rod_shapes(model: NonlinearRod, orbit, T: float, frames: int = 41) -> list:
     return shapes
 
 
+def linearised_flutter_load(rod: Rod, n_elements: int) -> float:
+    """The damped flutter load [N] of the rod linearised about the straight configuration on
+    ``n_elements`` P2 elements (where a cycle can start); refused
+    (:class:`ParameterError`) if the rod does not flutter below ``40 * 2^8`` load units."""
+    from flutterfriction.analysis.damped import flutter_onset
+
+    M, C, K, K1 = NonlinearRod(rod, n_elements).linear_matrices()
+    try:
+        return float(flutter_onset(M, C, K, K1, load_max=40 * rod.load_unit, max_doublings=8))
+    except ConvergenceError:
+        raise ParameterError(f"the linearised rod does not flutter below "
+                             f"{40 * 2**8 * rod.load_unit:.4g} N, so no cycle is sought") from None
+
+
 def flutter_mode_start(model: NonlinearRod, P: float, amplitude: float) -> NDArray:
     """The straight rod perturbed by its linear flutter mode (the eigenvector of the growing
     eigenvalue at ``P``, real part), scaled to a lateral tip displacement ``amplitude``."""

@@ -33,6 +33,12 @@ from numpy.typing import ArrayLike, NDArray
 
 from flutterfriction.errors import ParameterError, check_nonnegative, check_positive
 
+#: Largest follower load of the nonlinear rod's cycle solvers (the ``limit-cycle beck`` command
+#: and the beck_limit_cycle scene), in units of the linearised rod's damped flutter load: at 3
+#: P_flu (8.9 N for list 119) the cycle takes ~14 s simulated; far above it the stiff
+#: integration runs for minutes (an outside audit: 1e6 N ran until killed).
+CYCLE_LOAD_MAX = 3.0
+
 #: The rod solver's numerical range of the groups (analysis.rod checks it). Where the
 #: numbers come from (measured with p_max up to 1000, see the stress report):
 #: tan(alpha) <= 1e4: beyond it the tip mode's Omega^2 ~ 1/tan(alpha) sinks to the pencil's

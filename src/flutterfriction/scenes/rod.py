@@ -347,6 +347,37 @@ def _test_functions(kind: str, p: float) -> tuple[np.ndarray, np.ndarray]:
 
 
 # ---------------------------------------------------------------------- §2.9 nonlinear Beck rod
+def _beck_cycle_settings(params: dict[str, Any]) -> tuple[Rod, float, list[int]]:
+    """Figs. 15-17's rod, load [N] and meshes, refused before any integration: no viscosity
+    (no attracting cycle), a load outside (P_flu, CYCLE_LOAD_MAX P_flu] of the rod
+    linearised on the first mesh (below: no cycle; far above: an outside audit's 1e6 N ran
+    until killed), meshes not increasing."""
+    from flutterfriction.analysis.rod_dynamics import linearised_flutter_load
+    from flutterfriction.models.rod import CYCLE_LOAD_MAX
+
+    rod = _rod(params)
+    P = check_positive("P_N", params.get("P_N"), "N")
+    meshes = [int(n) for n in params.get("meshes", [4, 8, 16])]
+    if len(meshes) < 3 or sorted(meshes) != meshes:
+        raise ParameterError("meshes must list at least three increasing element counts")
+    if not rod.D > 0:
+        raise ParameterError(f"rod.D must be > 0 N m^2 s: without viscosity the rod's motion is "
+                             f"reversible and has no attracting limit cycle, got {rod.D!r}")
+    P_flu = linearised_flutter_load(rod, meshes[0])
+    if not P_flu < P <= CYCLE_LOAD_MAX * P_flu:
+        raise ParameterError(f"P_N must be in ({P_flu:.6g}, {CYCLE_LOAD_MAX * P_flu:.6g}] N: "
+                             f"above the damped flutter load P_flu of the rod linearised on "
+                             f"{meshes[0]} elements and at most {CYCLE_LOAD_MAX:g} P_flu, "
+                             f"got {P:g}")
+    return rod, P, meshes
+
+
+def check_beck_limit_cycle(params: dict[str, Any]) -> None:
+    """Figs. 15-17's parameters as :func:`beck_limit_cycle` refuses them (the configuration
+    check)."""
+    _beck_cycle_settings(params)
+
+
 def beck_limit_cycle(params: dict[str, Any]) -> dict[str, Any]:
     """Figs. 15–17: the nonlinear Beck rod of list (119) at P = 5.5 N reaches a limit cycle.
 
@@ -366,11 +397,7 @@ def beck_limit_cycle(params: dict[str, Any]) -> dict[str, Any]:
     take(params, {"rod", "P_N", "meshes", "method", "fine_method", "rtol", "tol",
                    "transient_rtol", "transient_tol", "initial_amplitude", "variational_rtol",
                    "samples_per_period"})
-    rod = _rod(params)
-    P = check_positive("P_N", params["P_N"], "N")
-    meshes = [int(n) for n in params.get("meshes", [4, 8, 16])]
-    if len(meshes) < 3 or sorted(meshes) != meshes:
-        raise ParameterError("meshes must list at least three increasing element counts")
+    rod, P, meshes = _beck_cycle_settings(params)
     per_period = int(params.get("samples_per_period", 64))
     chain = beck_cycle_chain(
         rod, P, meshes, method=params.get("method", "LSODA"),

@@ -13,6 +13,7 @@ from flutterfriction.analysis.events import from_the_section
 from flutterfriction.analysis.ziegler import (
     damped_divergence_load,
     damped_flutter_load,
+    is_damped,
     linear_response,
     spectrum,
 )
@@ -39,12 +40,75 @@ def damped_flutter_load_star(p: ZieglerPendulum) -> tuple[float, bool]:
 
 def _section29(params: dict[str, Any]):
     """§2.9: P = (load factor) x P*_flu (eq. 54 for §2.9's symmetric pendulum; for any other,
-    its exact damped flutter load), initial rotations alpha0 (degrees)."""
+    its exact damped flutter load), initial rotations alpha0 (degrees). Refused
+    (:class:`ParameterError`, before any integration; also by the workflow's configuration
+    check, :func:`check_section29`): no hinge viscosity (no cycle), ``alpha0_deg`` zero or
+    beyond half a turn, a load outside the damped flutter interval ``(P_flu, P_div)`` (below
+    it the motion decays, above it diverges: an outside audit saw 92 s of integration end in
+    a failure at 100 P*_flu)."""
     p = pendulum_of(params)
+    if not is_damped(p):
+        raise ParameterError("pendulum: a limit cycle needs hinge viscosity (c1 or c2 > 0)")
+    a0_deg = check_real("alpha0_deg", params.get("alpha0_deg", 0.1))
+    if not 0 < abs(a0_deg) <= 180:
+        raise ParameterError(f"alpha0_deg must be non-zero and within half a turn, "
+                             f"0 < |alpha0_deg| <= 180, got {a0_deg:g}")
     P_star, is_eq54 = damped_flutter_load_star(p)
-    P = check_positive("load_factor", params.get("load_factor", 1.5)) * P_star
-    a0 = math.radians(check_real("alpha0_deg", params.get("alpha0_deg", 0.1)))
-    return p, P, P_star, is_eq54, np.array([a0, a0, 0.0, 0.0])
+    factor = check_positive("load_factor", params.get("load_factor", 1.5))
+    P_div = damped_divergence_load(p)
+    if not P_star < factor * P_star < P_div:
+        raise ParameterError(f"load_factor must be in (1, {P_div / P_star:.6g}): P = "
+                             f"load_factor x P*_flu inside the damped flutter interval "
+                             f"({P_star:.6g}, {P_div:.6g}) N, got {factor:g}")
+    a0 = math.radians(a0_deg)
+    return p, factor * P_star, P_star, is_eq54, np.array([a0, a0, 0.0, 0.0])
+
+
+def check_section29(params: dict[str, Any]) -> None:
+    """Figs. 13-14's parameters as :func:`_section29` refuses them (the configuration check)."""
+    _section29(params)
+
+
+#: Longest motion Figs. 20-21 integrate, in the pendulum's time unit tau = l2 sqrt(m2/k2)
+#: (eq. 17): 1e4 tau is 490 s for list (47), ~80 times the chapter's 6 s (~10 s of work).
+MAX_MOTION_TIME_UNITS = 1e4
+
+
+def _motion_time(p: ZieglerPendulum, name: str, value: Any) -> float:
+    T = check_positive(name, value, "s")
+    limit = MAX_MOTION_TIME_UNITS * dy.time_unit(p)
+    if T > limit:
+        raise ParameterError(f"{name} must be in (0, {limit:.4g}] s ({MAX_MOTION_TIME_UNITS:g} "
+                             f"time units l2 sqrt(m2/k2) of this pendulum), got {T:g}")
+    return T
+
+
+def _fig20_settings(params: dict[str, Any]) -> tuple[ZieglerPendulum, float, float, float]:
+    """Fig. 20's pendulum, alpha0 [rad] and times [s], refused before any integration: a
+    motion longer than :data:`MAX_MOTION_TIME_UNITS` (an outside audit: 1e300 s ran until
+    killed), a linear part longer than the nonlinear one (it is drawn on the same samples),
+    alpha0 zero or beyond half a turn."""
+    p = pendulum_of(params)
+    a0_deg = check_real("alpha0_deg", params.get("alpha0_deg", 0.5))
+    if not 0 < abs(a0_deg) <= 180:
+        raise ParameterError(f"alpha0_deg must be non-zero and within half a turn, "
+                             f"0 < |alpha0_deg| <= 180, got {a0_deg:g}")
+    T_nl = _motion_time(p, "t_nonlinear", params.get("t_nonlinear", 6.0))
+    T_li = check_positive("t_linear", params.get("t_linear", 1.5), "s")
+    if T_li > T_nl:
+        raise ParameterError(f"t_linear must be <= t_nonlinear = {T_nl:g} s (drawn on its "
+                             f"samples), got {T_li:g}")
+    return p, math.radians(a0_deg), T_nl, T_li
+
+
+def check_fig20(params: dict[str, Any]) -> None:
+    """Fig. 20's parameters as :func:`fig20` refuses them (the configuration check)."""
+    _fig20_settings(params)
+
+
+def check_fig21(params: dict[str, Any]) -> None:
+    """Fig. 21's duration as :func:`fig21` refuses it (the configuration check)."""
+    _motion_time(pendulum_of(params), "duration", params.get("duration", 2.04))
 
 
 def _cycle(params: dict[str, Any]) -> dict[str, Any]:
@@ -96,12 +160,9 @@ def fig20(params: dict[str, Any]) -> dict[str, Any]:
     """§2.10, Fig. 20: transverse acceleration of the loaded end, nonlinear (6 s) and linear
     (cut at 1.5 s), at the middle of the damped flutter interval, from alpha = 0.5 deg."""
     take(params, {"pendulum", "alpha0_deg", "t_nonlinear", "t_linear", "n_samples"})
-    p = pendulum_of(params)
+    p, a0, T_nl, T_li = _fig20_settings(params)
     P, P_flu, P_div = _mid_flutter_load(p)
-    a0 = math.radians(check_real("alpha0_deg", params.get("alpha0_deg", 0.5)))
     x0 = np.array([a0, a0, 0.0, 0.0])
-    T_nl = check_positive("t_nonlinear", params.get("t_nonlinear", 6.0), "s")
-    T_li = check_positive("t_linear", params.get("t_linear", 1.5), "s")
     n = int(params.get("n_samples", 6001))
     t = np.linspace(0.0, T_nl, n)
     sol = dy.simulate(p, P, x0, T_nl, t_eval=t)
@@ -132,8 +193,8 @@ def fig21(params: dict[str, Any]) -> dict[str, Any]:
     velocities 0.5 rad/s, and the scratch it leaves on the plate moving at ``plate_speed``."""
     take(params, {"pendulum", "duration", "omega0", "plate_speed", "n_samples"})
     p = pendulum_of(params)
+    T = _motion_time(p, "duration", params.get("duration", 2.04))
     P, P_flu, P_div = _mid_flutter_load(p)
-    T = check_positive("duration", params.get("duration", 2.04), "s")
     w0 = check_real("omega0", params.get("omega0", 0.5))
     v = check_real("plate_speed", params.get("plate_speed", 0.1))
     t = np.linspace(0.0, T, int(params.get("n_samples", 4001)))
