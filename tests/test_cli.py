@@ -556,12 +556,21 @@ def test_acoustic_near_incompressible_limit_is_accurate_or_refused(capsys):
     assert "lam/mu <= 1e+08" in capsys.readouterr().err
 
 
-def test_rod_si_errors_name_the_option_and_the_help_states_the_group_ranges(capsys):
+def test_model_errors_name_the_option_and_the_rod_help_states_the_group_ranges(capsys):
     from flutterfriction.cli import main
 
     for args, option in ((["--D", "-1"], "--D"), (["--tip-mass", "-1"], "--tip-mass")):
         assert main(["rod", "--length", "1", "--B", "1", "--rho", "1", *args]) == 2
-        assert capsys.readouterr().err.startswith(f"flutterfriction: error: {option}: ")
+        assert capsys.readouterr().err.startswith(f"flutterfriction: error: {option} must be ")
+    # and the pendulum's (an outside audit: "l1 must be > 0 m" for --l1, "= 1e5.03")
+    pendulum = ["--l2", "0.1", "--d", "0.0333", "--h", "0.0333", "--m1", "0.552", "--m2",
+                "0.046", "--m3", "0.138", "--k1", "0.189", "--k2", "0.189"]
+    assert main(["ziegler", "--l1", "-1", *pendulum]) == 2
+    assert capsys.readouterr().err.startswith("flutterfriction: error: --l1 must be > 0 m")
+    assert main(["ziegler", "--l1", "0.1", *pendulum, "--c1", "1000", "--c2", "0"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("flutterfriction: error: --c1: the relative viscosity")
+    assert "= 10^5.03 must be" in err
     with pytest.raises(SystemExit):
         main(["rod", "--help"])
     out = " ".join(capsys.readouterr().out.split())

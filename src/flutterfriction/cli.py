@@ -27,11 +27,12 @@ prints strict JSON (a NaN or infinity would be an internal error, exit 1, never 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import math
 import re
 import sys
-from collections.abc import Sequence
+from collections.abc import Iterable, Iterator, Sequence
 
 from flutterfriction.errors import (
     PLAIN_INTEGER,
@@ -603,11 +604,7 @@ def _rod(args: argparse.Namespace) -> dict:
         missing = [f"--{k}" for k in ("length", "B", "rho") if si[k] is None]
         if missing:
             raise ParameterError(f"SI mode needs {', '.join(missing)}")
-        try:
-            rod = Rod(**{k: v for k, v in si.items() if v is not None})  # finite, signs
-        except ParameterError as e:  # named as the option the user typed
-            key = str(e).split()[0]
-            raise ParameterError(f"--{key.replace('_', '-')}: {e}") from None
+        rod = Rod(**{k: v for k, v in si.items() if v is not None})  # finite, signs
         lg = {k: math.log10(getattr(rod, k)) if getattr(rod, k) > 0 else None
               for k in ("length", "B", "rho", "D", "kappa", "tip_mass")}
         ll, lB, lr = lg["length"], lg["B"], lg["rho"]
@@ -683,17 +680,34 @@ def _refuse_repeated_options(parser: argparse.ArgumentParser, argv: Sequence[str
         seen.add(name)
 
 
+@contextlib.contextmanager
+def _as_options(names: Iterable[str]) -> Iterator[None]:
+    """A model's :class:`ParameterError` about one of ``names`` (its message starts with the
+    field's name, e.g. ``tip_mass must be >= 0 kg``) named as the option the user typed
+    (``--tip-mass must be >= 0 kg``)."""
+    try:
+        yield
+    except ParameterError as exc:
+        message, fields = str(exc), set(names)
+        key = message.split()[0].rstrip(":,") if message.split() else ""
+        if key in fields:
+            raise ParameterError("--" + key.replace("_", "-") + message[len(key):]) from None
+        raise
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     parser = build_parser()
     words = _numeric_argv(parser, sys.argv[1:] if argv is None else argv)
     _refuse_repeated_options(parser, words)
     args = parser.parse_args(words)
     try:
-        if args.command == "limit-cycle" and args.system == "beck":
-            result = _limit_cycle_beck(args)
-        else:
-            result = {"ziegler": _ziegler, "rod": _rod, "acoustic": _acoustic,
-                      "limit-cycle": _limit_cycle}[args.command](args)
+        # a model's message about one of its fields names the option typed (--tip-mass)
+        with _as_options(vars(args)):
+            if args.command == "limit-cycle" and args.system == "beck":
+                result = _limit_cycle_beck(args)
+            else:
+                result = {"ziegler": _ziegler, "rod": _rod, "acoustic": _acoustic,
+                          "limit-cycle": _limit_cycle}[args.command](args)
     except ParameterError as exc:  # one line, whatever the message holds (e.g. an array)
         print(f"flutterfriction: error: {' '.join(str(exc).split())}", file=sys.stderr)
         return 2

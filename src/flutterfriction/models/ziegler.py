@@ -195,7 +195,7 @@ class ZieglerPendulum:
         ulo, uhi = (math.log10(x) for x in LOAD_UNIT_RANGE)
         if not ulo <= log_unit <= uhi:
             raise ParameterError(
-                f"k2: the load unit k2/l1 = 1e{log_unit:.4g} N is outside [1e{ulo:.0f}, "
+                f"k2: the load unit k2/l1 = 10^{log_unit:.4g} N is outside [1e{ulo:.0f}, "
                 f"1e{uhi:.0f}] N (loads would overflow or leave the normal doubles)")
         scale = (math.log10(self.l2) + 0.5 * (math.log10(self.k2) + math.log10(self.m2)))
         for name in ("c1", "c2"):
@@ -205,7 +205,7 @@ class ZieglerPendulum:
             e = math.log10(c) - scale
             if not math.log10(MIN_RELATIVE_VISCOSITY) <= e <= math.log10(MAX_RELATIVE_VISCOSITY):
                 raise ParameterError(
-                    f"{name}: the relative viscosity {name}/(l2 sqrt(k2 m2)) = 1e{e:.4g} must be "
+                    f"{name}: the relative viscosity {name}/(l2 sqrt(k2 m2)) = 10^{e:.4g} must be "
                     f"0 or within [{MIN_RELATIVE_VISCOSITY:g}, {MAX_RELATIVE_VISCOSITY:g}]")
 
     def dimensionless_matrices(self) -> DimensionlessMatrices:
