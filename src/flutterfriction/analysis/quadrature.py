@@ -15,7 +15,7 @@ from flutterfriction.errors import ConvergenceError, ParameterError
 
 # Gauss–Legendre nodes and weights on [-1, 1]: exact for polynomials of degree 2 * 10 - 1.
 _NODES, _WEIGHTS = np.polynomial.legendre.leggauss(10)
-_BLOCK = 2000
+_BLOCK = 400  # abscissae per call: 16 elements then keep ~10 MB per kinematic array
 
 
 def _panel_integrals(f: Callable[[NDArray], NDArray], a: NDArray, b: NDArray) -> NDArray:
