@@ -405,3 +405,18 @@ def test_fig12_says_it_reproduces_the_quoted_loads_only_where_it_does():
         plt.close(fig)
         assert ("reproduces the loads the chapter quotes" in texts) is reproduces
         assert ("your choice: not the quoted loads" in texts) is not reproduces
+
+
+def test_roots_next_to_a_double_root_are_refined_not_refused():
+    """tan(alpha) = 0.5932505 (just past the opening of the first divergence window, mu* ~
+    0.59325021): at the window's midpoint p = 48.85 two pairs of real roots nearly coincide
+    and their Newton steps jitter at ~1e-13; every root converged alone, but all together
+    were refused (an outside audit). The window's ends are the audit's own (mpmath, 30+
+    digits): [48.837167, 48.866376], to their printed digits."""
+    from flutterfriction.analysis.rod import critical_loads
+    from flutterfriction.models.rod import RodGroups
+
+    c = critical_loads(RodGroups(tan_alpha=0.5932505), p_max=100.0)
+    window = [iv for iv in c.intervals if iv["regime"] == "divergence"][0]
+    assert window["p_from"] == pytest.approx(48.837167, abs=1e-6)
+    assert window["p_to"] == pytest.approx(48.866376, abs=1e-6)

@@ -115,6 +115,12 @@ def refine_eigenvalues(p: float, g: RodGroups, guesses: NDArray, tol: float = 1e
     were right)."""
     w = np.asarray(guesses, dtype=complex).copy()
     h = 1e-4 * np.maximum(1.0, np.abs(w))
+    # A root counts as converged once its step has met the tolerance: next to a double root
+    # the steps of two nearly coincident roots jitter at ~1e-13 |w| (f' is small there), and
+    # requiring every step small at the same iteration refused them (tan(alpha) = 0.5932505,
+    # p = 48.85: every root converged alone; an outside audit). Elsewhere a converged step
+    # stays converged, so the iterations and the roots are those of "all at once".
+    met = np.zeros(w.shape, dtype=bool)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         sigma0 = np.real(characteristic_function(p, w, g, with_exponent=True)[1])
         for _ in range(max_iter):
@@ -123,7 +129,8 @@ def refine_eigenvalues(p: float, g: RodGroups, guesses: NDArray, tol: float = 1e
             if not np.all(np.isfinite(step)):
                 break
             w = w - step
-            if np.all(np.abs(step) <= tol * np.maximum(1.0, np.abs(w))):
+            met |= np.abs(step) <= tol * np.maximum(1.0, np.abs(w))
+            if np.all(met):
                 return w
     # one line a reader can act on (the guesses' array, printed whole, was a screenful)
     raise ConvergenceError(f"Newton on eq. (118) did not converge at p = {p:.10g} from "
