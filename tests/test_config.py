@@ -410,6 +410,17 @@ def test_scenes_that_are_not_a_mapping_are_one_line(config):
     ("fig20", "t_linear", 7.0, "scenes.fig20: t_linear must be <= t_nonlinear = 6 s"),
     ("fig21", "duration", 1.0e300, "scenes.fig21: duration must be in (0, 493.3] s"),
     # far above the rod's flutter load the stiff integration ran until killed; below it no cycle
+    ("fig21", "omega0", 1.0e6, "scenes.fig21: omega0 must be in [-2027, 2027] rad/s"),
+    ("beck_work_precision", "t_end", 1.0e300, "scenes.beck_work_precision: t_end must be in "
+                                              "(0, 31.42] s"),
+    ("beck_work_precision", "P_N", 1.0e6, "scenes.beck_work_precision: P_N must be in ("),
+    ("pendulum_work_precision", "load_factor", 100.0,
+     "scenes.pendulum_work_precision: cycle_pendulum, load_factor: load_factor must be in"),
+    ("beck_limit_cycle", "rod", {"length": 0.35, "B": 0.0332, "rho": 0.0546, "D": 1.0e-12},
+     "scenes.beck_limit_cycle: rod.D: eta = D/(B l^2) sqrt(B/rho) = 1.92e-10 must be >="),
+    ("beck_limit_cycle", "rod", {"length": 0.35, "B": 0.0332, "rho": 0.0546, "D": 7.078e-6,
+                                 "tip_mass": 100.0},
+     "scenes.beck_limit_cycle: rod.tip_mass: M/(rho l) must be <= 100"),
     # (the quick preset's first mesh has 2 elements: its own interval, its own line)
     ("beck_limit_cycle", "P_N", 1.0e6, "scenes.beck_limit_cycle: P_N must be in ("),
     ("beck_limit_cycle", "P_N", 1.0, "scenes.beck_limit_cycle: P_N must be in ("),
@@ -424,11 +435,12 @@ def test_a_scene_refuses_what_its_job_would_find_only_after_costly_work(scene, k
     raw["scenes"][scene][key] = value
     problems = validate_config(raw, SCHEMA_PATH, scenes=SCENES)
     assert problems and all(match in p and "\n" not in p for p in problems), problems
-    if scene == "beck_limit_cycle":
+    if key == "P_N" and scene == "beck_limit_cycle":
         assert "P_N must be in (2.96454, 8.89361] N" in problems[0]  # paper: 4 elements
     params = scene_params(load_config(ROOT / "workflow" / "config.yaml") | {
         "scenes": {**load_config(ROOT / "workflow" / "config.yaml")["scenes"],
                    scene: {**load_config(ROOT / "workflow" / "config.yaml")["scenes"][scene],
                            key: value}}}, scene)
-    with pytest.raises(ParameterError, match=key if key != "pendulum" else "viscosity"):
+    with pytest.raises(ParameterError, match={"pendulum": "viscosity", "rod": "rod."}.get(
+            key, key)):
         build_scene(scene, params)

@@ -41,7 +41,13 @@ from flutterfriction.errors import (
     ParameterError,
     check_nonnegative,
 )
-from flutterfriction.models.rod import CYCLE_LOAD_MAX, GROUP_RANGES
+from flutterfriction.models.rod import (
+    CYCLE_ATTRACTION_SCALES,
+    CYCLE_GAMMA_MAX,
+    CYCLE_LOAD_MAX,
+    CYCLE_TIP_MASS_RATIO_MAX,
+    GROUP_RANGES,
+)
 from flutterfriction.parameters import LIST_119, LIST_119_LOAD
 
 ZIEGLER_PARAMS = {
@@ -63,13 +69,14 @@ BECK_ELEMENTS = (1, 16)  # the chapter's meshes go to 16 (beck_limit_cycle scene
 BECK_LOAD_MAX = CYCLE_LOAD_MAX  # P / P_flu (models.rod)
 BECK_T_MAX_SCALES = 2000.0  # t_max / (l^2 sqrt(rho/B))
 BECK_T_MAX_DEFAULT_SCALES = 200.0
-BECK_ETA_MAX, BECK_GAMMA_MAX, BECK_TIP_MASS_RATIO_MAX = 1.0, 100.0, 100.0  # eta: as `rod`
+BECK_ETA_MAX = 1.0  # as `rod`
+BECK_GAMMA_MAX, BECK_TIP_MASS_RATIO_MAX = CYCLE_GAMMA_MAX, CYCLE_TIP_MASS_RATIO_MAX
 #: The approach to the cycle is governed by the dissipation: measured on list (119) at 5.5 N
 #: (4 elements, from the straight rod), converged at 14.6 s for eta = 1.36e-3, 35.6 s for
 #: 5.75e-4 and 69.9 s for 2.9e-4 (tol 1e-5; 6, 11, 23 s of wall time): t ~ 0.13 T/eta,
 #: T = l^2 sqrt(rho/B). BECK_ETA_MIN keeps a converging run within about a minute of wall
 #: time (1300 T, ~200 s simulated for list 119); the audit's eta ~ 1e-7 ran past two minutes.
-BECK_ATTRACTION_SCALES = 0.13  # t_need ~ BECK_ATTRACTION_SCALES T / eta
+BECK_ATTRACTION_SCALES = CYCLE_ATTRACTION_SCALES  # t_need ~ BECK_ATTRACTION_SCALES T / eta
 BECK_ETA_MIN = 1e-4
 BECK_RANGES = {"length": (1e-6, 1e6, "m"), "B": (1e-12, 1e12, "N m^2"),
                "rho": (1e-12, 1e12, "kg/m")}

@@ -274,9 +274,9 @@ _ENTRIES = [
             "rod:plot_beck_work_precision",
             "Work-precision of the rod's integrators on the cycle's return map: errors of "
             "period and tip amplitude over one period (LSODA, BDF, Radau, generalized-α).")},
-          slow=True, draws_wall_times=True),
+          slow=True, draws_wall_times=True, check=rod.check_beck_work_precision),
     Scene("pendulum_work_precision", ziegler_nonlinear.pendulum_work_precision, "limit_cycles",
-          slow=True),
+          slow=True, check=ziegler_nonlinear.check_pendulum_work_precision),
     # §3 Frictional solids
     Scene("fig22", solids.fig22, "solids", {"fig22": _fig(
         "solids:plot_fig22",

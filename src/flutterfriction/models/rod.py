@@ -38,6 +38,13 @@ from flutterfriction.errors import ParameterError, check_nonnegative, check_posi
 #: P_flu (8.9 N for list 119) the cycle takes ~14 s simulated; far above it the stiff
 #: integration runs for minutes (an outside audit: 1e6 N ran until killed).
 CYCLE_LOAD_MAX = 3.0
+#: Further ranges of the cycle solvers: gamma and the tip-mass ratio M/(rho l) at most 100
+#: (beyond, the integrations could run for hours or lose accuracy); the approach to the
+#: cycle takes ~CYCLE_ATTRACTION_SCALES/eta time scales l^2 sqrt(rho/B) (measured on list
+#: 119 at 5.5 N, 4 elements: converged at 14.6 s for eta = 1.36e-3, 35.6 s for 5.75e-4 and
+#: 69.9 s for 2.9e-4), so eta must leave that within the simulated time allowed.
+CYCLE_GAMMA_MAX, CYCLE_TIP_MASS_RATIO_MAX = 100.0, 100.0
+CYCLE_ATTRACTION_SCALES = 0.13
 
 #: The rod solver's numerical range of the groups (analysis.rod checks it). Where the
 #: numbers come from (measured with p_max up to 1000, see the stress report):

@@ -352,24 +352,53 @@ def _beck_cycle_settings(params: dict[str, Any]) -> tuple[Rod, float, list[int]]
     (no attracting cycle), a load outside (P_flu, CYCLE_LOAD_MAX P_flu] of the rod
     linearised on the first mesh (below: no cycle; far above: an outside audit's 1e6 N ran
     until killed), meshes not increasing."""
-    from flutterfriction.analysis.rod_dynamics import linearised_flutter_load
-    from flutterfriction.models.rod import CYCLE_LOAD_MAX
+    from flutterfriction.analysis.rod_dynamics import TRANSIENT_T_MAX_SCALES
 
     rod = _rod(params)
     P = check_positive("P_N", params.get("P_N"), "N")
     meshes = [int(n) for n in params.get("meshes", [4, 8, 16])]
     if len(meshes) < 3 or sorted(meshes) != meshes:
         raise ParameterError("meshes must list at least three increasing element counts")
+    _check_cycle_rod(rod, P, meshes[0], TRANSIENT_T_MAX_SCALES)
+    return rod, P, meshes
+
+
+def _check_cycle_rod(rod: Rod, P: float, n_elements: int, t_max_scales: float | None) -> None:
+    """A rod and load the cycle solvers can take, as the ``limit-cycle beck`` command checks
+    them (models.rod's CYCLE_* ranges): viscosity leaving the approach to the cycle (~0.13/eta
+    time scales) within ``t_max_scales`` (twice over; not checked if None: no approach is
+    awaited), gamma and the tip-mass ratio at most 100, the load in
+    (P_flu, CYCLE_LOAD_MAX P_flu] of the rod linearised on ``n_elements``."""
+    from flutterfriction.analysis.rod_dynamics import linearised_flutter_load
+    from flutterfriction.models.rod import (
+        CYCLE_ATTRACTION_SCALES,
+        CYCLE_GAMMA_MAX,
+        CYCLE_LOAD_MAX,
+        CYCLE_TIP_MASS_RATIO_MAX,
+    )
+
     if not rod.D > 0:
         raise ParameterError(f"rod.D must be > 0 N m^2 s: without viscosity the rod's motion is "
                              f"reversible and has no attracting limit cycle, got {rod.D!r}")
-    P_flu = linearised_flutter_load(rod, meshes[0])
+    g = rod.groups()
+    eta_min = 0.0 if t_max_scales is None else CYCLE_ATTRACTION_SCALES / (2 * t_max_scales)
+    if not g.eta >= eta_min:
+        raise ParameterError(f"rod.D: eta = D/(B l^2) sqrt(B/rho) = {g.eta:.3g} must be >= "
+                             f"{eta_min:.3g}: the cycle attracts at a rate ~ eta and needs "
+                             f"~{CYCLE_ATTRACTION_SCALES:g}/eta time scales, beyond the "
+                             f"{t_max_scales:g} simulated")
+    for key, value, limit, text in (("rod.kappa", g.gamma, CYCLE_GAMMA_MAX, "gamma"),
+                                    ("rod.tip_mass", g.tan_alpha, CYCLE_TIP_MASS_RATIO_MAX,
+                                     "M/(rho l)")):
+        if not value <= limit:
+            raise ParameterError(f"{key}: {text} must be <= {limit:g} for the cycle solvers, "
+                                 f"got {value:.4g}")
+    P_flu = linearised_flutter_load(rod, n_elements)
     if not P_flu < P <= CYCLE_LOAD_MAX * P_flu:
         raise ParameterError(f"P_N must be in ({P_flu:.6g}, {CYCLE_LOAD_MAX * P_flu:.6g}] N: "
                              f"above the damped flutter load P_flu of the rod linearised on "
-                             f"{meshes[0]} elements and at most {CYCLE_LOAD_MAX:g} P_flu, "
+                             f"{n_elements} elements and at most {CYCLE_LOAD_MAX:g} P_flu, "
                              f"got {P:g}")
-    return rod, P, meshes
 
 
 def check_beck_limit_cycle(params: dict[str, Any]) -> None:
@@ -483,6 +512,35 @@ def beck_limit_cycle(params: dict[str, Any]) -> dict[str, Any]:
         }}
 
 
+#: Longest settling before the work-precision study's timed periods, in time scales
+#: l^2 sqrt(rho/B) (the chapter's 0.5 s is 0.73 of list 119's): an outside audit's 1e300 s
+#: ran until killed, its memory growing 27 MB/s.
+WORK_PRECISION_T_END_SCALES = 200.0
+
+
+def _beck_work_precision_settings(params: dict[str, Any]) -> tuple[Rod, float, float]:
+    """The study's rod, load [N] and settling time [s], refused before any integration as the
+    cycle solvers' (:func:`_check_cycle_rod`: 1e6 N ran until killed) and t_end at most
+    :data:`WORK_PRECISION_T_END_SCALES` time scales."""
+    rod = _rod(params)
+    P = check_positive("P_N", params.get("P_N"), "N")
+    T = check_positive("t_end", params.get("t_end", 0.5), "s")
+    if T > WORK_PRECISION_T_END_SCALES * rod.time_scale:
+        limit = WORK_PRECISION_T_END_SCALES * rod.time_scale
+        raise ParameterError(f"t_end must be in (0, {limit:.4g}] s "
+                             f"({WORK_PRECISION_T_END_SCALES:g} time scales l^2 sqrt(rho/B)), "
+                             f"got {T:g}")
+    meshes = params.get("meshes") or [4]
+    _check_cycle_rod(rod, P, int(min(meshes)), None)  # one period from a settled state
+    return rod, P, T
+
+
+def check_beck_work_precision(params: dict[str, Any]) -> None:
+    """The study's parameters as :func:`beck_work_precision` refuses them (the configuration
+    check)."""
+    _beck_work_precision_settings(params)
+
+
 def beck_work_precision(params: dict[str, Any]) -> dict[str, Any]:
     """Work-precision of the nonlinear rod's integrators on what the cycle is measured by: the
     return map of the Poincaré section. From a state on the section near the limit cycle
@@ -515,9 +573,7 @@ def beck_work_precision(params: dict[str, Any]) -> dict[str, Any]:
     take(params, {"rod", "P_N", "meshes", "t_end", "rtols", "methods", "dts",
                   "explicit_reference_meshes"})
     explicit = {int(n) for n in params.get("explicit_reference_meshes", [])}
-    rod = _rod(params)
-    P = check_positive("P_N", params["P_N"], "N")
-    T = check_positive("t_end", params.get("t_end", 0.5), "s")
+    rod, P, T = _beck_work_precision_settings(params)
     out: dict[str, Any] = {"runs": [], "references": {}}
     for n_el in params["meshes"]:
         m = NonlinearRod(rod, int(n_el))

@@ -106,9 +106,29 @@ def check_fig20(params: dict[str, Any]) -> None:
     _fig20_settings(params)
 
 
+#: Fastest initial angular velocity of Fig. 21, in radians per time unit tau (eq. 17): 100
+#: is 2030 rad/s for list (47), 4000 times the chapter's 0.5 rad/s (an outside audit's 1e6
+#: rad/s ran until killed; 1e4 took 2.4 s).
+MAX_OMEGA0_PER_TIME_UNIT = 100.0
+
+
+def _fig21_settings(params: dict[str, Any]) -> tuple[ZieglerPendulum, float, float]:
+    """Fig. 21's pendulum, duration [s] and initial angular velocity [rad/s], refused before
+    any integration beyond :data:`MAX_MOTION_TIME_UNITS` and :data:`MAX_OMEGA0_PER_TIME_UNIT`."""
+    p = pendulum_of(params)
+    T = _motion_time(p, "duration", params.get("duration", 2.04))
+    w0 = check_real("omega0", params.get("omega0", 0.5))
+    limit = MAX_OMEGA0_PER_TIME_UNIT / dy.time_unit(p)
+    if not abs(w0) <= limit:
+        raise ParameterError(f"omega0 must be in [-{limit:.4g}, {limit:.4g}] rad/s "
+                             f"({MAX_OMEGA0_PER_TIME_UNIT:g} rad per time unit l2 sqrt(m2/k2) "
+                             f"of this pendulum), got {w0:g}")
+    return p, T, w0
+
+
 def check_fig21(params: dict[str, Any]) -> None:
-    """Fig. 21's duration as :func:`fig21` refuses it (the configuration check)."""
-    _motion_time(pendulum_of(params), "duration", params.get("duration", 2.04))
+    """Fig. 21's parameters as :func:`fig21` refuses them (the configuration check)."""
+    _fig21_settings(params)
 
 
 def _cycle(params: dict[str, Any]) -> dict[str, Any]:
@@ -192,10 +212,8 @@ def fig21(params: dict[str, Any]) -> dict[str, Any]:
     """§2.10, Fig. 21: the path of the loaded end over 2.04 s from alpha = 0 with angular
     velocities 0.5 rad/s, and the scratch it leaves on the plate moving at ``plate_speed``."""
     take(params, {"pendulum", "duration", "omega0", "plate_speed", "n_samples"})
-    p = pendulum_of(params)
-    T = _motion_time(p, "duration", params.get("duration", 2.04))
+    p, T, w0 = _fig21_settings(params)
     P, P_flu, P_div = _mid_flutter_load(p)
-    w0 = check_real("omega0", params.get("omega0", 0.5))
     v = check_real("plate_speed", params.get("plate_speed", 0.1))
     t = np.linspace(0.0, T, int(params.get("n_samples", 4001)))
     sol = dy.simulate(p, P, [0.0, 0.0, w0, w0], T, t_eval=t)
@@ -299,6 +317,23 @@ def limit_cycle_amplitude(params: dict[str, Any]) -> dict[str, Any]:
     return LIMIT_CYCLE_AMPLITUDE.run(params)
 
 
+def _cycle_settings(params: dict[str, Any]) -> dict[str, Any]:
+    """The work-precision study's §2.9 cycle as Figs. 13-14's settings (from 0.1 rad)."""
+    if "cycle_pendulum" not in params:
+        raise ParameterError("scene parameters need a 'cycle_pendulum' section")
+    return {"pendulum": params["cycle_pendulum"], "load_factor": params.get("load_factor", 1.5),
+            "alpha0_deg": math.degrees(0.1)}
+
+
+def check_pendulum_work_precision(params: dict[str, Any]) -> None:
+    """The study's cycle refused as Figs. 13-14's (:func:`_section29`): a load outside the
+    damped flutter interval failed after 96 s of integration (an outside audit)."""
+    try:
+        _section29(_cycle_settings(params))
+    except ParameterError as exc:
+        raise ParameterError(f"cycle_pendulum, load_factor: {exc}") from None
+
+
 def pendulum_work_precision(params: dict[str, Any]) -> dict[str, Any]:
     """Accuracy against cost of the pendulum's solver families (for the work-precision scene):
 
@@ -322,7 +357,10 @@ def pendulum_work_precision(params: dict[str, Any]) -> dict[str, Any]:
 
     take(params, {"pendulum", "cycle_pendulum", "c_values", "methods", "rtols", "repeats",
                    "load_factor"})
-    p = pendulum_of(params)
+    check_pendulum_work_precision(params)
+    # the undamped families take the pendulum without hinge viscosity (the closed forms are
+    # the undamped pendulum's; a viscous pendulum here was refused in the job)
+    p = pendulum_of(params).with_(c1=0.0, c2=0.0)
     repeats = int(params.get("repeats", 5))
 
     def timed(fun):
@@ -344,8 +382,7 @@ def pendulum_work_precision(params: dict[str, Any]) -> dict[str, Any]:
             runs.append({"family": "pendulum damped flutter load", "method": method,
                          "setting": float(c), "error": abs(v - exact) / exact, "wall_s": t})
     # The §2.9 cycle: reference orbit by shooting, then one period per integrator.
-    pc = ZieglerPendulum.from_mapping(params["cycle_pendulum"])
-    P = float(params.get("load_factor", 1.5)) * damped_flutter_load_star(pc)[0]
+    pc, P, _, _, _ = _section29(_cycle_settings(params))
     lc = dy.limit_cycle(pc, P, [0.1, 0.1, 0.0, 0.0], tol=1e-9)
     ref = dy.shoot_periodic_orbit(pc, P, lc)
     x0 = np.array(ref.section_state)
