@@ -296,6 +296,11 @@ def _scene_specific_problems(scene: str, params: dict[str, Any], prefix: str) ->
             if isinstance(duration, int | float) and not params["dt"] <= duration:
                 lines.append(f"{where}.dt: must be <= cases.{name}.duration = {duration} s "
                              f"(a frame at least), got {params['dt']}")
+            elif isinstance(duration, int | float) and params["dt"] > 0 \
+                    and duration / params["dt"] > FIG04_MAX_FRAMES:
+                # (a duration of 1e300 s ended in numpy's "Maximum allowed size exceeded")
+                lines.append(f"{where}.cases.{name}.duration: at most {FIG04_MAX_FRAMES} frames "
+                             f"of dt = {params['dt']} s, got {duration / params['dt']:.3g}")
     if scene == "fig18":
         pend = params.get("pendulum")
         if isinstance(pend, str):  # a chapter list by name
@@ -312,6 +317,9 @@ def _scene_specific_problems(scene: str, params: dict[str, Any], prefix: str) ->
                          "wedges the lever)")
     return lines
 
+
+#: Fig. 4's frames per case (duration / dt): the chapter draws 12 and 6.
+FIG04_MAX_FRAMES = 1000
 
 _MODEL_ERRORS = (ParameterError, TypeError, ValueError, ZeroDivisionError, OverflowError)
 

@@ -253,7 +253,8 @@ _ENTRIES = [
             "ziegler_nonlinear:plot_limit_cycle_amplitude",
             "Beyond the chapter: the pendulum's bifurcation diagram (amplitude ∝ √(P − P_flu), "
             "period → 2π/Ω_flu): a supercritical Hopf bifurcation.")},
-          sweep=ziegler_nonlinear.LIMIT_CYCLE_AMPLITUDE),
+          sweep=ziegler_nonlinear.LIMIT_CYCLE_AMPLITUDE,
+          check=ziegler_nonlinear.check_limit_cycle_amplitude),
     Scene("beck_linearisation", rod.beck_linearisation, "limit_cycles", {
         "beck_linearisation": _fig(
             "rod:plot_beck_linearisation",

@@ -239,7 +239,25 @@ def _amplitude_points(params: dict[str, Any]) -> list[list[Any]]:
 BELOW_PERIODS, BELOW_SAMPLES = 360, 112
 
 
+def check_limit_cycle_amplitude(params: dict[str, Any]) -> None:
+    """The bifurcation diagram's parameters, refused before any job (they failed in a sweep
+    job with messages naming no key, or a load in newtons under a factor's name; an outside
+    audit): a pendulum without hinge viscosity, a load factor putting ``factor x P_flu``
+    outside the damped flutter interval."""
+    p = pendulum_of(params)
+    if not is_damped(p):
+        raise ParameterError("pendulum: a limit cycle needs hinge viscosity (c1 or c2 > 0)")
+    P_flu, P_div = damped_flutter_load(p, "routh"), damped_divergence_load(p)
+    for f in params.get("load_factors", []):
+        factor = check_positive("load_factors", f)
+        if not 1 < factor < P_div / P_flu:
+            raise ParameterError(f"load_factors must lie in (1, {P_div / P_flu:.6g}) (P = "
+                                 f"factor x P_flu inside the damped flutter interval "
+                                 f"({P_flu:.6g}, {P_div:.6g}) N), got {factor:g}")
+
+
 def _amplitude_compute(params: dict[str, Any], points: list[list[Any]]) -> list[dict[str, Any]]:
+    check_limit_cycle_amplitude(params)
     p = pendulum_of(params)
     P_flu = damped_flutter_load(p, "routh")
     tol = float(params.get("tol", 1e-7))
