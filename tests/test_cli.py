@@ -103,6 +103,11 @@ def test_rod_si(capsys):
     out = json.loads(capsys.readouterr().out)
     assert out["p_flu"] == pytest.approx(10.9393514864, rel=1e-9)
     assert out["P_flu_N"] == pytest.approx(out["p_flu"] * 0.0332 / 0.35**2)
+    # the pulsation in rad/s (an outside audit: SI mode gave it only per time scale)
+    T = 0.35**2 * (0.0546 / 0.0332) ** 0.5
+    assert out["time_scale_s"] == pytest.approx(T, rel=1e-14)
+    assert out["Omega_flu_rad_s"] == pytest.approx(out["omega_flu"] / T, rel=1e-14)
+    assert out["Omega_div_rad_s"] is None
 
 
 @pytest.mark.parametrize(("args", "name"), [

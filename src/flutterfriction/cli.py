@@ -7,7 +7,8 @@
 ``flutterfriction rod --mass-ratio MU --eta ETA --gamma GAMMA [--json]`` prints the
 dimensionless flutter and divergence loads ``p_flu``, ``p_div`` (eq. 106; ``null`` when there is
 none, as for the Beck rod) and the pulsation ``omega_flu``; with SI parameters
-(``--length --B --rho [--D --kappa --tip-mass]``) it also prints ``P_flu_N``, ``P_div_N``.
+(``--length --B --rho [--D --kappa --tip-mass]``) it also prints ``P_flu_N``, ``P_div_N``,
+``Omega_flu_rad_s``, ``Omega_div_rad_s`` and ``time_scale_s``.
 
 ``flutterfriction acoustic --lam L --mu M --P p11,p22,p33,p23,p13,p12 --Q q11,... --n n1,n2,n3
 [--g G] [--json]`` analyses the acoustic tensor of nonassociative elastoplasticity (§3.5,
@@ -650,7 +651,11 @@ def _rod(args: argparse.Namespace) -> dict:
         u = rod.load_unit
         out["P_flu_N"] = None if loads.p_flu is None else loads.p_flu * u
         out["P_div_N"] = None if loads.p_div is None else loads.p_div * u
-        out["time_scale_s"] = rod.time_scale
+        # the pulsations in rad/s: omega~ is per time scale l^2 sqrt(rho/B) (eq. 106)
+        T = rod.time_scale
+        out["Omega_flu_rad_s"] = None if loads.omega_flu is None else loads.omega_flu / T
+        out["Omega_div_rad_s"] = None if loads.omega_div is None else loads.omega_div / T
+        out["time_scale_s"] = T
     return out
 
 
@@ -758,10 +763,11 @@ def _print(result: dict, as_json: bool) -> None:
     elif "p_flu" in result:  # the rod: the intervals first, one a line, then the loads
         for iv in result["intervals"]:
             print(f"{iv['regime']:10s} p in [{iv['p_from']:.10g}, {iv['p_to']:.10g}]")
-        for key in ("p_flu", "omega_flu", "p_div", "omega_div", "P_flu_N", "P_div_N"):
+        for key in ("p_flu", "omega_flu", "p_div", "omega_div", "P_flu_N", "P_div_N",
+                    "Omega_flu_rad_s", "Omega_div_rad_s", "time_scale_s"):
             if key in result:
                 value = result[key]
-                print(f"{key:9s} = {'none' if value is None else f'{value:.10g}'}")
+                print(f"{key:15s} = {'none' if value is None else f'{value:.10g}'}")
     else:
         names = {"P_flu": "flutter load (follower, given viscosity)",
                  "P_div": "divergence load (follower, given viscosity)",
