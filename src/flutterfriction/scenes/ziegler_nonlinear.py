@@ -38,6 +38,23 @@ def damped_flutter_load_star(p: ZieglerPendulum) -> tuple[float, bool]:
     return exact, abs(eq54 - exact) <= 1e-9 * exact
 
 
+def _viscous_pendulum(params: dict[str, Any]) -> ZieglerPendulum:
+    """The scene's pendulum, refused without hinge viscosity (it has no limit cycle)."""
+    p = pendulum_of(params)
+    if not is_damped(p):
+        raise ParameterError("pendulum: a limit cycle needs hinge viscosity (c1 or c2 > 0)")
+    return p
+
+
+def _initial_rotation_deg(params: dict[str, Any], default: float) -> float:
+    """``alpha0_deg``, refused if zero (no motion) or beyond half a turn."""
+    a0_deg = check_real("alpha0_deg", params.get("alpha0_deg", default))
+    if not 0 < abs(a0_deg) <= 180:
+        raise ParameterError(f"alpha0_deg must be non-zero and within half a turn, "
+                             f"0 < |alpha0_deg| <= 180, got {a0_deg:g}")
+    return a0_deg
+
+
 def _section29(params: dict[str, Any]):
     """§2.9: P = (load factor) x P*_flu (eq. 54 for §2.9's symmetric pendulum; for any other,
     its exact damped flutter load), initial rotations alpha0 (degrees). Refused
@@ -46,13 +63,8 @@ def _section29(params: dict[str, Any]):
     beyond half a turn, a load outside the damped flutter interval ``(P_flu, P_div)`` (below
     it the motion decays, above it diverges: an outside audit saw 92 s of integration end in
     a failure at 100 P*_flu)."""
-    p = pendulum_of(params)
-    if not is_damped(p):
-        raise ParameterError("pendulum: a limit cycle needs hinge viscosity (c1 or c2 > 0)")
-    a0_deg = check_real("alpha0_deg", params.get("alpha0_deg", 0.1))
-    if not 0 < abs(a0_deg) <= 180:
-        raise ParameterError(f"alpha0_deg must be non-zero and within half a turn, "
-                             f"0 < |alpha0_deg| <= 180, got {a0_deg:g}")
+    p = _viscous_pendulum(params)
+    a0_deg = _initial_rotation_deg(params, 0.1)
     P_star, is_eq54 = damped_flutter_load_star(p)
     factor = check_positive("load_factor", params.get("load_factor", 1.5))
     P_div = damped_divergence_load(p)
@@ -89,10 +101,7 @@ def _fig20_settings(params: dict[str, Any]) -> tuple[ZieglerPendulum, float, flo
     killed), a linear part longer than the nonlinear one (it is drawn on the same samples),
     alpha0 zero or beyond half a turn."""
     p = pendulum_of(params)
-    a0_deg = check_real("alpha0_deg", params.get("alpha0_deg", 0.5))
-    if not 0 < abs(a0_deg) <= 180:
-        raise ParameterError(f"alpha0_deg must be non-zero and within half a turn, "
-                             f"0 < |alpha0_deg| <= 180, got {a0_deg:g}")
+    a0_deg = _initial_rotation_deg(params, 0.5)
     T_nl = _motion_time(p, "t_nonlinear", params.get("t_nonlinear", 6.0))
     T_li = check_positive("t_linear", params.get("t_linear", 1.5), "s")
     if T_li > T_nl:
@@ -244,9 +253,7 @@ def check_limit_cycle_amplitude(params: dict[str, Any]) -> None:
     job with messages naming no key, or a load in newtons under a factor's name; an outside
     audit): a pendulum without hinge viscosity, a load factor putting ``factor x P_flu``
     outside the damped flutter interval."""
-    p = pendulum_of(params)
-    if not is_damped(p):
-        raise ParameterError("pendulum: a limit cycle needs hinge viscosity (c1 or c2 > 0)")
+    p = _viscous_pendulum(params)
     P_flu, P_div = damped_flutter_load(p, "routh"), damped_divergence_load(p)
     for f in params.get("load_factors", []):
         factor = check_positive("load_factors", f)
