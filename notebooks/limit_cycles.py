@@ -26,13 +26,20 @@ from IPython.display import Image, Markdown, display
 
 from flutterfriction.io import merge_timings
 from flutterfriction.notebook_export import quantities_table
+from flutterfriction.reference import own_parameters_note
 
 DATA, FIGS = Path("results/data"), Path("results/figures")
+
+
+READ = {}  # scene -> the parameters its data was computed with
+# a note, shown here, on scenes computed with your own parameters (filled by the last cell)
+NOTE = display(Markdown(""), display_id=True)
 
 
 def scene(name):
     """A scene's data, with its wall-clock timings (kept in results/benchmarks/) merged back."""
     data = json.loads((DATA / f"{name}.json").read_text())
+    READ[name] = data.get("params")  # for the note on your own parameters (top)
     timings = Path("results/benchmarks") / f"{name}.timings.json"
     return merge_timings(data, json.loads(timings.read_text()) or None)
 
@@ -316,3 +323,13 @@ rows = [f"| {r['mesh']} | {r['setting'] * 1e3:g} | {r['period_error']:.2e} | "
 display(Markdown("| elements | generalized-α step [ms] | period error | observed order | "
                  "amplitude error | observed order |\n|---|---|---|---|---|---|\n"
                  + "\n".join(rows)))
+
+
+# %% [markdown]
+# ## Your parameters
+#
+# The note at the top lists the scenes of this notebook that ran with other physical
+# parameters than the chapter's (`workflow/config.yaml`), if any.
+
+# %%
+NOTE.update(Markdown(own_parameters_note(READ)))

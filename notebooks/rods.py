@@ -27,12 +27,20 @@ from flutterfriction.analysis.rod import critical_loads
 from flutterfriction.models.rod import Rod, RodGroups
 from flutterfriction.notebook_export import quantities_table
 from flutterfriction.parameters import LIST_119
+from flutterfriction.reference import own_parameters_note
 
 DATA, FIGS = Path("results/data"), Path("results/figures")
 
 
+READ = {}  # scene -> the parameters its data was computed with
+# a note, shown here, on scenes computed with your own parameters (filled by the last cell)
+NOTE = display(Markdown(""), display_id=True)
+
+
 def scene(name):
-    return json.loads((DATA / f"{name}.json").read_text())
+    data = json.loads((DATA / f"{name}.json").read_text())
+    READ[name] = data.get("params")  # for the note on your own parameters (top)
+    return data
 
 
 def show(name, width=820):
@@ -199,3 +207,13 @@ display(Markdown(
 
 # %%
 display(Markdown(str(critical_loads(RodGroups(tan_alpha=0.5, eta=2e-3, gamma=0.05)))))
+
+
+# %% [markdown]
+# ## Your parameters
+#
+# The note at the top lists the scenes of this notebook that ran with other physical
+# parameters than the chapter's (`workflow/config.yaml`), if any.
+
+# %%
+NOTE.update(Markdown(own_parameters_note(READ)))

@@ -25,12 +25,20 @@ from IPython.display import Image, Markdown, display
 
 from flutterfriction.models import solid as so
 from flutterfriction.notebook_export import quantities_table
+from flutterfriction.reference import own_parameters_note
 
 DATA, FIGS = Path("results/data"), Path("results/figures")
 
 
+READ = {}  # scene -> the parameters its data was computed with
+# a note, shown here, on scenes computed with your own parameters (filled by the last cell)
+NOTE = display(Markdown(""), display_id=True)
+
+
 def scene(name):
-    return json.loads((DATA / f"{name}.json").read_text())
+    data = json.loads((DATA / f"{name}.json").read_text())
+    READ[name] = data.get("params")  # for the note on your own parameters (top)
+    return data
 
 
 def show(name, width=620):
@@ -125,3 +133,13 @@ lam, mu = ae["lam"], ae["mu"]
 display(Markdown(f"λ = {lam:g}, μ = {mu:g}: flutter interval "
                  f"{so.flutter_interval_isotropic(lam, mu, P, Q, n)}, "
                  f"g_localization {so.localization_modulus_isotropic(lam, mu, P, Q, n):.6f}"))
+
+
+# %% [markdown]
+# ## Your parameters
+#
+# The note at the top lists the scenes of this notebook that ran with other physical
+# parameters than the chapter's (`workflow/config.yaml`), if any.
+
+# %%
+NOTE.update(Markdown(own_parameters_note(READ)))

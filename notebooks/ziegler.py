@@ -32,12 +32,20 @@ from flutterfriction import ZieglerPendulum
 from flutterfriction.analysis.ziegler import critical_loads, regime, spectrum
 from flutterfriction.closed_forms import ziegler as cf
 from flutterfriction.plotting import chapter_list
+from flutterfriction.reference import own_parameters_note
 
 DATA, FIGS = Path("results/data"), Path("results/figures")
 
 
+READ = {}  # scene -> the parameters its data was computed with
+# a note, shown here, on scenes computed with your own parameters (filled by the last cell)
+NOTE = display(Markdown(""), display_id=True)
+
+
 def scene(name):
-    return json.loads((DATA / f"{name}.json").read_text())
+    data = json.loads((DATA / f"{name}.json").read_text())
+    READ[name] = data.get("params")  # for the note on your own parameters (top)
+    return data
 
 
 def show(name, width=620):
@@ -178,3 +186,13 @@ num, closed = critical_loads(mine), cf.critical_loads_closed_form(mine)
 display(Markdown("| load | eigenvalues | closed form |\n|---|---|---|\n" + "\n".join(
     f"| {k} | {getattr(num, k):.10f} N | {getattr(closed, k):.10f} N |"
     for k in ("P_flu", "P_div", "H_cr", "H_sup"))))
+
+
+# %% [markdown]
+# ## Your parameters
+#
+# The note at the top lists the scenes of this notebook that ran with other physical
+# parameters than the chapter's (`workflow/config.yaml`), if any.
+
+# %%
+NOTE.update(Markdown(own_parameters_note(READ)))

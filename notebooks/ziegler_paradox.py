@@ -30,12 +30,20 @@ from flutterfriction.analysis.routh import robustly_stable, routh_hurwitz
 from flutterfriction.analysis.ziegler import critical_loads, spectrum
 from flutterfriction.closed_forms import ziegler_damped as cfd
 from flutterfriction.notebook_export import quantities_table
+from flutterfriction.reference import own_parameters_note
 
 DATA, FIGS = Path("results/data"), Path("results/figures")
 
 
+READ = {}  # scene -> the parameters its data was computed with
+# a note, shown here, on scenes computed with your own parameters (filled by the last cell)
+NOTE = display(Markdown(""), display_id=True)
+
+
 def scene(name):
-    return json.loads((DATA / f"{name}.json").read_text())
+    data = json.loads((DATA / f"{name}.json").read_text())
+    READ[name] = data.get("params")  # for the note on your own parameters (top)
+    return data
 
 
 def show(name, width=620):
@@ -169,3 +177,13 @@ mine = ZieglerPendulum(l1=0.1, l2=0.1, d=0.05, h=0.0, m1=0.3, m2=0.1, m3=0.0, k1
                        c1=0.002, c2=0.004)
 display(Markdown("| load | value [N] |\n|---|---|\n" + "\n".join(
     f"| {k} | {v:.6g} |" for k, v in critical_loads(mine).as_dict().items())))
+
+
+# %% [markdown]
+# ## Your parameters
+#
+# The note at the top lists the scenes of this notebook that ran with other physical
+# parameters than the chapter's (`workflow/config.yaml`), if any.
+
+# %%
+NOTE.update(Markdown(own_parameters_note(READ)))

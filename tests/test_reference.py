@@ -378,3 +378,27 @@ def test_figures_name_a_chapter_list_only_for_its_parameters():
     rod = json.loads(json.dumps(recorded["fig11"]))
     rod["rod"]["tip_mass"] = 0.02  # a key list (119) does not have, not zero
     assert list119({"params": rod}).startswith("your own rod (")
+
+
+def test_notebooks_note_the_scenes_computed_with_your_own_parameters():
+    """The notebooks' hand-written prose describes the chapter's parameters; a scene run with
+    other physical parameters is named at the top of its notebook, with the changed keys
+    (a resolution key, which leaves the chapter's values in force, is not a change)."""
+    import json
+
+    from flutterfriction.config import load_config, scene_params
+    from flutterfriction.reference import own_parameters_note
+
+    config = load_config(ROOT / "workflow" / "config.yaml")
+    params = json.loads(json.dumps(scene_params(config, "fig13")))
+    record = ROOT / "workflow" / "reference_parameters.json"
+    assert own_parameters_note({"fig13": params}, record) == ""
+    quick = json.loads(json.dumps(scene_params(config | {"fidelity": "quick"}, "fig13")))
+    assert own_parameters_note({"fig13": quick}, record) == ""
+    note = own_parameters_note({"fig13": {**params, "load_factor": 2.0}}, record)
+    assert note.startswith("**Computed with your own parameters.**")
+    assert "- `fig13`: load_factor: 1.5 -> 2.0" in note
+    for nb in sorted((ROOT / "notebooks").glob("*.py")):
+        text = nb.read_text()
+        assert "NOTE.update(Markdown(own_parameters_note(READ)))" in text, nb.name
+        assert 'READ[name] = data.get("params")' in text, nb.name

@@ -343,6 +343,29 @@ def scene_parameter_changes(parameters: Mapping[str, Any] | None, fidelity: str,
                              {k: v for k, v in params.items() if k not in skip})
 
 
+def own_parameters_note(read: Mapping[str, Mapping[str, Any] | None],
+                        record: str | Path = REFERENCE_PARAMETERS) -> str:
+    """A notebook's note (Markdown, empty when none) on the scenes it read (``{scene:
+    params}``, the data's ``params``) that ran with other physical parameters than the
+    chapter's, under whichever preset's record they are closest to: their changed keys, and
+    that the notebook's hand-written prose describes the chapter's parameters while its
+    computed numbers and figures are the user's."""
+    recorded = load_parameters(record)
+    fidelities = [f for f in recorded if f != "resolution_keys"]
+    lines = []
+    for name in sorted(read):
+        changes = min((scene_parameter_changes(recorded, f, name, read[name])
+                       for f in fidelities), key=len, default=[])
+        if changes:
+            lines.append(f"- `{name}`: " + "; ".join(changes))
+    if not lines:
+        return ""
+    return ("**Computed with your own parameters.** These scenes ran with physical parameters "
+            "other than the chapter's; this notebook's computed numbers, tables and figures "
+            "are yours, but its hand-written prose still describes the chapter's case, and "
+            "the chapter's quoted values do not apply to them:\n\n" + "\n".join(lines))
+
+
 def run_check(reference: dict[str, Any], data: Mapping[str, Any],
               fidelity: str = "paper",
               parameters: Mapping[str, Any] | None = None) -> list[CheckRow]:

@@ -15,6 +15,8 @@ rule notebook:
             "results/benchmarks/{scene}.timings.json", scene=NOTEBOOK_INPUTS[w.nb][0]
         ),
         figures=lambda w: expand("results/figures/{scene}.png", scene=NOTEBOOK_INPUTS[w.nb][1]),
+        # the chapter's parameters: the note on scenes computed with your own
+        reference_parameters="workflow/reference_parameters.json",
     output:
         "results/reports/{nb}.html",
     log:
