@@ -222,6 +222,30 @@ def test_section29_cycle_load_is_a_multiple_of_the_pendulums_own_flutter_load():
     assert d["limit_cycle"]["alpha1_amplitude_rad"] > 0
 
 
+def test_figs_13_and_14_compute_their_motion_once_per_parameters():
+    """Figs. 13 and 14 show the same motion (the issue: "Figs. 13 and 14 solve the same cycle
+    twice"): the second scene reuses the first's, in a copy (Fig. 13 drops the velocities from
+    its own), and other parameters are computed anew."""
+    from flutterfriction.scenes import ziegler_nonlinear as zn
+
+    params = {"pendulum": SEC29.as_dict(), "load_factor": 1.5, "alpha0_deg": 0.1,
+              "tol": 1e-6, "n_samples": 50}
+    d13 = zn.fig13(params)
+    calls = []
+    original = zn._compute_cycle
+    zn._compute_cycle = lambda prm: calls.append(prm) or original(prm)
+    try:
+        d14 = zn.fig14(params)
+        assert not calls and "alpha_dot" not in d13 and len(d14["alpha_dot"]) == 2
+        assert d14["alpha"] == d13["alpha"] and d14["quantities"] == d13["quantities"]
+        d14["alpha"][0][0] = 99.0  # a scene's change stays in its own copy
+        assert zn.fig14(params)["alpha"][0][0] == d13["alpha"][0][0] != 99.0
+        other = zn.fig14({**params, "load_factor": 1.4})
+        assert len(calls) == 1 and other["P"] == pytest.approx(d13["P"] * 1.4 / 1.5, rel=1e-12)
+    finally:
+        zn._compute_cycle = original
+
+
 @pytest.mark.slow  # ~13 s: the transient is tried first (12000 tau simulated)
 def test_a_pendulum_damped_at_one_hinge_only_is_answered_or_refused_quickly():
     """An outside audit: c1 > 0, c2 = 0 (allowed: "c1 or c2 > 0") hung limit-cycle ziegler

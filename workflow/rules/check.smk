@@ -19,7 +19,7 @@ rule stress:
         runtime=20,
         mem_mb=1000,
     params:
-        # the quick preset leaves out the slow areas (stress.SLOW_AREAS)
+        # the quick preset leaves out the slow areas (stress.QUICK_SKIPPED_AREAS)
         quick=config.get("fidelity", "paper") == "quick",
     script:
         "../scripts/stress.py"
