@@ -114,7 +114,8 @@ def _crossing_roundoff(pd: ZieglerPendulum, H: float) -> float:
     """Load error [N] that round-off alone gives the eigenvalue crossing at the dead load H:
     eps ||A|| cond(s) / |ds/dH| for the eigenvalue s nearest 0 of the dimensionless state
     matrix A the solver uses (backward-stable eig; first-order perturbation for ds/dH)."""
-    M, C, K0, K1 = _damped_args(pd, dead=True)
+    # (the solver's matrices are exact fractions; the eigenvalue method rounds them to doubles)
+    M, C, K0, K1 = (np.asarray(x, dtype=float) for x in _damped_args(pd, dead=True))
     h, n = H / pd.load_unit, M.shape[0]
     Minv = np.linalg.inv(M)
     A = np.zeros((2 * n, 2 * n))
@@ -187,3 +188,43 @@ def test_extreme_length_ratio_damped_loads_are_exact_or_refused():
                  lambda: damped_flutter_load(p, "eigenvalues")):
         with pytest.raises(ConvergenceError, match="not confirmed"):
             call()
+
+
+@pytest.mark.parametrize("m1, k1", [(10.0, 2e-6), (1000.0, 2e-5), (1e5, 2e-7)])
+def test_damped_flutter_load_is_exact_when_k1_is_tiny_against_k2(m1, k1):
+    """An outside audit: with l1 = l2 = d = L, m3 = 0 and c1 = 0 Hurwitz' Delta3 is
+    2 L^4 c2^2 k1 m2 (2 k1 m2 - L P (m1 + 4 m2)) (sympy), so the damped flutter load is
+    P = 2 k1 m2 / (L (m1 + 4 m2)) for any c2. At k1/k2 = 1e-5, m1/m2 = 100 the Routh
+    verdicts on coefficients rounded in doubles (k/k2 + 1 loses the digits of k1/k2) gave it
+    0.28 % low, at 1e-4 and 1e4 34 % low, silently; the exact characteristic polynomial gives
+    it to rounding, and the eigenvalue crossing, which round-off moves too, is refused."""
+    from flutterfriction.errors import ConvergenceError
+
+    p = ZieglerPendulum(l1=0.1, l2=0.1, d=0.1, h=0.0, m1=m1, m2=0.1, m3=0.0, k1=k1, k2=0.2,
+                        c1=0.0, c2=1e-4)
+    closed = 2 * k1 * 0.1 / (0.1 * (m1 + 4 * 0.1))
+    assert damped_flutter_load(p) == pytest.approx(closed, rel=1e-14)
+    assert critical_loads(p).P_flu == pytest.approx(closed, rel=1e-14)
+    try:
+        assert damped_flutter_load(p, "eigenvalues") == pytest.approx(closed, rel=1e-6)
+    except ConvergenceError:
+        pass  # refused: acceptable, a wrong answer is not
+
+
+def test_regime_of_a_damped_pendulum_resolves_tiny_growth_rates():
+    """An outside audit: the symmetric pendulum with c = 1e-8 at P = 1.6 K/L (between its
+    damped flutter load 4/3 and 2) has max Re s = 1.33e-9 (60-digit roots) and was called
+    stable: the eigenvalues' classification cannot resolve a growth rate below 1e-8 |s|. The
+    regime of a damped pendulum now comes from exact root counts; references: the sign of
+    max Re s of the 60-digit roots at each load."""
+    from flutterfriction.analysis.stability import Regime
+    from flutterfriction.analysis.ziegler import regime
+
+    p = ZieglerPendulum(1, 1, 1, 0, 1, 1, 0, 1, 1, c1=1e-8, c2=1e-8)
+    expected = {1.3: Regime.STABLE, 1.34: Regime.FLUTTER, 1.6: Regime.FLUTTER,
+                1.99: Regime.FLUTTER, 2.5: Regime.FLUTTER, 5.0: Regime.DIVERGENCE}
+    assert {P: regime(p, P) for P in expected} == expected
+    P_flu = damped_flutter_load(p)
+    assert P_flu == pytest.approx(4 / 3, rel=1e-7)  # eq. (54)'s limit, c -> 0
+    assert regime(p, P_flu * (1 - 1e-12)) == Regime.STABLE
+    assert regime(p, P_flu * (1 + 1e-12)) == Regime.FLUTTER

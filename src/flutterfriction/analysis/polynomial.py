@@ -20,19 +20,27 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from flutterfriction.analysis.stability import Regime
-from flutterfriction.errors import ConvergenceError
+from flutterfriction.errors import ConvergenceError, ParameterError
 
 
 def characteristic_polynomial(M: ArrayLike, C: ArrayLike, K: ArrayLike) -> NDArray[np.float64]:
     """Coefficients (highest degree first) of ``det(M s^2 + C s + K)``, degree ``2n``.
+
+    Exact matrices (object arrays of fractions, n <= 2, e.g.
+    :meth:`~flutterfriction.models.ziegler.ZieglerPendulum.dimensionless_matrices` with
+    ``exact=True``) give the exact coefficients as fractions (an object array), which the
+    exact verdicts below use as they are.
 
     For n <= 2 the determinant is expanded exactly. Otherwise it is evaluated at ``N = 2n + 1``
     points ``s_j = r exp(2 pi i j / N)`` with
     ``r = sqrt(||K|| / ||M||)`` (the frequency scale, which keeps the powers of ``s`` balanced),
     and the coefficients are recovered by an FFT.
     """
-    M, C, K = (np.asarray(x, dtype=float) for x in (M, C, K))
+    exact = any(np.asarray(x).dtype == object for x in (M, C, K))
+    M, C, K = (np.asarray(x, dtype=object if exact else float) for x in (M, C, K))
     n = M.shape[0]
+    if exact and n > 2:
+        raise ParameterError("exact (object-array) matrices: only n <= 2 degrees of freedom")
     if n <= 2:
         # Expand exactly: every coefficient keeps its own relative precision (the FFT's error is
         # relative to the largest coefficient, which spoils the O(damping) ones at small damping).
@@ -51,7 +59,7 @@ def characteristic_polynomial(M: ArrayLike, C: ArrayLike, K: ArrayLike) -> NDArr
             (a[0] * b[2] + a[1] * b[1] + a[2] * b[0]) - (c[0] * d[2] + c[1] * d[1] + c[2] * d[0]),
             (a[1] * b[2] + a[2] * b[1]) - (c[1] * d[2] + c[2] * d[1]),
             a[2] * b[2] - c[2] * d[2],
-        ])
+        ], dtype=object if exact else float)
     N = 2 * n + 1
     r = float(np.sqrt(np.linalg.norm(K) / np.linalg.norm(M))) or 1.0
     s = r * np.exp(2j * np.pi * np.arange(N) / N)
@@ -60,8 +68,24 @@ def characteristic_polynomial(M: ArrayLike, C: ArrayLike, K: ArrayLike) -> NDArr
     return ascending[::-1]
 
 
+def exact_coefficients(coeffs: ArrayLike) -> list[Fraction]:
+    """The coefficients as exact fractions: fractions and integers as they are, floats as the
+    rationals they are (every double is one), after refusing non-finite values."""
+    arr = np.atleast_1d(np.asarray(coeffs, dtype=object))
+    out = []
+    for x in arr.tolist():
+        if isinstance(x, (Fraction, int)) and not isinstance(x, bool):
+            out.append(Fraction(x))
+            continue
+        v = float(x)
+        if not math.isfinite(v):
+            raise ParameterError(f"coeffs must be finite, got {arr.tolist()}")
+        out.append(Fraction(v))
+    return out
+
+
 def _fractions(coeffs: ArrayLike) -> list[Fraction]:
-    a = [Fraction(float(x)) for x in np.atleast_1d(np.asarray(coeffs, dtype=float))]
+    a = exact_coefficients(coeffs)
     while a and a[0] == 0:
         a.pop(0)
     if len(a) < 2:

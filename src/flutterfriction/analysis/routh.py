@@ -97,13 +97,29 @@ class RouthHurwitz(NamedTuple):
     first_failure: int | None  # index k (1-based) of the first Delta_k <= 0, None if stable
 
 
+def _exact_coefficients(coeffs: ArrayLike) -> list[Fraction]:
+    """The coefficients as exact fractions (floats as the rationals they are; fractions, as
+    :func:`~flutterfriction.analysis.polynomial.characteristic_polynomial` gives for exact
+    matrices, as they are), checked as :func:`_coefficients`, leading coefficient positive."""
+    from flutterfriction.analysis.polynomial import exact_coefficients
+
+    arr = np.atleast_1d(np.asarray(coeffs, dtype=object))
+    if arr.ndim != 1 or arr.size < 2:
+        raise ParameterError("coeffs must be a 1-D sequence of at least two coefficients")
+    a = exact_coefficients(arr)
+    if a[0] == 0:
+        raise ParameterError("coeffs[0] (the leading coefficient) must be non-zero")
+    return a if a[0] > 0 else [-x for x in a]
+
+
 def routh_hurwitz(coeffs: ArrayLike) -> RouthHurwitz:
-    """Routh–Hurwitz criterion in exact rational arithmetic on the given float coefficients.
+    """Routh–Hurwitz criterion in exact rational arithmetic on the given coefficients (floats,
+    or exact fractions: then the verdict is exact for the system itself).
 
     A zero minor (a root on the imaginary axis, exactly) counts as not stable: the criterion
     decides asymptotic stability.
     """
-    a = [Fraction(float(x)) for x in _coefficients(coeffs)]
+    a = _exact_coefficients(coeffs)
     minors = _exact_minors(a)
     failure = next((k + 1 for k, m in enumerate(minors) if m <= 0), None)
     return RouthHurwitz(stable=failure is None, minors=tuple(minors), first_failure=failure)
