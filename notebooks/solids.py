@@ -109,7 +109,7 @@ display(Markdown(quantities_table(scene("solids_statements")["quantities"], digi
 # deviatoric-associative Drucker–Prager material at the coalescence modulus (194) cannot flutter
 # with isotropic elasticity; adding a generic elastic anisotropy (a random tensor with the
 # major and minor symmetries, size ε relative to μ) of ε ≳ 0.05 (none at 0.02 on this grid)
-# makes a thin set of directions near the coalescence direction flutter (0.015–0.2 % of the
+# makes a thin set of directions near the coalescence direction flutter (0.06–0.27 % of the
 # patch); (c) that set grows with ε (Bigoni and Loret 1999).
 
 # %%

@@ -362,3 +362,51 @@ def test_the_bruteforce_range_beyond_the_floats_is_refused_in_one_line():
     with pytest.raises(ParameterError, match="must be >= 1e-300"):
         ac.flutter_interval_bruteforce(so.isotropic_elasticity(1, 1), np.diag([1.0, 0, -1]),
                                        np.diag([1.0, 0.5, 0]), [0.6, 0.8, 0], 1e-5, 300)
+
+
+def test_a_complex_pair_next_to_a_close_real_root_is_found():
+    """An outside audit: a pair c^2 = 1.0115 +- 0.00123 i beside a real 0.9989 (the flutter
+    map's anisotropy 0.05) has a discriminant of 1.7e-13 (tr A / 3)^6, which the flutter map's
+    former threshold (1e-9 of that scale) took for a coalescence: the fractions of fluttering
+    directions were under-counted by up to 2.5x. On the deviator the discriminant is set by the
+    roots' spread. Matrices with known eigenvalues, made non-normal by a fixed similarity."""
+    rng = np.random.default_rng(3)
+    S = np.eye(3) + 0.3 * rng.standard_normal((3, 3))
+
+    def with_eigenvalues(a: float, b: float, c: float) -> np.ndarray:
+        J = np.array([[a, b, 0.0], [-b, a, 0.0], [0.0, 0.0, c]])  # a +- i b and c
+        return S @ J @ np.linalg.inv(S)
+
+    stack = np.array([with_eigenvalues(1.0115, 1.23e-3, 0.9989),  # the audit's pair
+                      with_eigenvalues(1.0, 1e-5, 1.001),  # barely complex, three close roots
+                      with_eigenvalues(1.0, 0.0, 1.5),  # an exact double root: coalescence
+                      with_eigenvalues(1.01, 0.0, 0.99) + np.diag([0.0, 1e-4, 0.0])])
+    eig = np.linalg.eigvals(stack)
+    expected = np.abs(eig.imag).max(-1) > 1e-7 * np.abs(eig).max(-1)
+    assert expected.tolist() == [True, True, False, False]
+    assert ac.has_complex_pair(stack).tolist() == expected.tolist()
+
+
+def test_flutter_map_counts_equal_the_eigenvalue_counts():
+    """Figure (b)-(c) of the flutter map: at every anisotropy of the workflow's configuration
+    (on a coarser patch), the fluttering directions by the deviator's discriminant are those
+    by the eigenvalues (a pair with |Im| > 1e-7 |c^2|, well above their round-off at a
+    coalescence, ~1e-8), and there are some at the largest anisotropy."""
+    from conftest import ROOT
+
+    from flutterfriction.config import load_config, scene_params
+    from flutterfriction.scenes.solids import anisotropy_setup
+
+    an = dict(scene_params(load_config(ROOT / "workflow" / "config.yaml"),
+                           "flutter_map")["anisotropy"])
+    an.update(n_patch=41, n_g=120)
+    E0, T, Pd, Qd, dirs, _, g_scan = anisotropy_setup(an)
+    found = []
+    for eps in an["eps_values"]:
+        A = ac.acoustic_tensors(E0 + float(eps) * T, Pd, Qd, dirs, g_scan)
+        eig = np.linalg.eigvals(A)
+        by_eigenvalues = np.any(np.abs(eig.imag) > 1e-7 * np.abs(eig), axis=(-2, -1))
+        by_discriminant = ac.flutters_somewhere(E0 + float(eps) * T, Pd, Qd, dirs, g_scan)
+        assert by_discriminant.tolist() == by_eigenvalues.tolist(), eps
+        found.append(int(by_discriminant.sum()))
+    assert found[0] == 0 and found[-1] > 0

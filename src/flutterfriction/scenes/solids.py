@@ -205,18 +205,8 @@ def flutter_map(params: dict[str, Any]) -> dict[str, Any]:
                 bounds[i][1], brute[0][1], "closed form eq. (188), corrected", "brute force",
                 "Pa")
     an = params["anisotropy"]
-    take(an, {"lam", "mu", "sigma", "friction_deg", "dilatancy_deg", "seed", "eps_values",
-               "patch_deg", "n_patch", "n_g"})
-    lam2, mu2 = float(an["lam"]), check_positive("mu", an["mu"])
-    Pd, Qd = so.drucker_prager_tensors(np.diag(an["sigma"]), math.radians(an["friction_deg"]),
-                                       math.radians(an["dilatancy_deg"]))
-    E0 = so.isotropic_elasticity(lam2, mu2)
-    gC = so.coalescence_modulus(lam2, mu2, Pd, Qd)
-    w, V = np.linalg.eigh(so.apply(E0, Pd))
-    nC = V[:, int(np.argmax(w * np.einsum("ji,jk,ki->i", V, so.apply(E0, Qd), V)))]
-    T = so.random_elasticity_perturbation(np.random.default_rng(int(an["seed"]))) * mu2
-    dirs, offsets = _patch(nC, float(an["patch_deg"]), int(an["n_patch"]))
-    g_scan = gC * np.linspace(0.8, 1.2, int(an["n_g"]))
+    E0, T, Pd, Qd, dirs, offsets, g_scan = anisotropy_setup(an)
+    nC, gC = _coalescence(an)
     fractions, maps = [], []
     for eps in an["eps_values"]:
         flutters = ac.flutters_somewhere(E0 + float(eps) * T, Pd, Qd, dirs, g_scan)
@@ -233,6 +223,38 @@ def flutter_map(params: dict[str, Any]) -> dict[str, Any]:
                            nC.tolist(), "g_coalescence": gC,
                            "g_range": [float(g_scan[0]), float(g_scan[-1])]},
             "quantities": checks}
+
+
+def _coalescence(an: dict[str, Any]) -> tuple[np.ndarray, float]:
+    """The flutter map's (b)-(c) material: the direction and modulus of its coalescence
+    (eq. 194) with isotropic elasticity."""
+    lam2, mu2 = float(an["lam"]), check_positive("mu", an["mu"])
+    Pd, Qd = _drucker_prager(an)
+    E0 = so.isotropic_elasticity(lam2, mu2)
+    w, V = np.linalg.eigh(so.apply(E0, Pd))
+    nC = V[:, int(np.argmax(w * np.einsum("ji,jk,ki->i", V, so.apply(E0, Qd), V)))]
+    return nC, so.coalescence_modulus(lam2, mu2, Pd, Qd)
+
+
+def _drucker_prager(an: dict[str, Any]) -> tuple[np.ndarray, np.ndarray]:
+    return so.drucker_prager_tensors(np.diag(an["sigma"]), math.radians(an["friction_deg"]),
+                                     math.radians(an["dilatancy_deg"]))
+
+
+def anisotropy_setup(an: dict[str, Any]) -> tuple:
+    """The flutter map's (b)-(c) inputs from its ``anisotropy`` section: ``(E0, T, P, Q,
+    directions, offsets_deg, g_values)``: isotropic elasticity, the random anisotropy (times
+    mu), the Drucker-Prager tensors, the patch of directions around the coalescence direction
+    and the moduli scanned (0.8-1.2 g_C)."""
+    take(an, {"lam", "mu", "sigma", "friction_deg", "dilatancy_deg", "seed", "eps_values",
+              "patch_deg", "n_patch", "n_g"})
+    mu2 = check_positive("mu", an["mu"])
+    E0 = so.isotropic_elasticity(float(an["lam"]), mu2)
+    Pd, Qd = _drucker_prager(an)
+    nC, gC = _coalescence(an)
+    T = so.random_elasticity_perturbation(np.random.default_rng(int(an["seed"]))) * mu2
+    dirs, offsets = _patch(nC, float(an["patch_deg"]), int(an["n_patch"]))
+    return E0, T, Pd, Qd, dirs, offsets, gC * np.linspace(0.8, 1.2, int(an["n_g"]))
 
 
 def _patch(nC: np.ndarray, half_deg: float, m: int) -> tuple[np.ndarray, np.ndarray]:
