@@ -56,8 +56,12 @@ def flutters_somewhere(E: NDArray, P: ArrayLike, Q: ArrayLike, directions: NDArr
     elasticity) ``|disc(B)| <= 4e-16 ||B||^6``; every fluttering tensor has
     ``disc(B) < -1.3e-6 ||B||^6``; ``rtol`` = 1e-12 sits between, and the counts equal those
     of the eigenvalues (a pair with ``|Im| > 1e-7 |c^2|``) at every anisotropy."""
-    return np.any(has_complex_pair(acoustic_tensors(E, P, Q, directions, g_values), rtol),
-                  axis=1)
+    n = np.asarray(directions, dtype=float)
+    # in blocks of directions: the tensors of the whole map (6561 x 200) would take 94 MB, and
+    # the deviator as much again
+    return np.concatenate([
+        np.any(has_complex_pair(acoustic_tensors(E, P, Q, n[i:i + 256], g_values), rtol), axis=1)
+        for i in range(0, len(n), 256)]) if len(n) else np.zeros(0, dtype=bool)
 
 
 def acoustic_tensors(E: NDArray, P: ArrayLike, Q: ArrayLike, directions: NDArray,
