@@ -99,7 +99,7 @@ def exceptional_point_cases() -> list[StressResult]:
 def vanishing_viscosity_cases() -> list[StressResult]:
     """Hinge viscosity down to 1e-10 of the reference: exact Routh–Hurwitz against the closed
     form (eq. 54 generalised, exact in eps)."""
-    from flutterfriction.analysis.ziegler import damped_flutter_load
+    from flutterfriction.analysis.ziegler import damped_flutter_load, regime
     from flutterfriction.closed_forms.ziegler_damped import damped_flutter_gamma, viscosity_groups
     from flutterfriction.models.ziegler import ZieglerPendulum
 
@@ -117,7 +117,52 @@ def vanishing_viscosity_cases() -> list[StressResult]:
                 lambda x: f"{x:.13g} N",
                 note="the eigenvalue crossing is expected to lose digits like 1e-16/eps"
                 if method == "eigenvalues" else ""))
+    # Soft first spring, heavy first mass, viscosity at the second hinge only (an outside
+    # audit: in doubles k1/k2 + 1 lost the digits the flutter condition depends on, 34 % low).
+    # With l1 = l2 = d = L, m3 = 0, c1 = 0 Hurwitz' Delta3 vanishes at
+    # P = 2 k1 m2 / (L (m1 + 4 m2)) for any c2 (sympy, tests/test_damped.py).
+    for m1, k1 in ((1e3, 2e-5), (1e5, 2e-7)):
+        p = ZieglerPendulum(l1=0.1, l2=0.1, d=0.1, h=0.0, m1=m1, m2=0.1, m3=0.0, k1=k1,
+                            k2=0.2, c1=0.0, c2=1e-4)
+        out.append(_judge(
+            "vanishing viscosity", f"k1/k2 = {k1 / 0.2:g}, m1/m2 = {m1 / 0.1:g}, c1 = 0, routh",
+            "damped flutter load by routh (exact characteristic polynomial)",
+            lambda p=p: damped_flutter_load(p, "routh"),
+            lambda m1=m1, k1=k1: 2 * k1 * 0.1 / (0.1 * (m1 + 0.4)),
+            lambda g, r: _rel(g, r) < 1e-13, lambda x: f"{x:.13g} N",
+            note="reference: the closed form 2 k1 m2 / (L (m1 + 4 m2)) of this pendulum"))
+    # The regime where the growth rate is far below the eigenvalues' resolution (an outside
+    # audit: c = 1e-8 at P = 1.6 K/L, max Re s = 1.3e-9, was called stable).
+    sym = ZieglerPendulum(l1=1.0, l2=1.0, d=1.0, h=0.0, m1=1.0, m2=1.0, m3=0.0, k1=1.0,
+                          k2=1.0, c1=1e-8, c2=1e-8)
+    for P in (1.3, 1.6, 5.0):
+        out.append(_judge(
+            "vanishing viscosity", f"symmetric pendulum, c = 1e-8, regime at P = {P:g} K/L",
+            "regime(p, P) (exact Routh and Sturm root counts)",
+            lambda P=P: str(regime(sym, P)), lambda P=P: _mp_regime(sym, P),
+            lambda g, r: g == r, note="reference: the 60-digit roots of the characteristic "
+            "polynomial (max Re s = -8.8e-11, 1.3e-9 and 1.9 at the three loads)"))
     return out
+
+
+def _mp_regime(p: Any, P: float) -> str:
+    """Stable / flutter / divergence from the 60-digit roots of ``det(M s^2 + C s + K + P G)``
+    (the pendulum's SI matrices, each entry a double, taken exactly)."""
+    with mp.workdps(60):
+        M, C = mp.matrix(p.mass_matrix().tolist()), mp.matrix(p.viscosity_matrix().tolist())
+        K = mp.matrix(p.stiffness_matrix().tolist()) + mp.mpf(P) * mp.matrix(
+            p.follower_load_matrix().tolist())
+        # the determinant's coefficients by interpolation at 5 points (60 digits)
+        pts = [mp.mpf(k) for k in range(-2, 3)]
+        vals = [mp.det(M * x**2 + C * x + K) for x in pts]
+        coeffs = mp.lu_solve(mp.matrix([[x**j for j in range(4, -1, -1)] for x in pts]),
+                             mp.matrix(vals))
+        roots = mp.polyroots([coeffs[i] for i in range(5)], maxsteps=400, extraprec=400)
+        unstable = [r for r in roots if mp.re(r) > 0]
+        if not unstable:
+            return "stable"
+        return "divergence" if all(abs(mp.im(r)) < mp.mpf(10) ** -40 for r in unstable) \
+            else "flutter"
 
 
 def scale_cases() -> list[StressResult]:
