@@ -40,6 +40,27 @@ def test_contact_rate_equations_eq141():
         assert np.allclose(c.rate(p, u_dot), expected)
 
 
+@given(st.floats(0.0, 3.0), st.floats(-1.0, 1.0), st.floats(-2.0, 2.0), st.floats(-2.0, 2.0))
+@example(0.0, 0.0, 0.0, -1.0)  # the apex, tangential rate only (an outside audit)
+def test_contact_rate_is_mirror_symmetric_and_keeps_the_cone(pN, t, uN, uT):
+    """Eq. (141) does not prefer a side of the cone: mirroring p_T and u_T mirrors p_dot. An
+    outside audit: at the apex p = (0, 0) the rate for u_dot = (0, -1) was (0, -3), stick,
+    taking p_T out of the cone, while (0, +1) gave (0, 0), slip. On the cone, the force rate
+    never points out of it (f_dot <= 0 to first order)."""
+    c = CoulombContact(2.0, 3.0, 0.4)
+    p = np.array([pN, t * c.mu * pN])  # inside or on the cone
+    mirror = np.array([1.0, -1.0])
+    if pN == 0 and uN < 0:  # separation from the apex: not modelled, as integrate_path
+        with pytest.raises(ParameterError, match="separates the contact"):
+            c.rate(p, [uN, uT])
+        return
+    r = c.rate(p, [uN, uT])
+    assert np.allclose(c.rate(p * mirror, [uN, -uT]), r * mirror, atol=1e-12)
+    if abs(abs(t) - 1) < 1e-12:  # on the cone
+        side = np.sign(p[1]) or np.sign(r[1]) or 1.0
+        assert side * r[1] - c.mu * r[0] <= 1e-9
+
+
 @given(st.lists(st.tuples(st.floats(0.5, 3), st.floats(-3, 3)), min_size=2, max_size=8))
 def test_contact_path_stays_admissible(vertices):
     c = CoulombContact(2.0, 1.0, 0.5)

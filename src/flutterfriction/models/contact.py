@@ -76,9 +76,17 @@ class CoulombContact:
         p, u_dot = (check_finite_array(name, x, (2,), "two finite numbers (normal, tangential)")
                     for name, x in (("p", p), ("u_dot", u_dot)))
         E = self.elastic_matrix()
+        if p[0] <= 0 and (E @ u_dot)[0] < 0:
+            raise ParameterError("u_dot separates the contact at p_N = 0 (p_N would turn "
+                                 "tensile): not modelled (chapter §3.1: contact only), as "
+                                 "integrate_path")
         if self.friction_function(p) < -self.cone_tolerance(p):
             return E @ u_dot
-        a, b = self.gradient(p), self.slip_direction(p)
+        # At the apex (p_T = 0) the side of the cone is the one the elastic trial rate leaves
+        # by (an outside audit: the default side +1 let p_T = (0, 0) -> (0, -3) stick out of
+        # the cone for u_dot = (0, -1), while (0, +1) slipped)
+        side = (1.0 if (E @ u_dot)[1] >= 0 else -1.0) if p[1] == 0 else None
+        a, b = self.gradient(p, side), self.slip_direction(p, side)
         lam = max(a @ E @ u_dot, 0.0) / (a @ E @ b)  # Macaulay bracket: slip only if > 0
         return E @ u_dot - lam * (E @ b)
 
