@@ -87,7 +87,10 @@ class LimitCycle:
     alpha2_amplitude_rad: float
     period_s: float
     section_state: tuple[float, float, float, float]
-    transient_s: float  # time at which the cycle was declared converged
+    # time of the last section crossing of the integration chunk in which the cycle was
+    # found converged: convergence is tested once per chunk (400 time units in
+    # ziegler_limit_cycle), so this bounds the settling time from above, it is not it
+    transient_s: float
     n_crossings: int
 
     def as_dict(self) -> dict:
