@@ -228,3 +228,33 @@ def test_regime_of_a_damped_pendulum_resolves_tiny_growth_rates():
     assert P_flu == pytest.approx(4 / 3, rel=1e-7)  # eq. (54)'s limit, c -> 0
     assert regime(p, P_flu * (1 - 1e-12)) == Regime.STABLE
     assert regime(p, P_flu * (1 + 1e-12)) == Regime.FLUTTER
+
+
+def test_object_matrices_holding_floats_take_the_double_path():
+    """A review of the exact path: object arrays holding floats (or fractions mixed with
+    floats) crashed (`'float' object has no attribute 'denominator'`); only all-exact matrices
+    take the exact path, anything else is computed in doubles as before."""
+    from flutterfriction.analysis.damped import flutter_onset
+
+    p = ZieglerPendulum(1, 1, 1, 0, 1, 1, 0, k1=1.5, k2=1, c1=0.1, c2=0.1)
+    m, e = p.dimensionless_matrices(), p.dimensionless_matrices(exact=True)
+    doubles = flutter_onset(m.M, m.C, m.K, m.G_follower, method="routh", load_max=4.0)
+    assert flutter_onset(m.M.astype(object), m.C, m.K, m.G_follower, method="routh",
+                         load_max=4.0) == doubles
+    mixed = flutter_onset(e.M, m.C, e.K, e.G_follower, method="routh", load_max=4.0)
+    exact = flutter_onset(e.M, e.C, e.K, e.G_follower, method="routh", load_max=4.0)
+    assert mixed == pytest.approx(exact, rel=1e-14) and doubles == pytest.approx(exact, rel=1e-14)
+
+
+def test_regime_exactly_at_a_critical_load_is_answered():
+    """A review: with k1 = 1.5 k2 the damped pendulum's H_cr is exactly 0.5 N, where s = 0 is
+    a root: the exact counts have no verdict there ("Routh array has a zero row"), and the
+    eigenvalues decide, as before; just off it the exact counts."""
+    from flutterfriction.analysis.stability import Regime
+    from flutterfriction.analysis.ziegler import regime
+
+    p = ZieglerPendulum(1, 1, 1, 0, 1, 1, 0, k1=1.5, k2=1, c1=0.1, c2=0.1)
+    assert critical_loads(p).H_cr == 0.5
+    assert regime(p, 0.0, 0.5) in (Regime.STABLE, Regime.DIVERGENCE)
+    assert regime(p, 0.0, 0.49) == Regime.STABLE
+    assert regime(p, 0.0, 0.51) == Regime.DIVERGENCE

@@ -225,20 +225,37 @@ def test_section29_cycle_load_is_a_multiple_of_the_pendulums_own_flutter_load():
 @pytest.mark.parametrize("factor, amplitude, period", [(1.03, 0.255, 1.10917),
                                                        (1.05, 0.326, 1.10247)])
 def test_cycles_near_onset_are_answered(factor, amplitude, period):
-    """An outside audit: at 1.03 and 1.05 P_flu of the §2.9 pendulum the continuation was
-    refused ("not making good progress") on a shooting residual of 6e-16: hybr's success flag
-    was taken over the residual. References: the auditor's own shooting (separate Lagrangian
-    equations, DOP853 at rtol 1e-13): the section point alpha1 = 0.255 rad lies on the cycle
-    of 1.03002 P_flu with T = 1.10917 s, and 0.326 rad on that of 1.04991 P_flu with
-    T = 1.10247 s (digits as given). Tolerances: those digits plus the loads' offsets, 2e-5
-    and 9e-5 P_flu (between the two references dT/dP = -0.34 s and dA/dP = 3.6 rad per
-    P_flu: at most 3e-5 s and 3.3e-4 rad)."""
+    """An outside audit: at 1.05 P_flu of the §2.9 pendulum (and at 1.03 with other start
+    values) the continuation was refused ("not making good progress") on a shooting residual
+    of 6e-16: hybr's success flag was taken over the residual. References: the auditor's own
+    shooting (separate Lagrangian equations, DOP853 at rtol 1e-13): the section point
+    alpha1 = 0.255 rad lies on the cycle of 1.03002 P_flu with T = 1.10917 s, and 0.326 rad on
+    that of 1.04991 P_flu with T = 1.10247 s (digits as given). Tolerances: those digits plus
+    the loads' offsets, 2e-5 and 9e-5 P_flu (between the two references dT/dP = -0.34 s and
+    dA/dP = 3.6 rad per P_flu: at most 3e-5 s and 3.3e-4 rad)."""
     from flutterfriction.analysis.dynamics import ziegler_limit_cycle
 
     P_flu = damped_flutter_load(SEC29)
     cycle = ziegler_limit_cycle(SEC29, factor * P_flu, 0.1)
     assert cycle["alpha1_amplitude_rad"] == pytest.approx(amplitude, abs=1e-3)
     assert cycle["period_s"] == pytest.approx(period, abs=5e-5)
+
+
+def test_amplitude_shooting_refuses_a_period_shrinking_to_zero():
+    """A review: the shooting residual phi_T(x0) - x0 vanishes as T -> 0, so from a poor
+    period guess hybr converged to T = 6.7e-18 T0, which the residual test alone accepted.
+    Periods below 1/8 of the linear flutter period are now outside the search (the §2.9
+    cycles stay above 0.75 of it); from the linear period the orbit is found as before."""
+    P_flu = damped_flutter_load(SEC29)
+    omega, mode = dy.linear_flutter_mode(SEC29, P_flu)
+    T0, A = 2 * np.pi / omega, 0.2
+    bounds = (1e-12, 1e-14, 4 * T0, 6 * P_flu)
+    for guess in (0.02, 0.1):
+        with pytest.raises(ConvergenceError):
+            dy._amplitude_orbit(SEC29, A, np.array([A * mode[1], A * mode[3], guess * T0,
+                                                    P_flu]), *bounds)
+    z = dy._amplitude_orbit(SEC29, A, np.array([A * mode[1], A * mode[3], T0, P_flu]), *bounds)
+    assert 0.9 * T0 < z[2] < T0 and z[3] > P_flu
 
 
 def test_figs_13_and_14_compute_their_motion_once_per_parameters():

@@ -651,9 +651,10 @@ ALL_CASES: dict[str, Callable[[], list[StressResult]]] = {
 #: The areas that take tens of seconds (the rod's regime scan over p and tan(alpha), its
 #: vanishing viscosity): the quick preset and the fast tests leave them out.
 SLOW_AREAS = ("rod: regimes along p", "rod: vanishing viscosity")
-#: What the quick preset (a 30-second smoke run) leaves out: the slow areas and the 200 periods
-#: on the pendulum's cycle (1.3 of quick's 2.1 CPU-s of stress tests; measured). The paper run
-#: and the tests run every area.
+#: What the quick preset (a 30-second smoke run) leaves out: the slow areas and the long
+#: integration (200 periods on the pendulum's cycle, and its refused search for a cycle below
+#: the flutter load: 1.3 of quick's 2.1 CPU-s of stress tests; measured). The paper run and
+#: the tests run every area.
 QUICK_SKIPPED_AREAS = (*SLOW_AREAS, "long integration")
 
 

@@ -26,6 +26,7 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq
 
 from flutterfriction.analysis.polynomial import (
+    all_exact,
     characteristic_polynomial,
     discriminant_from_coefficients,
     regime_from_coefficients,
@@ -50,7 +51,8 @@ def state_spectra(M: Matrix, C: Matrix, K0: Matrix, K1: Matrix, loads: ArrayLike
 
 
 class _System:
-    """The damped system; given exact matrices (object arrays of fractions, n <= 2), its
+    """The damped system; given exact matrices (every entry a fraction or an integer, n <= 2;
+    otherwise doubles), its
     characteristic polynomial is exact at every load (a float load is a rational), so the
     Routh, Sturm and Hurwitz verdicts are exact for the system itself, not only for rounded
     coefficients; the eigenvalue methods use the matrices rounded to doubles."""
@@ -61,7 +63,7 @@ class _System:
         if not np.any(self.C):
             raise ParameterError("C must be non-zero: use the coalescence solver when undamped")
         self.in_load = None
-        if any(x.dtype == object for x in given):
+        if all_exact(*given) and given[0].shape[0] <= 2:
             # Each coefficient is a polynomial of degree <= 2 in the load (a 2x2 determinant
             # of entries linear in it): its three exact coefficients, from the exact
             # polynomial at loads 0, 1, 2 (~3x cheaper per load than expanding the

@@ -301,7 +301,10 @@ def _amplitude_orbit(pendulum: ZieglerPendulum, A: float, z0: NDArray, rtol: flo
         # Only periods in (0, T_max) and loads in (0, P_max) are integrated: each evaluation
         # is bounded (a huge trial load would make one period arbitrarily stiff).
         # And no trial state of wild size (|alpha2|, its rate > 1e3: minutes of integration)
-        if not (0 < z[2] < T_max and 0 < z[3] < P_max and np.isfinite(z).all()
+        # And no period below T_max/32 (1/8 of the linear flutter period; the §2.9 cycles
+        # stay above 0.75 of it): the residual vanishes with T, so a period shrinking to 0 is
+        # a spurious solution (a review found 6.7e-18 T0 accepted from a poor guess).
+        if not (T_max / 32 < z[2] < T_max and 0 < z[3] < P_max and np.isfinite(z).all()
                 and abs(z[0]) < 1e3 and abs(z[1]) < 1e3):
             return np.full(4, 1e3)
         x0 = np.array([A, z[0], 0.0, z[1]])
@@ -314,7 +317,7 @@ def _amplitude_orbit(pendulum: ZieglerPendulum, A: float, z0: NDArray, rtol: flo
     # decides: hybr reports "not making good progress" when its steps stall on a residual
     # already at round-off (an outside audit: 6e-16 at 1.05 P_flu of the §2.9 pendulum was
     # refused), and its success flag says nothing about a residual of that size.
-    if not np.max(np.abs(res.fun)) <= 1e-8:
+    if not (np.max(np.abs(res.fun)) <= 1e-8 and T_max / 32 < res.x[2] < T_max):
         raise ConvergenceError(f"amplitude-parametrised shooting did not converge at "
                                f"alpha1 = {A:.3g} rad: {res.message}")
     return res.x

@@ -26,21 +26,20 @@ from flutterfriction.errors import ConvergenceError, ParameterError
 def characteristic_polynomial(M: ArrayLike, C: ArrayLike, K: ArrayLike) -> NDArray[np.float64]:
     """Coefficients (highest degree first) of ``det(M s^2 + C s + K)``, degree ``2n``.
 
-    Exact matrices (object arrays of fractions, n <= 2, e.g.
+    Exact matrices (every entry an integer or a fraction, n <= 2, e.g.
     :meth:`~flutterfriction.models.ziegler.ZieglerPendulum.dimensionless_matrices` with
     ``exact=True``) give the exact coefficients as fractions (an object array), which the
-    exact verdicts below use as they are.
+    exact verdicts below use as they are; any float entry, or n > 2, means doubles.
 
     For n <= 2 the determinant is expanded exactly. Otherwise it is evaluated at ``N = 2n + 1``
     points ``s_j = r exp(2 pi i j / N)`` with
     ``r = sqrt(||K|| / ||M||)`` (the frequency scale, which keeps the powers of ``s`` balanced),
     and the coefficients are recovered by an FFT.
     """
-    exact = any(np.asarray(x).dtype == object for x in (M, C, K))
+    M, C, K = (np.asarray(x) for x in (M, C, K))
+    exact = all_exact(M, C, K) and M.shape[0] <= 2
     M, C, K = (np.asarray(x, dtype=object if exact else float) for x in (M, C, K))
     n = M.shape[0]
-    if exact and n > 2:
-        raise ParameterError("exact (object-array) matrices: only n <= 2 degrees of freedom")
     if n <= 2:
         # Expand exactly: every coefficient keeps its own relative precision (the FFT's error is
         # relative to the largest coefficient, which spoils the O(damping) ones at small damping).
@@ -66,6 +65,15 @@ def characteristic_polynomial(M: ArrayLike, C: ArrayLike, K: ArrayLike) -> NDArr
     values = np.linalg.det(M[None] * s[:, None, None] ** 2 + C[None] * s[:, None, None] + K[None])
     ascending = (np.fft.fft(values) / N).real / r ** np.arange(N)
     return ascending[::-1]
+
+
+def all_exact(*arrays: ArrayLike) -> bool:
+    """Whether every entry of every array is an integer or a fraction (object arrays of
+    :class:`~fractions.Fraction`): the exact paths; a float entry anywhere means doubles (a
+    float times a fraction is a float)."""
+    return all(np.asarray(a).dtype == object
+               and all(isinstance(x, (int, Fraction)) and not isinstance(x, bool)
+                       for x in np.asarray(a).ravel().tolist()) for a in arrays)
 
 
 def exact_coefficients(coeffs: ArrayLike) -> list[Fraction]:

@@ -260,10 +260,14 @@ def regime(pendulum: ZieglerPendulum, P: float = 0.0, H: float = 0.0) -> Regime:
 
     Undamped: from the eigenvalues (:func:`~.stability.classify`). With hinge viscosity: from
     the exact Routh and Sturm root counts of the characteristic polynomial (exact fractions of
-    the parameters and loads, :func:`~.polynomial.regime_from_coefficients`). Why: a growth
-    rate of order viscosity x load distance is below what the eigenvalues resolve at small
-    viscosity (an outside audit: c = 1e-8 at P = 1.6 K/L, between the damped flutter load 4/3
-    and 2, max Re s = 1.3e-9 was read as stable); the exact counts resolve any growth rate."""
+    the parameters and of the loads in units of k2/l1, which are rounded once,
+    :func:`~.polynomial.regime_from_coefficients`). Why: a growth rate of order viscosity x
+    load distance is below what the eigenvalues resolve at small viscosity (an outside audit:
+    c = 1e-8 at P = 1.6 K/L, between the damped flutter load 4/3 and 2, max Re s = 1.3e-9 was
+    read as stable); the exact counts resolve any growth rate. Exactly on a critical load (a
+    root exactly on the imaginary axis, e.g. s = 0 at H_cr) the counts give no verdict and
+    the eigenvalues decide, as undamped. A damped pendulum outside the model's numerical range
+    is refused (:class:`ParameterError`), as its critical loads are."""
     P = check_real("P", P)
     H = check_real("H", H)
     if not is_damped(pendulum):
@@ -276,7 +280,10 @@ def regime(pendulum: ZieglerPendulum, P: float = 0.0, H: float = 0.0) -> Regime:
         raise ParameterError(f"the loads P = {P!r}, H = {H!r} N overflow in units of k2/l1 = "
                              f"{pendulum.load_unit:.3g} N")
     K = m.K + Fraction(gamma) * m.G_follower + Fraction(eta) * m.G_dead
-    return regime_from_coefficients(characteristic_polynomial(m.M, m.C, K))
+    try:
+        return regime_from_coefficients(characteristic_polynomial(m.M, m.C, K))
+    except ConvergenceError:  # a root exactly on the imaginary axis: a critical load
+        return classify(spectrum(pendulum, P, H))
 
 
 def linear_response(pendulum: ZieglerPendulum, P: float, H: float, state0: ArrayLike,
