@@ -421,13 +421,14 @@ def test_flutter_map_counts_equal_the_eigenvalue_counts():
     an = dict(scene_params(load_config(ROOT / "workflow" / "config.yaml"),
                            "flutter_map")["anisotropy"])
     an.update(n_patch=41, n_g=120)
-    E0, T, Pd, Qd, dirs, _, g_scan = anisotropy_setup(an)
+    a = anisotropy_setup(an)
     found = []
     for eps in an["eps_values"]:
-        A = ac.acoustic_tensors(E0 + float(eps) * T, Pd, Qd, dirs, g_scan)
+        E = a.E0 + float(eps) * a.T
+        A = ac.acoustic_tensors(E, a.P, a.Q, a.directions, a.g_values)
         eig = np.linalg.eigvals(A)
         by_eigenvalues = np.any(np.abs(eig.imag) > 1e-7 * np.abs(eig), axis=(-2, -1))
-        by_discriminant = ac.flutters_somewhere(E0 + float(eps) * T, Pd, Qd, dirs, g_scan)
+        by_discriminant = ac.flutters_somewhere(E, a.P, a.Q, a.directions, a.g_values)
         assert by_discriminant.tolist() == by_eigenvalues.tolist(), eps
         found.append(int(by_discriminant.sum()))
     assert found[0] == 0 and found[-1] > 0

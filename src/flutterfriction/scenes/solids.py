@@ -5,7 +5,7 @@ of §3.5 shown numerically, and the evidence for the errata of §3."""
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -205,56 +205,59 @@ def flutter_map(params: dict[str, Any]) -> dict[str, Any]:
                 bounds[i][1], brute[0][1], "closed form eq. (188), corrected", "brute force",
                 "Pa")
     an = params["anisotropy"]
-    E0, T, Pd, Qd, dirs, offsets, g_scan = anisotropy_setup(an)
-    nC, gC = _coalescence(an)
+    a = anisotropy_setup(an)
     fractions, maps = [], []
     for eps in an["eps_values"]:
-        flutters = ac.flutters_somewhere(E0 + float(eps) * T, Pd, Qd, dirs, g_scan)
+        flutters = ac.flutters_somewhere(a.E0 + float(eps) * a.T, a.P, a.Q, a.directions,
+                                         a.g_values)
         fractions.append(float(np.mean(flutters)))
-        maps.append(flutters.reshape(len(offsets), len(offsets)).astype(int).tolist())
+        maps.append(flutters.reshape(len(a.offsets_deg), len(a.offsets_deg)).astype(int)
+                    .tolist())
     checks["isotropic_flutter_directions"] = quantity(
-        int(round(fractions[0] * len(dirs))), 0, "brute force near coalescence, eps = 0",
-        "Loret et al. (1990): excluded", "")
+        int(round(fractions[0] * len(a.directions))), 0,
+        "brute force near coalescence, eps = 0", "Loret et al. (1990): excluded", "")
     return {"theta": theta.tolist(),
             "g1": [None if b is None else b[0] for b in bounds],
             "g2": [None if b is None else b[1] for b in bounds], "g_localization": gE,
             "anisotropy": {"eps": an["eps_values"], "fraction_flutter": fractions,
-                           "maps": maps, "offsets_deg": offsets.tolist(), "n_coalescence":
-                           nC.tolist(), "g_coalescence": gC,
-                           "g_range": [float(g_scan[0]), float(g_scan[-1])]},
+                           "maps": maps, "offsets_deg": a.offsets_deg.tolist(),
+                           "n_coalescence": a.n_coalescence.tolist(),
+                           "g_coalescence": a.g_coalescence,
+                           "g_range": [float(a.g_values[0]), float(a.g_values[-1])]},
             "quantities": checks}
 
 
-def _coalescence(an: dict[str, Any]) -> tuple[np.ndarray, float]:
-    """The flutter map's (b)-(c) material: the direction and modulus of its coalescence
-    (eq. 194) with isotropic elasticity."""
-    lam2, mu2 = float(an["lam"]), check_positive("mu", an["mu"])
-    Pd, Qd = _drucker_prager(an)
-    E0 = so.isotropic_elasticity(lam2, mu2)
-    w, V = np.linalg.eigh(so.apply(E0, Pd))
-    nC = V[:, int(np.argmax(w * np.einsum("ji,jk,ki->i", V, so.apply(E0, Qd), V)))]
-    return nC, so.coalescence_modulus(lam2, mu2, Pd, Qd)
+class AnisotropySetup(NamedTuple):
+    """The flutter map's (b)-(c) inputs (:func:`anisotropy_setup`)."""
+
+    E0: np.ndarray  # isotropic elasticity
+    T: np.ndarray  # the random anisotropy, times mu
+    P: np.ndarray  # Drucker-Prager tensors
+    Q: np.ndarray
+    n_coalescence: np.ndarray  # direction and modulus of the coalescence (eq. 194)
+    g_coalescence: float
+    directions: np.ndarray  # the patch around n_coalescence
+    offsets_deg: np.ndarray
+    g_values: np.ndarray  # the moduli scanned, 0.8-1.2 g_coalescence
 
 
-def _drucker_prager(an: dict[str, Any]) -> tuple[np.ndarray, np.ndarray]:
-    return so.drucker_prager_tensors(np.diag(an["sigma"]), math.radians(an["friction_deg"]),
-                                     math.radians(an["dilatancy_deg"]))
-
-
-def anisotropy_setup(an: dict[str, Any]) -> tuple:
-    """The flutter map's (b)-(c) inputs from its ``anisotropy`` section: ``(E0, T, P, Q,
-    directions, offsets_deg, g_values)``: isotropic elasticity, the random anisotropy (times
-    mu), the Drucker-Prager tensors, the patch of directions around the coalescence direction
-    and the moduli scanned (0.8-1.2 g_C)."""
+def anisotropy_setup(an: dict[str, Any]) -> AnisotropySetup:
+    """The flutter map's (b)-(c) inputs from its ``anisotropy`` section: a deviatoric-
+    associative Drucker-Prager material with isotropic elasticity, its coalescence, a random
+    elastic anisotropy, the patch of directions and the moduli to scan."""
     take(an, {"lam", "mu", "sigma", "friction_deg", "dilatancy_deg", "seed", "eps_values",
               "patch_deg", "n_patch", "n_g"})
-    mu2 = check_positive("mu", an["mu"])
-    E0 = so.isotropic_elasticity(float(an["lam"]), mu2)
-    Pd, Qd = _drucker_prager(an)
-    nC, gC = _coalescence(an)
+    lam2, mu2 = float(an["lam"]), check_positive("mu", an["mu"])
+    E0 = so.isotropic_elasticity(lam2, mu2)
+    Pd, Qd = so.drucker_prager_tensors(np.diag(an["sigma"]), math.radians(an["friction_deg"]),
+                                       math.radians(an["dilatancy_deg"]))
+    gC = so.coalescence_modulus(lam2, mu2, Pd, Qd)
+    w, V = np.linalg.eigh(so.apply(E0, Pd))
+    nC = V[:, int(np.argmax(w * np.einsum("ji,jk,ki->i", V, so.apply(E0, Qd), V)))]
     T = so.random_elasticity_perturbation(np.random.default_rng(int(an["seed"]))) * mu2
     dirs, offsets = _patch(nC, float(an["patch_deg"]), int(an["n_patch"]))
-    return E0, T, Pd, Qd, dirs, offsets, gC * np.linspace(0.8, 1.2, int(an["n_g"]))
+    return AnisotropySetup(E0, T, Pd, Qd, nC, gC, dirs, offsets,
+                           gC * np.linspace(0.8, 1.2, int(an["n_g"])))
 
 
 def _patch(nC: np.ndarray, half_deg: float, m: int) -> tuple[np.ndarray, np.ndarray]:
