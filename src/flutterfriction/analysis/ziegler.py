@@ -172,9 +172,14 @@ def _damped_args(pendulum: ZieglerPendulum, dead: bool = False) -> tuple:
     fractions: the Routh, Sturm and Hurwitz verdicts on the characteristic polynomial are then
     exact for the pendulum itself (see :meth:`ZieglerPendulum.dimensionless_matrices`); the
     eigenvalue methods round them to doubles."""
-    _dimensionless(pendulum)  # the range check
-    m = pendulum.dimensionless_matrices(exact=True)
+    m = _exact_dimensionless(pendulum)
     return (m.M, m.C, m.K, m.G_dead if dead else m.G_follower)
+
+
+def _exact_dimensionless(pendulum: ZieglerPendulum) -> DimensionlessMatrices:
+    """:func:`_dimensionless`'s checks, then the matrices as exact fractions."""
+    _dimensionless(pendulum)
+    return pendulum.dimensionless_matrices(exact=True)
 
 
 def _window(pendulum: ZieglerPendulum) -> float:
@@ -272,9 +277,8 @@ def regime(pendulum: ZieglerPendulum, P: float = 0.0, H: float = 0.0) -> Regime:
     H = check_real("H", H)
     if not is_damped(pendulum):
         return classify(spectrum(pendulum, P, H))
-    spectrum(pendulum, P, H)  # the same checks of the loads (finite matrices) as the spectrum
-    _dimensionless(pendulum)  # the range check
-    m = pendulum.dimensionless_matrices(exact=True)
+    s = spectrum(pendulum, P, H)  # the same checks of the loads (finite matrices)
+    m = _exact_dimensionless(pendulum)
     gamma, eta = P / pendulum.load_unit, H / pendulum.load_unit
     if not (math.isfinite(gamma) and math.isfinite(eta)):
         raise ParameterError(f"the loads P = {P!r}, H = {H!r} N overflow in units of k2/l1 = "
@@ -283,7 +287,7 @@ def regime(pendulum: ZieglerPendulum, P: float = 0.0, H: float = 0.0) -> Regime:
     try:
         return regime_from_coefficients(characteristic_polynomial(m.M, m.C, K))
     except ConvergenceError:  # a root exactly on the imaginary axis: a critical load
-        return classify(spectrum(pendulum, P, H))
+        return classify(s)
 
 
 def linear_response(pendulum: ZieglerPendulum, P: float, H: float, state0: ArrayLike,
