@@ -113,6 +113,9 @@ rule plot:
         "results/logs/plot/{scene}.log",
     wildcard_constraints:
         scene="|".join(SINGLE_FIGURES),
+    # as the batches' figures: a notebook waits for its part's figures (drawn last, a sweep's
+    # figure left its notebook and the report a serial tail)
+    priority: 3
     conda:
         "../envs/flutterfriction.yaml"
     resources:
@@ -145,7 +148,7 @@ for _part in BATCHES:
             f"results/benchmarks/solve_{_part}.tsv"
         # before any figure or notebook (all solves first, longest first; the many short plot
         # and notebook jobs then fill both cores to the end instead of a serial tail)
-        priority: 5
+        priority: batch_priority(_part)
         conda:
             "../envs/flutterfriction.yaml"
         resources:
