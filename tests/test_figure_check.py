@@ -267,3 +267,50 @@ def test_figures_of_your_own_pendulum_stay_legible(scene):
     assert check_figure(fig) == []
     plt.close(fig)
     assert any(t.startswith("your own pendulum: l1 = 0.12 m") for t in texts)
+
+
+@pytest.mark.parametrize("draft, dpi", [(True, 100), (False, 200)])
+def test_the_check_measures_the_figure_as_its_png_is_saved(tmp_path, monkeypatch, draft, dpi):
+    """The check runs at the PNG's resolution (text extents differ by resolution: at the
+    figure's 150 dpi it passed three quick-preset PNGs, saved at 100 dpi, whose labels
+    overlapped), and its draw lays the figure out and measures its tight box once: a figure
+    saved as PDF + PNG and checked is drawn 4 times (was 5), as a checked PNG 2 times (was 3).
+    The PNG is the one ``bbox_inches="tight"`` gives, with or without the check, and the
+    figure keeps its own resolution."""
+    from matplotlib.figure import Figure
+
+    import flutterfriction.plotting as plotting
+
+    seen, draws = [], []
+    check = plotting.check_figure
+    monkeypatch.setattr(plotting, "check_figure",
+                        lambda f, **kw: seen.append(f.dpi) or check(f, **kw))
+    draw = Figure.draw
+    monkeypatch.setattr(Figure, "draw", lambda self, r: draws.append(1) or draw(self, r))
+
+    def constrained() -> Figure:
+        fig, axes = plt.subplots(1, 2, figsize=(5.0, 2.5), layout="constrained")
+        for ax in axes:
+            ax.plot(X, X**3, label="cubic")
+            ax.set_xlabel(r"load $\eta = H l_1/k_2$ [-]")
+            ax.set_ylabel("ratio [-]")
+            ax.legend()
+        fig.suptitle("a title wider than the axes below it, in two lines\nof text [-]")
+        return fig
+
+    fig = constrained()
+    save_figure(fig, tmp_path / "a.pdf", tmp_path / "a.png", draft=draft,
+                check=tmp_path / "a.json")
+    assert seen == [dpi] and fig.dpi == 150
+    assert len(draws) == 4
+    draws.clear()
+    save_figure(constrained(), tmp_path / "d.png", draft=draft, check=tmp_path / "d.json")
+    assert len(draws) == 2
+    save_figure(constrained(), tmp_path / "b.png", draft=draft)
+    assert (tmp_path / "a.png").read_bytes() == (tmp_path / "b.png").read_bytes()
+    fig = constrained()
+    fig.savefig(tmp_path / "c.png", dpi=dpi, bbox_inches="tight", metadata={"Software": None})
+    saved = [plt.imread(tmp_path / f"{name}.png") for name in "bc"]
+    assert saved[0].shape == saved[1].shape
+    assert np.abs(saved[0] - saved[1]).max() < 0.05  # same layout, same box
+    assert json.loads((tmp_path / "a.json").read_text())["offences"] == []

@@ -254,7 +254,8 @@ def check_figure(fig: Figure, *, tight: bool = True, saved: bool = False) -> lis
     area = _box(fig.bbox)
     if tight and any(not t.get_in_layout() for _, t, _, _ in texts):
         # (a text in the layout is inside the tight box by construction)
-        pad = fig.get_tightbbox(renderer).padded(_pad_inches()).transformed(fig.dpi_scale_trans)
+        pad = fig.get_tightbbox(renderer).padded(saved_pad_inches())
+        pad = pad.transformed(fig.dpi_scale_trans)
         area = _box(pad)
     for (_, t, ax, _), box, name in zip(texts, boxes, names, strict=True):
         if t.get_clip_on():
@@ -311,7 +312,8 @@ def check_figure(fig: Figure, *, tight: bool = True, saved: bool = False) -> lis
     return offences
 
 
-def _pad_inches() -> float:
+def saved_pad_inches() -> float:
+    """The padding [in] around a tight bounding box as figures are saved (rc savefig.pad_inches)."""
     import matplotlib
 
     pad = matplotlib.rcParams["savefig.pad_inches"]

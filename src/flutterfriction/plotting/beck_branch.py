@@ -53,7 +53,7 @@ def plot_beck_branch(data: dict[str, Any]) -> Figure:
             ax.plot([c["P_N"] for c in checks], [c["fine"][key] * 1e3 for c in checks], "s",
                     ms=7, mfc="none", mec="C3", mew=1.1, zorder=4,
                     label=f"mesh check: the cycle on {n_fine} P2 elements")
-    ax1.set_ylabel("tip amplitude A (largest lateral displacement) [mm]")
+    ax1.set_ylabel("tip amplitude A [mm]\n(largest lateral displacement)")
     ax2.set_ylabel("period [ms]")
     ax1.legend(fontsize=7, loc="lower right")
     ax2.legend(fontsize=7, loc="upper right")

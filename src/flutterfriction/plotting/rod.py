@@ -374,7 +374,7 @@ def plot_beck_hopf(data: dict[str, Any]) -> Figure:
     ax1.plot(data["P_flu_model"] + dP, c * np.sqrt(dP), "C1--", lw=1,
              label=r"$A \propto \sqrt{P - P_{flu}}$")
     ax1.set_xlabel("follower load P [N]")
-    ax1.set_ylabel("tip amplitude A (largest lateral displacement) [mm]")
+    ax1.set_ylabel("tip amplitude A [mm]\n(largest lateral displacement)")
     ax1.legend(fontsize=7)
     fl = sorted(data["floquet"].values(), key=lambda v: v["A"])
     ax2.plot([1e3 * v["A"] for v in fl], [v["slow_decay"] for v in fl], "o", ms=6,

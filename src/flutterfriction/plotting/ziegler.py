@@ -9,7 +9,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
-from matplotlib.patches import Arc
+from matplotlib.patches import Arc, Patch
 
 from flutterfriction.plotting import REGIME_COLOURS, list47, pendulum_text
 from flutterfriction.plotting.pendulum import MASS, ROD, draw_pendulum
@@ -57,7 +57,7 @@ def plot_dead_load_spectrum(data: dict[str, Any], title: str) -> Figure:
     ax.set_xlim(eta[0], eta[-1])
     ax.set_xlabel(r"dead load $\eta = H l_1/k_2$ [-]")
     ax.set_ylabel(r"$\omega^2 = m_2 l_2^2\,\Omega^2/k_2$ [-]")
-    ax.set_title(title, pad=14)
+    ax.set_title(title, pad=17)
     ax.legend(loc="lower left")
     return fig
 
@@ -97,7 +97,7 @@ def plot_follower_spectrum(data: dict[str, Any], title: str, in_newtons: bool = 
         ax2.annotate(name, (xpos * unit, 0.58), xycoords=("data", "axes fraction"),
                      ha="center", fontsize=8)
     ax1.legend(loc="lower left")
-    ax1.set_title(title, pad=14)
+    ax1.set_title(title, pad=17)
     ax2.set_xlim(x[0], x[-1])
     ax2.set_xlabel(r"follower load $P$ [N]" if in_newtons
                    else r"follower load $\gamma = P l_1/k_2$ [-]")
@@ -168,6 +168,7 @@ def plot_fig04(data: dict[str, Any]) -> Figure:
     order = [n for n in ("flutter", "divergence") if n in cases] + \
         [n for n in cases if n not in ("flutter", "divergence")]
     ncol = 4
+    flagged = False  # a frame beyond FIG04_MAX_DEG (its key entry)
     rows = [int(np.ceil(len(cases[n]["times"]) / ncol)) for n in order]
     L = float(np.linalg.norm(np.array(cases[order[0]]["points"]["B"][0])
                              - np.array(cases[order[0]]["points"]["A"][0])))
@@ -195,10 +196,10 @@ def plot_fig04(data: dict[str, Any]) -> Figure:
                 side.set_color("0.8")
             a1, a2 = alpha[i]
             beyond = max(abs(a1), abs(a2)) > FIG04_MAX_DEG
-            ax.text(0.02, 0.96, f"t = {t:.2f} s" + (f": |α| > {FIG04_MAX_DEG:g}°, the linear "
-                                                   "solution\nis invalid (drawn as printed)"
-                                                   if beyond else ""),
-                    transform=ax.transAxes, fontsize=7 if not beyond else 5.5, va="top",
+            flagged |= beyond
+            ax.text(0.02, 0.96, f"t = {t:.2f} s" + (f": |α| > {FIG04_MAX_DEG:g}°" if beyond
+                                                   else ""),
+                    transform=ax.transAxes, fontsize=7, va="top",
                     color="C3" if beyond else "black")
             ax.text(0.02, 0.04, f"{a1:+.1f}°, {a2:+.1f}°", transform=ax.transAxes,
                     fontsize=6.5, ha="left", va="bottom", color="0.35")
@@ -250,6 +251,10 @@ def plot_fig04(data: dict[str, Any]) -> Figure:
                        label="follower load P at C"),
                 Line2D([], [], color="0.7", lw=0.8, ls="--",
                        label="straight: α1 = α2 = 0")]
+            if flagged:  # (the note in its frame overflowed it at 100 dpi)
+                handles.append(Patch(facecolor="none", edgecolor="C3",
+                                     label=f"frame with |α| > {FIG04_MAX_DEG:g}°: linear\n"
+                                           "solution invalid (drawn as printed)"))
             if n_free >= 2:
                 ax_key = fig.add_subplot(sub[rows[k] - 1, ncol - n_free:ncol])
                 ax_key.set_axis_off()
