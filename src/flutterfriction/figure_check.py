@@ -59,7 +59,7 @@ from flutterfriction.figure_offences import Offence
 #: figure of the workflow no two text boxes intersect at all; the closest pair is 1.0 pt apart.
 OVERLAP_PT2 = 1.0
 #: A text is clipped or covered when it reaches further than this [pt] into what clips or
-#: covers it (a rounding margin: extents are measured at the figure's dpi, saved at another).
+#: covers it (a rounding margin: extents are measured at the PNG's dpi, the PDF's are at 72).
 TOLERANCE_PT = 0.5
 
 #: The unit convention of the axis labels: a unit in square brackets, or "dimensionless".
