@@ -420,3 +420,20 @@ def test_roots_next_to_a_double_root_are_refined_not_refused():
     window = [iv for iv in c.intervals if iv["regime"] == "divergence"][0]
     assert window["p_from"] == pytest.approx(48.837167, abs=1e-6)
     assert window["p_to"] == pytest.approx(48.866376, abs=1e-6)
+
+
+def test_the_regime_scan_is_bounded_in_memory_and_size(monkeypatch):
+    """Outside audit: `critical_loads(RodGroups(tan_alpha=1), p_max=1000, step=1e-3)` was
+    accepted (step >= p_max/1e6) and asked numpy for 47.7 GiB of stacked matrices. The scan
+    computes its spectra in blocks of loads (peak 472 -> 131 MB at p_max = 1000, same loads to
+    the bit), and refuses a step giving more than SCAN_POINTS_MAX points (~2 min) before any
+    work, naming the allowed range."""
+    with pytest.raises(ParameterError, match=r"step must be in .* = \[0.01, 0.25\]"):
+        ar.critical_loads(RodGroups(tan_alpha=1.0), p_max=1000.0, step=1e-3)
+    rows = []
+    spectra = ar._FEScan.spectra
+    monkeypatch.setattr(ar._FEScan, "spectra",
+                        lambda self, p: rows.append(np.size(p)) or spectra(self, p))
+    c = ar.critical_loads(RodGroups(), p_max=300.0)
+    assert max(rows) <= ar._SCAN_BLOCK and sum(r for r in rows if r > 1) >= 1201
+    assert c.p_flu == pytest.approx(20.050953618973761, rel=1e-13)  # the audit's mpmath
