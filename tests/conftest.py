@@ -11,8 +11,18 @@ from hypothesis import strategies as st
 
 from flutterfriction import ZieglerPendulum
 from flutterfriction.parameters import LIST_47
+from flutterfriction.threads import one_blas_thread
 
 ROOT = Path(__file__).resolve().parents[1]
+
+
+@pytest.fixture(autouse=True, scope="session")
+def _one_blas_thread():
+    """The tests compute as the command line and the workflow do: with one BLAS thread
+    (flutterfriction.threads; the default threads made the small eigenproblems several times
+    slower)."""
+    with one_blas_thread():
+        yield
 
 # The README's test command is deterministic: hypothesis draws the same examples on every
 # machine and run (derandomize), so a pass here is a pass on a fresh clone. Exploration with new

@@ -580,3 +580,28 @@ def test_model_errors_name_the_option_and_the_rod_help_states_the_group_ranges(c
         main(["rod", "--help"])
     out = " ".join(capsys.readouterr().out.split())
     assert "tan(alpha), in [0, 10000]" in out and "internal viscosity, 0 or in [1e-100, 1]" in out
+
+
+def test_the_command_line_computes_with_one_blas_thread(monkeypatch, capsys):
+    """Outside audit: `rod --mass-ratio 0.5932505 --p-max 300` took 7.6 s with OpenBLAS's
+    default threads on two cores, 1.1 s with one (the matrices are small; threads spin). The
+    command runs with one BLAS thread unless the environment sets a count."""
+    from threadpoolctl import threadpool_info, threadpool_limits
+
+    import flutterfriction.cli as cli
+    from flutterfriction.threads import THREAD_VARIABLES
+
+    def blas_threads() -> set[int]:
+        return {i["num_threads"] for i in threadpool_info() if i["user_api"] == "blas"}
+
+    seen = []
+    monkeypatch.setattr(cli, "_rod", lambda args: seen.append(blas_threads()) or {"p": 1.0})
+    for name in THREAD_VARIABLES:
+        monkeypatch.delenv(name, raising=False)
+    with threadpool_limits(limits=2, user_api="blas"):
+        if blas_threads() != {2}:
+            pytest.skip("this machine's BLAS runs one thread only")
+        assert cli.main(["rod", "--mass-ratio", "0", "--json"]) == 0
+        monkeypatch.setenv("OPENBLAS_NUM_THREADS", "2")  # the user's choice is kept
+        assert cli.main(["rod", "--mass-ratio", "0", "--json"]) == 0
+    assert seen == [{1}, {2}]

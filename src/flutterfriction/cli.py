@@ -50,6 +50,7 @@ from flutterfriction.models.rod import (
     GROUP_RANGES,
 )
 from flutterfriction.parameters import LIST_119, LIST_119_LOAD
+from flutterfriction.threads import one_blas_thread
 
 ZIEGLER_PARAMS = {
     "l1": "length of rod AB [m], > 0",
@@ -714,7 +715,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = parser.parse_args(words)
     try:
         # a model's message about one of its fields names the option typed (--tip-mass)
-        with _as_options(vars(args)):
+        with _as_options(vars(args)), one_blas_thread():
             if args.command == "limit-cycle" and args.system == "beck":
                 result = _limit_cycle_beck(args)
             else:
