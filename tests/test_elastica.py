@@ -311,3 +311,41 @@ def test_the_loading_path_is_followed_through_its_turn_to_the_right_side():
         sol = el.solve_shooting(1.0, 1.0, el.ElasticaLoads(P1=P1, P2=P2))
         closed = el.tip_force_closed_form(1.0, 1.0, P1, P2)
         assert sol.tip_rotation == pytest.approx(closed.tip_rotation, rel=1e-9)
+
+
+def test_an_end_force_near_the_axis_an_outside_audit_and_its_follow_up():
+    """An outside audit and what checking it found:
+
+    - the closed form refused a pushing force 1e-13 off axis as "axial (P2 = 0)", and was
+      wrong to 4e-5 at P2/P1 = 1e-11 (its clamp angle computed as -phi - pi lost the digits;
+      Brent's absolute 1e-16 tolerance the rest): now exact to round-off against the
+      beam-column's theta(l) = -(P2/P1)(sec(k l) - 1) below the Euler load;
+    - a pulling force near the axis loses digits in the elliptic form (1.5e-5 at 1e-6 rad):
+      refused there, naming the limit; a raw RuntimeError of Brent's became a ConvergenceError;
+    - shooting refused P2 = 1e-12 B/l^2 at the Euler load "with no transverse load", and at
+      1.2 Euler loads returned the equilibrium on the WRONG side for P2 = 1e-13 (+1.2245 rad;
+      Newton's noise near the bifurcation read as the loading path's side);
+    - a length of 1e200 m raised a bare OverflowError."""
+    from flutterfriction.errors import ConvergenceError, ParameterError
+
+    for P2 in (1e-6, 1e-11, 1e-13, 1e-20, -1e-13):
+        exact = -P2 * (1.0 / math.cos(1.0) - 1.0)  # P1 = B/l^2: k l = 1
+        closed = el.tip_force_closed_form(1.0, 1.0, 1.0, P2).tip_rotation
+        assert closed == pytest.approx(exact, rel=1e-13)
+        shot = el.solve_shooting(1.0, 1.0, el.ElasticaLoads(P1=1.0, P2=P2)).tip_rotation
+        assert shot == pytest.approx(exact, rel=1e-11)
+    with pytest.raises(ParameterError, match="P1 < 0.*0.01 rad off"):
+        el.tip_force_closed_form(1.0, 1.0, -1.0, 1e-6)
+    assert el.tip_force_closed_form(1.0, 1.0, -1.0, 0.02).tip_rotation == pytest.approx(
+        el.solve_shooting(1.0, 1.0, el.ElasticaLoads(P1=-1.0, P2=0.02)).tip_rotation,
+        rel=1e-11)
+    with pytest.raises(ConvergenceError, match="closed form's end rotation"):
+        el.tip_force_closed_form(1.0, 1.0, 1.0, 1e-300)
+    for P1, P2, at in ((2.47, 1e-12, -0.0917609577), (3.0, 1e-13, -1.2245236055),
+                       (3.0, -1e-13, 1.2245236055), (3.0, 1e-20, -1.2245236055)):
+        sol = el.solve_shooting(1.0, 1.0, el.ElasticaLoads(P1=P1, P2=P2))
+        assert sol.tip_rotation == pytest.approx(at, rel=1e-9)
+        assert sol.tip_rotation == pytest.approx(
+            el.tip_force_closed_form(1.0, 1.0, P1, P2).tip_rotation, rel=1e-9)
+    with pytest.raises(ParameterError, match="floating-point range"):
+        el.solve_shooting(1e200, 1.0, el.ElasticaLoads(P2=1.0))

@@ -237,8 +237,20 @@ def _stability_tolerance(sol: ElasticaSolution) -> float:
 
 
 def _dimensionless(length: float, B: float, loads: ElasticaLoads) -> tuple[NDArray, NDArray]:
-    """``a(l) l^2/B`` and ``q l^3/B``: the loads in units of ``B/l^2`` and ``B/l^3``."""
-    return loads.tip_force() * length**2 / B, loads.distributed() * length**3 / B
+    """``a(l) l^2/B`` and ``q l^3/B``: the loads in units of ``B/l^2`` and ``B/l^3``, refused
+    (:class:`ParameterError`) outside the floating-point range (an outside audit's length of
+    1e200 m raised a bare OverflowError)."""
+    try:
+        with np.errstate(over="ignore", invalid="ignore"):
+            fP = loads.tip_force() * (length**2 / B)
+            g = loads.distributed() * (length**3 / B)
+    except OverflowError:
+        fP = g = np.array([math.inf])
+    if not (np.all(np.isfinite(fP)) and np.all(np.isfinite(g))):
+        raise ParameterError(
+            f"length = {length:g} m and B = {B:g} N m^2 put the loads in units of B/l^2 and "
+            "B/l^3 (P l^2/B, q l^3/B) outside the floating-point range")
+    return fP, g
 
 
 def _shooting_rhs(xi: float, z: NDArray, fP: NDArray, g: NDArray) -> NDArray:
@@ -405,6 +417,10 @@ def _shooting_solution(length: float, B: float, loads: ElasticaLoads, th: float,
 #: ~1-4 s there, measured).
 _SCAN = np.linspace(-4 * math.pi, 4 * math.pi, 1441)
 _SCAN_LIMIT = 200.0
+#: The loading path's last end rotation [rad] gives the side above this; below, the rod is in
+#: its linear range, where the side is the linear response's (and the path's rotation may be
+#: Newton's noise).
+_SIDE_FROM_PATH = 1e-6
 
 
 def _stable_root(length: float, B: float, loads: ElasticaLoads, fP: NDArray, g: NDArray,
@@ -422,14 +438,26 @@ def _stable_root(length: float, B: float, loads: ElasticaLoads, fP: NDArray, g: 
             f"{failure}; the loads ({scale:.3g} B/l^2) exceed the range searched for the "
             f"stable equilibrium ({_SCAN_LIMIT:g} B/l^2, ~{_SCAN_LIMIT / (math.pi**2 / 4):.0f} "
             "Euler loads)")
-    z = _integrate_from_tip(0.0, 1e-6 * fP, 1e-6 * g, rtol).y[:, -1]
-    start = -z[0] / z[4]
-    if abs(start) <= 1e-12 * 1e-6 * (1.0 + scale):
-        raise ConvergenceError(
-            f"{failure}; with no transverse load (P2 = {loads.P2:g} N, q2 = {loads.q2:g} N/m) "
-            "a rod past its Euler load may buckle to either side: give a transverse load to "
-            "choose one")
-    side = math.copysign(1.0, last if abs(last) > 1e-9 else start)
+    side = math.copysign(1.0, last) if abs(last) > _SIDE_FROM_PATH else None
+    if side is None:
+        # Still nearly straight: the side of the linear response (Newton's tolerance on
+        # theta(0) leaves theta(l) noise of either sign near the Euler load, ~tol/|d theta(0)/
+        # d theta(l)|: P2 = 1e-13 B/l^2 at 1.2 Euler loads ended on the wrong side)
+        z = _integrate_from_tip(0.0, 1e-6 * fP, 1e-6 * g, rtol).y[:, -1]
+        start = -z[0] / z[4]  # the linear end rotation at a load factor of 1e-6
+        transverse = max(abs(fP[1]), abs(g[1]))
+        # The side, relative to the transverse loads themselves (an absolute threshold refused
+        # P2 = 1e-12 B/l^2 as "no transverse load"; an outside audit)
+        if transverse == 0.0:
+            raise ConvergenceError(
+                f"{failure}; with no transverse load (P2 = q2 = 0) a rod past its Euler load "
+                "may buckle to either side: give a transverse load to choose one")
+        if abs(start) <= 1e-9 * 1e-6 * transverse:
+            raise ConvergenceError(
+                f"{failure}; the transverse loads (P2 = {loads.P2:g} N, q2 = {loads.q2:g} "
+                "N/m) balance at first order (their linear end rotation vanishes), so they do not "
+                "choose the side a rod past its Euler load buckles to")
+        side = math.copysign(1.0, start)
 
     def residual(t: float) -> float:
         return float(_integrate_from_tip(t, fP, g, 1e-9).y[0, -1])
@@ -572,6 +600,14 @@ class TipForceElastica:
             self.varphi0)))
 
 
+#: Smallest angle [rad] between a pulling end force and the rod's axis that the closed form
+#: takes: the elliptic modulus tends to 1 there and the end rotation loses digits (measured
+#: against shooting at 1e-13: relative error <= 1.5e-11 at 1e-2 rad for |P1| in [0.1, 30]
+#: B/l^2; 6.7e-9 at 1e-3 rad, 1.5e-5 at 1e-6). A pushing force has no such loss (4e-13 at
+#: P2/P1 = 1e-20, the shooting's own tolerance; exact against the beam-column's sec(kl) - 1).
+TENSION_OFF_AXIS_MIN = 1e-2
+
+
 def tip_force_closed_form(length: float, B: float, P1: float, P2: float) -> TipForceElastica:
     """The classical elastica of a cantilever under the end force ``P = -P1 e1 - P2 e2`` of
     fixed direction (eq. 92), by elliptic integrals (:class:`TipForceElastica`): the branch
@@ -583,11 +619,21 @@ def tip_force_closed_form(length: float, B: float, P1: float, P2: float) -> TipF
     R = math.hypot(P1, P2)
     if R == 0.0:
         raise ParameterError("P1 and P2 are both zero: no end force")
-    phi = math.atan2(-P2, -P1)
-    psi0 = math.remainder(-phi - math.pi, 2 * math.pi)  # psi at the clamp, in [-pi, pi]
-    if abs(math.sin(psi0)) < 1e-12:
+    if P2 == 0.0:
         raise ParameterError("the end force is axial (P2 = 0): the closed form covers a "
                              "transverse component (the axial case is Euler's buckling)")
+    phi = math.atan2(-P2, -P1)
+    # psi at the clamp, -phi - pi modulo 2 pi, in (-pi, pi]: from the force's components
+    # directly (-phi - pi lost the digits of a small transverse force: 4e-5 relative error in
+    # the end rotation at P2/P1 = 1e-11)
+    psi0 = math.atan2(-P2, P1)
+    off_axis = math.atan2(abs(P2), abs(P1))  # the force's angle to the rod's axis
+    if P1 < 0 and off_axis < TENSION_OFF_AXIS_MIN:
+        raise ParameterError(
+            f"a pulling end force (P1 < 0) must be at least {TENSION_OFF_AXIS_MIN:g} rad off "
+            f"the rod's axis for the closed form (|P2/P1| >= {math.tan(TENSION_OFF_AXIS_MIN):.4g}"
+            f"), got |P2/P1| = {abs(P2 / P1):.3g}: nearer, its elliptic modulus tends to 1 and "
+            "it loses digits; solve_shooting covers it")
     sigma = math.copysign(1.0, psi0)
     h0 = abs(psi0)  # hat psi at the clamp, in (0, pi)
     target = math.sqrt(R / B) * length
@@ -600,7 +646,12 @@ def tip_force_closed_form(length: float, B: float, P1: float, P2: float) -> TipF
     hi = math.pi - 1e-15
     if arclength(hi) <= 0:
         raise ConvergenceError("no end rotation below pi solves the elastica's length")
-    hl = brentq(arclength, h0, hi, xtol=1e-16, rtol=4 * np.finfo(float).eps, maxiter=200)
+    try:  # to round-off relative to the clamp's angle (an absolute 1e-16 lost the digits
+        # of small rotations: 1e-5 relative error at P2/P1 = 1e-11)
+        hl = brentq(arclength, h0, hi, xtol=4 * np.finfo(float).eps * h0,
+                    rtol=4 * np.finfo(float).eps, maxiter=200)
+    except RuntimeError as exc:
+        raise ConvergenceError(f"the closed form's end rotation: {exc}") from None
     k = math.sin(hl / 2)
     varphi0 = math.asin(min(1.0, math.sin(h0 / 2) / k))
     return TipForceElastica(length, B, R, phi, sigma, k, varphi0, sigma * (hl - h0))
