@@ -437,3 +437,15 @@ def test_the_regime_scan_is_bounded_in_memory_and_size(monkeypatch):
     c = ar.critical_loads(RodGroups(), p_max=300.0)
     assert max(rows) <= ar._SCAN_BLOCK and sum(r for r in rows if r > 1) >= 1201
     assert c.p_flu == pytest.approx(20.050953618973761, rel=1e-13)  # the audit's mpmath
+
+
+def test_refusals_show_the_value_and_eq118_refuses_non_finite_arguments():
+    """Outside audit: `rod --eta 1.0000001` said "... in [1e-100, 1] ..., got 1" (%g rounds to
+    the bound), and eq. (118) returned NaN silently for a NaN load or pulsation."""
+    with pytest.raises(ParameterError, match=r"got 1\.0000001$"):
+        ar.check_groups(RodGroups(eta=1.0000001))
+    with pytest.raises(ParameterError, match=r"got 1e\+06$"):
+        ar.check_groups(RodGroups(tan_alpha=1e6))
+    for p, w in ((math.nan, 1j), (1.0, complex(math.inf, 0.0))):
+        with pytest.raises(ParameterError, match="must be finite"):
+            characteristic_function(p, w, RodGroups())

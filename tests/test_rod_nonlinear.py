@@ -497,3 +497,36 @@ def test_cycle_chain_on_one_mesh():
     and an empty list of meshes is refused before any."""
     with pytest.raises(ParameterError, match="meshes"):
         rdyn.beck_cycle_chain(ROD, 5.5, [])
+
+
+def test_the_nonlinear_rods_public_functions_refuse_bad_input_before_any_work():
+    """An outside audit of the nonlinear rod (its physics agreed with the auditor's own chain
+    of rigid links to 1e-5..1e-7) found these taken silently: NaN loads (NaN accelerations, a
+    NaN start state), a negative or zero period (minutes of backward integration, a bare
+    LinAlgError), dt = 0, NaN or > t_end and rho_inf = -1 (ZeroDivisionError, ValueError, the
+    initial state returned alone), A_max = inf (LinAlgError), max_points = 2.5, abscissae
+    beyond the rod (extrapolated), and 30 N on list (119) (minutes of integration)."""
+    from flutterfriction.analysis import rod_cycles as rc
+
+    m = NonlinearRod(ROD, 2)
+    y = np.zeros(2 * m.n_dof)
+    cases = [
+        (lambda: m.rhs_at(math.nan), "P must be"),
+        (lambda: m.rhs(0.0, y, math.inf), "P must be a finite load"),
+        (lambda: m.jacobians(y[:, None], math.nan), "P must be"),
+        (lambda: m.nodal_values_at(y[:m.n_dof], [-0.35]), "s must be finite abscissae"),
+        (lambda: rdyn.shoot_cycle(m, y, -0.1, 3.2), "T must be"),
+        (lambda: rdyn.shoot_cycle(m, y, 0.0, 3.2), "T must be"),
+        (lambda: rdyn.shoot_cycle(m, y[:3], 0.1, 3.2), "y must be a finite state"),
+        (lambda: rdyn.generalized_alpha(m, 3.0, y, 0.01, 0.0), "dt must be"),
+        (lambda: rdyn.generalized_alpha(m, 3.0, y, 0.01, math.nan), "dt must be"),
+        (lambda: rdyn.generalized_alpha(m, 3.0, y, 0.01, 0.1), r"dt must be in \(0, t_end\]"),
+        (lambda: rdyn.generalized_alpha(m, 3.0, y, 0.01, 1e-3, rho_inf=-1.0), "rho_inf"),
+        (lambda: rdyn.flutter_mode_start(m, 3.2, math.nan), "amplitude must be"),
+        (lambda: rc.cycle_branch(ROD, 2, A_max=math.inf), "A_max must be"),
+        (lambda: rc.cycle_branch(ROD, 2, max_points=2.5), "max_points must be"),
+        (lambda: rdyn.beck_limit_cycle(ROD, 30.0, n_elements=2), r"P must be in \(2.9"),
+    ]
+    for call, match in cases:
+        with pytest.raises(ParameterError, match=match):
+            call()

@@ -39,7 +39,9 @@ from flutterfriction.models.rod_fe import assemble
 @dataclass(frozen=True)
 class RodCriticalLoads:
     """Dimensionless critical loads ``p = P l^2/B`` and pulsations ``omega~`` (eq. 106, 108);
-    ``None`` where the load does not exist in the searched range (Beck: no divergence).
+    ``None`` where the load does not exist in the searched range (Beck: no divergence). From
+    :func:`continue_critical_loads` ``None`` means only "not followed": the previous rod had
+    no such load, and one may have appeared (``intervals`` is then ``None`` too).
 
     ``p_flu``/``p_div`` are the starts of the first flutter/divergence intervals; ``intervals``
     lists every regime interval on [0, p_max] as ``{"regime", "p_from", "p_to"}`` (``None``
@@ -582,8 +584,10 @@ def check_groups(g: RodGroups) -> RodGroups:
         v = getattr(g, name)
         if v > high or 0 < v < low:
             allowed = f"in [0, {high:g}]" if low == 0 else f"0 or in [{low:g}, {high:g}]"
+            # (all digits where %g would print a bound: "got 1" for eta = 1.0000001; an audit)
+            shown = f"{v:g}" if float(f"{v:g}") not in (low, high) else repr(v)
             raise ParameterError(f"{name} must be {allowed} (the rod solver's numerical range,"
-                                 f" analysis.rod.GROUP_RANGES), got {v:g}")
+                                 f" analysis.rod.GROUP_RANGES), got {shown}")
     return g
 
 
@@ -835,7 +839,13 @@ def _solve_on(g: RodGroups, g_scan: RodGroups, n_el: int, p_max: float, step: fl
 
 def continue_critical_loads(g: RodGroups, previous: RodCriticalLoads) -> RodCriticalLoads:
     """Critical loads of ``g`` by Newton from those of a nearby rod (continuation in a
-    parameter): milliseconds, no FE guess. Raises :class:`ConvergenceError` if Newton fails."""
+    parameter): milliseconds, no FE guess. Raises :class:`ConvergenceError` if Newton fails.
+
+    Local: it follows the loads ``previous`` has and cannot see a new one appear. A divergence
+    load absent from ``previous`` is ``None`` here even where ``g`` has one (an outside audit:
+    tan(alpha) 0.5 -> 0.7 gave ``p_div = None`` for 40.4658), and a window opening below the
+    followed load is missed: use :func:`critical_loads` (every interval) where the regime
+    structure may change, as the stability map does."""
     if previous.p_flu is None:
         raise ConvergenceError("continuation needs a previous flutter load")
     out = {"p_flu": None, "omega_flu": None, "p_div": None, "omega_div": None}

@@ -31,7 +31,13 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.integrate import solve_ivp
 
-from flutterfriction.errors import ConvergenceError, ParameterError
+from flutterfriction.errors import (
+    ConvergenceError,
+    ParameterError,
+    check_integer,
+    check_positive,
+    check_real,
+)
 from flutterfriction.models.rod import Rod
 from flutterfriction.models.rod_nonlinear import NonlinearRod
 
@@ -672,10 +678,13 @@ def cycle_branch(rod: Rod, n_elements: int = 4, A_first: float = 0.01, A_max: fl
       25 -> 18 CPU-s, the same cycles to 1e-7.
     - ``error_target`` 5e-3: larger first corrections leave Newton's basin in the amplitude's
       dip (rejections there: "Newton not contracting" at first corrections of 1-7e-2)."""
-    if not 0 < A_first < A_max:
+    # (an outside audit: A_max = inf ended in a bare LinAlgError, max_points = 2.5 passed)
+    A_max = check_positive("A_max", A_max, "m")
+    if not 0 < check_real("A_first", A_first) < A_max:
         raise ParameterError(f"A_first must be in (0, A_max = {A_max}) m, got {A_first}")
-    if int(max_points) < 2:
-        raise ParameterError(f"max_points must be >= 2, got {max_points}")
+    check_integer("max_points", max_points, 2)
+    if P_max is not None:
+        check_positive("P_max", P_max, "N")
     adaptive = P_max is not None
     cont = CycleContinuation(rod, n_elements=n_elements, A_max=A_max, rtol=rtol, ds_max=ds_max,
                              newton_tol=newton_tol, ds_first=ds_first,

@@ -29,8 +29,15 @@ from flutterfriction.analysis.rod_cycles import (
     tip_lateral,
     variational_flow,
 )
-from flutterfriction.errors import ConvergenceError, ParameterError, check_integer, check_real
-from flutterfriction.models.rod import Rod
+from flutterfriction.errors import (
+    ConvergenceError,
+    ParameterError,
+    check_finite_array,
+    check_integer,
+    check_positive,
+    check_real,
+)
+from flutterfriction.models.rod import CYCLE_LOAD_MAX, Rod
 from flutterfriction.models.rod_nonlinear import NonlinearRod
 
 
@@ -176,6 +183,13 @@ def beck_limit_cycle(rod: Rod, P: float, n_elements: int = 8, method: str = "BDF
     check_real("initial_tip_rotation", initial_tip_rotation)
     check_integer("samples_per_period", samples_per_period, 2)
     model = NonlinearRod(rod, n_elements)
+    # The load where a cycle exists and is reached in reasonable time, as the scene and the
+    # command line check it (an outside audit: 30 N on list 119 ran for minutes here)
+    P_flu = linearised_flutter_load(rod, n_elements)
+    if not P_flu < P <= CYCLE_LOAD_MAX * P_flu:
+        raise ParameterError(f"P must be in ({P_flu:.6g}, {CYCLE_LOAD_MAX * P_flu:.6g}] N: above "
+                             f"the damped flutter load of the rod linearised on {n_elements} "
+                             f"elements and at most {CYCLE_LOAD_MAX:g} times it, got {P:g}")
     n = model.n_dof
     y = np.zeros(2 * n)
     y[:n] = initial_tip_rotation * np.linspace(0, 1, n + 1)[1:]
@@ -325,6 +339,19 @@ def generalized_alpha(model: NonlinearRod, P: float, y0: NDArray, t_end: float, 
     (errors halving with dt; second order only at rho_inf = 1, the trapezoidal rule); this
     one at second order (``tests/test_rod_nonlinear.py``)."""
     n = model.n_dof
+    # (an outside audit: dt = 0 and rho_inf = -1 divided by zero, dt = NaN raised numpy's
+    # ValueError, dt > t_end returned the initial state alone)
+    check_real("P", P)
+    y0 = check_finite_array("y0", y0, (2 * n,), f"a finite state of {2 * n} values (q, v)")
+    t_end = check_positive("t_end", t_end, "s")
+    dt = check_positive("dt", dt, "s")
+    if dt > t_end:
+        raise ParameterError(f"dt must be in (0, t_end] = (0, {t_end:g}] s, got {dt:g}")
+    if not 0.0 <= check_real("rho_inf", rho_inf) <= 1.0:
+        raise ParameterError(f"rho_inf must be in [0, 1] (high-frequency spectral radius), "
+                             f"got {rho_inf:g}")
+    check_positive("newton_tol", newton_tol)
+    check_integer("sample_every", sample_every, 1)
     am = (2 * rho_inf - 1) / (rho_inf + 1)
     af = rho_inf / (rho_inf + 1)
     gamma = 0.5 - am + af
@@ -460,8 +487,17 @@ def shoot_cycle(model: NonlinearRod, y: NDArray, T: float, P: float,
 
     Accepted when the correction is below ``tol`` relative to each unknown's scale (the
     iterate whose residual was computed, and its orbit, are returned)."""
-    N, n = y.size, model.n_dof
-    y = np.asarray(y, dtype=float).copy()
+    n = model.n_dof
+    # (an outside audit: T = -0.1 integrated backwards for minutes, T = 0 ended in a bare
+    # LinAlgError)
+    y = check_finite_array("y", y, (2 * n,), f"a finite state of {2 * n} values (q, v)").copy()
+    N = y.size
+    check_positive("T", T, "s")
+    check_real("P", P)
+    for name, value in (("rtol", rtol), ("tol", tol), ("variational_rtol", variational_rtol),
+                        ("loose_rtol", loose_rtol)):
+        check_positive(name, value)
+    check_integer("max_iterations", max_iterations, 1)
     corrections: list[float] = []
     exact = monodromy is None
     Phi = None if exact else np.array(monodromy, dtype=float)
@@ -634,6 +670,8 @@ def flutter_mode_start(model: NonlinearRod, P: float, amplitude: float) -> NDArr
     eigenvalue at ``P``, real part), scaled to a lateral tip displacement ``amplitude``."""
     from flutterfriction.analysis.stability import first_order_matrix
 
+    P = check_real("P", P)
+    amplitude = check_positive("amplitude", amplitude, "m")  # (NaN returned a NaN state)
     M0, C, K, K1 = model.linear_matrices()
     ev, V = np.linalg.eig(first_order_matrix(M0, K + P * K1, C))
     k = int(np.argmax(ev.real))

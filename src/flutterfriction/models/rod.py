@@ -197,8 +197,12 @@ def characteristic_function(p: ArrayLike, w: ArrayLike, g: RodGroups,
     """Eq. (118), ``f(p, omega~, alpha, gamma, eta)``, evaluated stably (vectorised).
 
     Returns ``f exp(-sigma)`` and, when ``with_exponent``, ``sigma`` (so ``f = F exp(sigma)``);
-    zeros of the returned value are exactly the zeros of ``f``.
+    zeros of the returned value are exactly the zeros of ``f``. Non-finite arguments are
+    refused (:class:`ParameterError`; they returned NaN silently, an outside audit).
     """
+    if not (np.all(np.isfinite(p)) and np.all(np.isfinite(w))):
+        raise ParameterError(f"p and omega~ must be finite (eq. 118), got p = {p!r}, "
+                             f"omega~ = {w!r}")
     L1, L2 = lambda_squares(p, w, g)
     lam1, lam2 = np.sqrt(L1), np.sqrt(L2)
     C1, S1, s1 = _scaled_even_functions(lam1, trig=False)

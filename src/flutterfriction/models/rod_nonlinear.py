@@ -30,7 +30,7 @@ import numpy as np
 from numpy.polynomial import legendre
 from numpy.typing import NDArray
 
-from flutterfriction.errors import ConvergenceError, ParameterError, check_integer
+from flutterfriction.errors import ConvergenceError, ParameterError, check_integer, check_real
 from flutterfriction.models.rod import Rod
 from flutterfriction.models.rod_kernel import jacobians, rhs_one
 
@@ -120,6 +120,11 @@ class NonlinearRod:
         """The P2 field with nodal values ``q`` evaluated at the abscissae ``s`` (e.g. the nodes
         of a finer mesh: mesh continuation)."""
         s = np.asarray(s, dtype=float)
+        length = self.rod.length
+        if not (np.all(np.isfinite(s)) and np.all(s >= -1e-12 * length)
+                and np.all(s <= length * (1 + 1e-12))):
+            # (it extrapolated the end elements' parabolas silently; an outside audit)
+            raise ParameterError(f"s must be finite abscissae in [0, l] = [0, {length:g}] m")
         full = np.concatenate([[0.0], np.asarray(q, dtype=float)])
         e = np.clip((s // self.h).astype(int), 0, int(self.n_elements) - 1)
         xi = 2 * (s - e * self.h) / self.h - 1
@@ -216,6 +221,8 @@ class NonlinearRod:
         """First-order form ``y' = (v, q_ddot)``; ``y`` of shape ``(2 n_dof,)`` or
         ``(2 n_dof, m)`` (then ``P`` a number or ``m`` loads)."""
         n = self.n_dof
+        if not np.all(np.isfinite(P)):  # (NaN accelerations, silently; an outside audit)
+            raise ParameterError(f"P must be a finite load [N], got {P!r}")
         if y.ndim == 1 and not np.iscomplexobj(y) and np.ndim(P) == 0:
             return self._rhs_one(y, float(P))
         return np.concatenate([y[n:], self.accelerations(y[:n], y[n:], P)])
@@ -224,7 +231,7 @@ class NonlinearRod:
         """``f(t, y)``: :meth:`rhs` for one real state at the load ``P`` [N], for an
         integrator's many calls (the compiled kernel with its arguments bound once)."""
         r = self.rod
-        args = (float(P), self.phi, self.w, self.S, self.wg, self.K, self.C, r.rho,
+        args = (check_real("P", P), self.phi, self.w, self.S, self.wg, self.K, self.C, r.rho,
                 r.tip_mass, r.kappa)
 
         size = 2 * self.n_dof
@@ -253,8 +260,8 @@ class NonlinearRod:
         if Y.ndim != 2 or Y.shape[0] != 2 * self.n_dof:  # the kernel does not check indices
             raise ParameterError(f"the states must have shape ({2 * self.n_dof}, m), got "
                                  f"{Y.shape}")
-        J, f_P, ok = jacobians(Y, float(P), self.phi, self.w, self.S, self.wg, self.K, self.C,
-                               r.rho, r.tip_mass, r.kappa)
+        J, f_P, ok = jacobians(Y, check_real("P", P), self.phi, self.w, self.S, self.wg,
+                               self.K, self.C, r.rho, r.tip_mass, r.kappa)
         if not ok:
             raise ConvergenceError(_NOT_POSITIVE)
         return J, f_P
