@@ -221,10 +221,13 @@ class NonlinearRod:
         """First-order form ``y' = (v, q_ddot)``; ``y`` of shape ``(2 n_dof,)`` or
         ``(2 n_dof, m)`` (then ``P`` a number or ``m`` loads)."""
         n = self.n_dof
-        if not np.all(np.isfinite(P)):  # (NaN accelerations, silently; an outside audit)
-            raise ParameterError(f"P must be a finite load [N], got {P!r}")
         if y.ndim == 1 and not np.iscomplexobj(y) and np.ndim(P) == 0:
-            return self._rhs_one(y, float(P))
+            P = float(P)
+            if P - P != 0.0:  # NaN or inf (NaN accelerations, silently; an outside audit)
+                raise ParameterError(f"P must be a finite load [N], got {P!r}")
+            return self._rhs_one(y, P)
+        if not np.all(np.isfinite(P)):
+            raise ParameterError(f"P must be a finite load [N], got {P!r}")
         return np.concatenate([y[n:], self.accelerations(y[:n], y[n:], P)])
 
     def rhs_at(self, P: float):
