@@ -207,23 +207,16 @@ def _collection_style(c: Collection) -> tuple[str, str, str] | None:
     return _style(colours[0], "none", "o")
 
 
-def check_figure(fig: Figure, *, tight: bool = True, saved: bool = False) -> list[Offence]:
+def check_figure(fig: Figure, *, tight: bool = True) -> list[Offence]:
     """The offences of ``fig`` (empty when it passes), drawn as it is saved: ``tight`` when
     saved with ``bbox_inches="tight"`` (the saved area is then the tight bounding box, else
-    the canvas). ``saved``: the figure has just been saved, so it is drawn as the save drew it,
-    without its layout engine (a constrained layout would iterate once more, and costs most
-    of a draw)."""
+    the canvas). Its one draw (without rendering, the layout engine included) is the one
+    :func:`flutterfriction.plotting.save_figure` lays the figure out and measures it by, at
+    the PNG's resolution."""
     if not hasattr(fig.canvas, "get_renderer"):
         FigureCanvasAgg(fig)
-    engine = fig.get_layout_engine() if saved else None
-    if engine is not None:
-        fig.set_layout_engine("none")
-    try:
-        with _recording() as drawn:
-            fig.draw_without_rendering()
-    finally:
-        if engine is not None:
-            fig.set_layout_engine(engine)
+    with _recording() as drawn:
+        fig.draw_without_rendering()
     renderer = fig.canvas.get_renderer()
     pt = 72.0 / fig.dpi  # points per pixel
     # axes by their number in fig.axes; an inset or a secondary axis as <its parent's>.<n>
