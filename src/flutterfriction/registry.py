@@ -196,7 +196,7 @@ _ENTRIES = [
                       "and the forces per unit length q1, q2 (geometrically exact, shooting "
                       "and collocation); the end forces alone against the closed form by "
                       "elliptic integrals; small loads approach the linear cantilever as the "
-                      "load squared.")}),
+                      "load squared.")}, check=rod_statics.check_elastica),
     Scene("fig10", sketches.fig10, "rods", {"fig10": _fig(
         "sketches:plot_fig10",
         "Fig. 10: the Beck and the Pflüger (tan α = 1) rods with their modes at the exact "

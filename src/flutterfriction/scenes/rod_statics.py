@@ -49,6 +49,12 @@ def _inputs(params: dict[str, Any]) -> tuple[Rod, el.ElasticaLoads, dict[str, An
     if loads.P2 == 0.0:
         raise ParameterError("P2 must be nonzero: the end forces alone are checked against the "
                              "closed form, which needs a transverse end force")
+    if loads.P1 < 0.0 and math.atan2(abs(loads.P2), -loads.P1) < el.TENSION_OFF_AXIS_MIN:
+        raise ParameterError(
+            f"P2: with a pulling end force (P1 < 0) the closed form the end forces are checked "
+            f"against needs |P2/P1| >= {math.tan(el.TENSION_OFF_AXIS_MIN):.4g} (the force at "
+            f"least {el.TENSION_OFF_AXIS_MIN:g} rad off the axis), got "
+            f"{abs(loads.P2 / loads.P1):.3g}")
     part = params.get("part", [0.3, 0.75])
     if not isinstance(part, list | tuple) or len(part) != 2:
         raise ParameterError(f"part must be two fractions [s1/l, s2/l], got {part!r}")
@@ -94,6 +100,11 @@ def _curves(sol: el.ElasticaSolution, s: NDArray) -> dict[str, list[float]]:
     return {"theta": st[:, 0].tolist(), "M": st[:, 1].tolist(), "x1": st[:, 2].tolist(),
             "x2": st[:, 3].tolist(), "a1": a[:, 0].tolist(), "a2": a[:, 1].tolist(),
             "N": N.tolist(), "T": T.tolist()}
+
+
+def check_elastica(params: dict[str, Any]) -> None:
+    """Figs. 6-9's parameters as :func:`elastica` refuses them (the configuration check)."""
+    _inputs(params)
 
 
 def elastica(params: dict[str, Any]) -> dict[str, Any]:
