@@ -602,6 +602,8 @@ def test_the_command_line_computes_with_one_blas_thread(monkeypatch, capsys):
         if blas_threads() != {2}:
             pytest.skip("this machine's BLAS runs one thread only")
         assert cli.main(["rod", "--mass-ratio", "0", "--json"]) == 0
+        monkeypatch.setenv("OPENBLAS_NUM_THREADS", "0")  # OpenBLAS's "default": no choice
+        assert cli.main(["rod", "--mass-ratio", "0", "--json"]) == 0
         monkeypatch.setenv("OPENBLAS_NUM_THREADS", "2")  # the user's choice is kept
         assert cli.main(["rod", "--mass-ratio", "0", "--json"]) == 0
-    assert seen == [{1}, {2}]
+    assert seen == [{1}, {1}, {2}]

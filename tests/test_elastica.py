@@ -349,3 +349,27 @@ def test_an_end_force_near_the_axis_an_outside_audit_and_its_follow_up():
             el.tip_force_closed_form(1.0, 1.0, P1, P2).tip_rotation, rel=1e-9)
     with pytest.raises(ParameterError, match="floating-point range"):
         el.solve_shooting(1e200, 1.0, el.ElasticaLoads(P2=1.0))
+    # a review of the above: with tiny transverse loads pushing opposite ways the linear end
+    # rotation's sign is not the buckling side (P1 = 20, q2 l/P2 = 2.9: the path, followed at
+    # larger loads of the same ratio, ends at +3.0500; the linear rule gave -3.0500): refused
+    sol = el.solve_shooting(1.0, 1.0, el.ElasticaLoads(P1=20.0, P2=1e-9, q2=2.9e-9))
+    assert sol.tip_rotation == pytest.approx(3.050011, abs=1e-5)
+    with pytest.raises(ConvergenceError, match="push opposite ways"):
+        el.solve_shooting(1.0, 1.0, el.ElasticaLoads(P1=20.0, P2=1e-13, q2=2.9e-13))
+    # the closed form's shape: refused where scipy's ellipj approximates (modulus within
+    # 1e-9 of 1: theta(l) was 1.2e-4 off at 60 B/l^2, 0.02 rad off the axis) and off the rod
+    big = el.tip_force_closed_form(1.0, 1.0, -60 * math.cos(0.02), 60 * math.sin(0.02))
+    assert big.tip_rotation == pytest.approx(-0.0199827005244302, rel=1e-13)
+    with pytest.raises(ConvergenceError, match="modulus within"):
+        big.theta(1.0)
+    with pytest.raises(ConvergenceError, match="modulus within"):
+        big.position(0.5)
+    small = el.tip_force_closed_form(1.0, 1.0, 1.0, 0.5)
+    for s_bad in (1.5, math.nan, -0.1):
+        with pytest.raises(ParameterError, match="arc lengths"):
+            small.theta(s_bad)
+        with pytest.raises(ParameterError, match="arc lengths"):
+            small.position(s_bad)
+    # (Brent's relative tolerance underflowed to 0 here: a bare ValueError; now floored)
+    assert el.tip_force_closed_form(1.0, 1.0, 3.0, 1e-310).tip_rotation == pytest.approx(
+        -1.2245236055, rel=1e-9)

@@ -314,3 +314,28 @@ def test_the_check_measures_the_figure_as_its_png_is_saved(tmp_path, monkeypatch
     assert saved[0].shape == saved[1].shape
     assert np.abs(saved[0] - saved[1]).max() < 0.05  # same layout, same box
     assert json.loads((tmp_path / "a.json").read_text())["offences"] == []
+
+
+@pytest.mark.parametrize("rc", [{"figure.constrained_layout.use": True},
+                                {"figure.autolayout": True}])
+def test_save_figure_under_a_users_layout_rc(tmp_path, rc):
+    """An outside review: with a user's rc asking for a layout engine, savefig put "no
+    engine" back by reading the rc, installed the rc's engine mid-save and failed on a colorbar
+    (RuntimeError) or re-laid the figure out. Now as plain savefig(bbox_inches="tight"), and
+    the figure keeps its own engine."""
+    with plt.rc_context(rc):
+        for layout in ("tight", "constrained"):
+            def make(layout: str = layout):
+                fig, axs = plt.subplots(1, 2, layout=layout)
+                fig.colorbar(axs[0].imshow(np.zeros((3, 3))), ax=axs[0], label="value [-]")
+                axs[1].set_ylabel("long label [m]")
+                fig.suptitle("title")
+                return fig
+
+            fig = make()
+            engine = type(fig.get_layout_engine())
+            save_figure(fig, tmp_path / "a.pdf", tmp_path / "a.png")
+            assert type(fig.get_layout_engine()) is engine
+            make().savefig(tmp_path / "b.png", bbox_inches="tight", metadata={"Software": None})
+            a, b = (plt.imread(tmp_path / f"{n}.png") for n in "ab")
+            assert a.shape == b.shape and np.array_equal(a, b)

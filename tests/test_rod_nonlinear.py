@@ -530,3 +530,6 @@ def test_the_nonlinear_rods_public_functions_refuse_bad_input_before_any_work():
     for call, match in cases:
         with pytest.raises(ParameterError, match=match):
             call()
+    # ... and a load as a 0-d numpy array (numpy's reductions return them) is still a load
+    f = m.rhs_at(np.array(5.5))
+    assert np.array_equal(f(0.0, y + 0.01), m.rhs_at(5.5)(0.0, y + 0.01))

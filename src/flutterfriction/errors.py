@@ -23,7 +23,11 @@ class ConvergenceError(RuntimeError):
 
 
 def check_real(name: str, value: object) -> float:
-    """Return ``value`` as a finite float, or raise :class:`ParameterError` naming ``name``."""
+    """Return ``value`` as a finite float, or raise :class:`ParameterError` naming ``name``.
+    A real number, or a 0-d numpy array of one (as numpy's reductions return)."""
+    if type(value).__name__ == "ndarray" and getattr(value, "ndim", None) == 0 \
+            and value.dtype.kind in "iuf":
+        value = value.item()
     if isinstance(value, bool) or not isinstance(value, Real):
         raise ParameterError(f"{name} must be a real number, got {value!r}")
     try:

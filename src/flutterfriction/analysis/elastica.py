@@ -440,23 +440,32 @@ def _stable_root(length: float, B: float, loads: ElasticaLoads, fP: NDArray, g: 
             "Euler loads)")
     side = math.copysign(1.0, last) if abs(last) > _SIDE_FROM_PATH else None
     if side is None:
-        # Still nearly straight: the side of the linear response (Newton's tolerance on
-        # theta(0) leaves theta(l) noise of either sign near the Euler load, ~tol/|d theta(0)/
-        # d theta(l)|: P2 = 1e-13 B/l^2 at 1.2 Euler loads ended on the wrong side)
-        z = _integrate_from_tip(0.0, 1e-6 * fP, 1e-6 * g, rtol).y[:, -1]
-        start = -z[0] / z[4]  # the linear end rotation at a load factor of 1e-6
-        transverse = max(abs(fP[1]), abs(g[1]))
-        # The side, relative to the transverse loads themselves (an absolute threshold refused
-        # P2 = 1e-12 B/l^2 as "no transverse load"; an outside audit)
-        if transverse == 0.0:
+        # Still nearly straight: the side the transverse loads push the rod to (Newton's
+        # tolerance on theta(0) leaves theta(l) noise of either sign near the Euler load,
+        # ~tol/|d theta(0)/d theta(l)|: P2 = 1e-13 B/l^2 at 1.2 Euler loads ended on the wrong
+        # side; an absolute threshold on the linear response refused P2 = 1e-12 at the Euler
+        # load as "no transverse load"; outside audits)
+        if loads.P2 == 0.0 and loads.q2 == 0.0:
             raise ConvergenceError(
                 f"{failure}; with no transverse load (P2 = q2 = 0) a rod past its Euler load "
                 "may buckle to either side: give a transverse load to choose one")
-        if abs(start) <= 1e-9 * 1e-6 * transverse:
+        if (loads.P2 > 0.0 and loads.q2 > 0.0) or (loads.P2 < 0.0 and loads.q2 < 0.0):
+            # The end force (-P2) and the distributed load (q2) push opposite ways: the side is
+            # the sign of their projection on the buckling mode, not of the linear end
+            # rotation (they differ for q2 l / P2 in ~(2.75, 3) at 20 Euler loads; an
+            # outside review), and is not computed here
+            raise ConvergenceError(
+                f"{failure}; the transverse loads push opposite ways (P2 = {loads.P2:g} N, q2 "
+                f"= {loads.q2:g} N/m) on a rod still straight, so the side it buckles to is "
+                "not determined here: give larger transverse loads (the loading path then "
+                "bends the rod before the Euler load) or one of them")
+        # one transverse load, or both pushing the same way: the linear response's side
+        z = _integrate_from_tip(0.0, 1e-6 * fP, 1e-6 * g, rtol).y[:, -1]
+        start = -z[0] / z[4]  # the linear end rotation at a load factor of 1e-6
+        if not (math.isfinite(start) and start != 0.0):
             raise ConvergenceError(
                 f"{failure}; the transverse loads (P2 = {loads.P2:g} N, q2 = {loads.q2:g} "
-                "N/m) balance at first order (their linear end rotation vanishes), so they do not "
-                "choose the side a rod past its Euler load buckles to")
+                "N/m) are too small to choose the side in double precision")
         side = math.copysign(1.0, start)
 
     def residual(t: float) -> float:
@@ -572,7 +581,20 @@ class TipForceElastica:
     varphi0: float  # amplitude at the clamp
     tip_rotation: float  # theta(l) [rad]
 
+    def _check_modulus(self) -> None:
+        """The shape needs Jacobi's elliptic functions at ``m = k^2``; within 1e-9 of 1 (a
+        pulling force near the axis, or loads of ~60 B/l^2 and more) scipy's ``ellipj``
+        switches to a first-order approximation and the shape loses digits (an outside review:
+        theta(l) 1.2e-4 off at 60 B/l^2, 0.02 rad off the axis, while ``tip_rotation``, from
+        the modulus alone, is right to 3e-15): refused there."""
+        if 1.0 - self.k**2 < 1e-9:
+            raise ConvergenceError(
+                f"the closed form's shape needs elliptic functions at a modulus within "
+                f"{1.0 - self.k**2:.1e} of 1, where they lose digits; tip_rotation is exact "
+                "(use solve_shooting for the shape)")
+
     def _parts(self, s: NDArray) -> tuple[NDArray, NDArray]:
+        self._check_modulus()
         m = self.k**2
         c = math.sqrt(self.B / self.R)
         u = ellipkinc(self.varphi0, m) + s / c
@@ -583,15 +605,18 @@ class TipForceElastica:
         return along, across
 
     def position(self, s: ArrayLike) -> NDArray:
-        """``x(s)`` [m], rows ``(x1, x2)``."""
-        s = np.atleast_1d(np.asarray(s, dtype=float))
+        """``x(s)`` [m], rows ``(x1, x2)``; ``s`` finite in ``[0, l]`` (it extrapolated, and
+        NaN gave NaN; an outside audit)."""
+        s = np.atleast_1d(_arclengths(s, self.length))
         along, across = self._parts(s)
         eP = np.array([math.cos(self.phi), math.sin(self.phi)])
         eQ = np.array([-math.sin(self.phi), math.cos(self.phi)])
         return -along[:, None] * eP - self.sigma * across[:, None] * eQ
 
     def theta(self, s: ArrayLike) -> NDArray:
-        s = np.atleast_1d(np.asarray(s, dtype=float))
+        """``theta(s)`` [rad]; ``s`` finite in ``[0, l]``."""
+        self._check_modulus()
+        s = np.atleast_1d(_arclengths(s, self.length))
         m = self.k**2
         u = ellipkinc(self.varphi0, m) + s / math.sqrt(self.B / self.R)
         sn = ellipj(u, m)[0]
@@ -605,6 +630,8 @@ class TipForceElastica:
 #: against shooting at 1e-13: relative error <= 1.5e-11 at 1e-2 rad for |P1| in [0.1, 30]
 #: B/l^2; 6.7e-9 at 1e-3 rad, 1.5e-5 at 1e-6). A pushing force has no such loss (4e-13 at
 #: P2/P1 = 1e-20, the shooting's own tolerance; exact against the beam-column's sec(kl) - 1).
+#: This is the end rotation's accuracy; the shape (``theta(s)``, ``position``) is refused
+#: where its elliptic functions lose digits (:meth:`TipForceElastica._check_modulus`).
 TENSION_OFF_AXIS_MIN = 1e-2
 
 
@@ -648,9 +675,9 @@ def tip_force_closed_form(length: float, B: float, P1: float, P2: float) -> TipF
         raise ConvergenceError("no end rotation below pi solves the elastica's length")
     try:  # to round-off relative to the clamp's angle (an absolute 1e-16 lost the digits
         # of small rotations: 1e-5 relative error at P2/P1 = 1e-11)
-        hl = brentq(arclength, h0, hi, xtol=4 * np.finfo(float).eps * h0,
+        hl = brentq(arclength, h0, hi, xtol=max(4 * np.finfo(float).eps * h0, 1e-300),
                     rtol=4 * np.finfo(float).eps, maxiter=200)
-    except RuntimeError as exc:
+    except (RuntimeError, ValueError) as exc:
         raise ConvergenceError(f"the closed form's end rotation: {exc}") from None
     k = math.sin(hl / 2)
     varphi0 = math.asin(min(1.0, math.sin(h0 / 2) / k))

@@ -177,16 +177,19 @@ def save_figure(fig: Figure, *paths: str | os.PathLike, draft: bool = False,
             fig.set_dpi(shown_dpi)
         try:
             # laid out above; every format renders that layout (no engine at all: with
-            # "none"'s placeholder engine, savefig would still draw once before rendering)
+            # "none"'s placeholder engine, savefig would still draw once before rendering).
+            # The rc holds no engine for the saves too: savefig puts "no engine" back with
+            # set_layout_engine(None), which reads the rc (a user's constrained_layout.use
+            # installed one there; an outside review)
             with plt.rc_context({"figure.autolayout": False,
                                  "figure.constrained_layout.use": False}):
                 fig.set_layout_engine(None)
-            for path in map(Path, paths):
-                fmt = path.suffix.lstrip(".")
-                meta = {"CreationDate": None} if fmt == "pdf" else {"Software": None}
-                with atomic_path(path) as tmp:
-                    fig.savefig(tmp, format=fmt, metadata=meta,
-                                bbox_inches=box if fmt == "png" else "tight")
+                for path in map(Path, paths):
+                    fmt = path.suffix.lstrip(".")
+                    meta = {"CreationDate": None} if fmt == "pdf" else {"Software": None}
+                    with atomic_path(path) as tmp:
+                        fig.savefig(tmp, format=fmt, metadata=meta,
+                                    bbox_inches=box if fmt == "png" else "tight")
         finally:
             if engine is not None:
                 fig.set_layout_engine(engine)
