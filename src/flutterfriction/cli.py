@@ -296,7 +296,11 @@ def _limit_cycle_beck(args: argparse.Namespace) -> dict:
     import numpy as np
     from scipy.optimize import brentq
 
-    from flutterfriction.analysis.rod_dynamics import beck_limit_cycle, linearised_flutter_load
+    from flutterfriction.analysis.rod_dynamics import (
+        beck_limit_cycle,
+        check_cycle_load,
+        linearised_flutter_load,
+    )
     from flutterfriction.models.rod import Rod
     from flutterfriction.models.rod_nonlinear import NonlinearRod
 
@@ -353,13 +357,8 @@ def _limit_cycle_beck(args: argparse.Namespace) -> dict:
         P_flu = linearised_flutter_load(rod, args.elements)
     except ParameterError as exc:
         raise ParameterError(f"--D, --kappa, --tip-mass: {exc}") from None
+    check_cycle_load(rod, args.P, args.elements, "--P", P_flu)
     P_top = BECK_LOAD_MAX * P_flu
-    if not P_flu < args.P <= P_top:
-        raise ParameterError(
-            f"--P must be in ({P_flu:.6g}, {P_top:.6g}] N: above the damped flutter load "
-            f"P_flu = {P_flu:.6g} N of the linearised rod ({args.elements} elements; below it "
-            f"the straight rod is stable and small motions decay) and at most "
-            f"{BECK_LOAD_MAX:g} P_flu, got {args.P!r}")
     Minv = np.linalg.inv(M)
     n = M.shape[0]
 

@@ -185,11 +185,7 @@ def beck_limit_cycle(rod: Rod, P: float, n_elements: int = 8, method: str = "BDF
     model = NonlinearRod(rod, n_elements)
     # The load where a cycle exists and is reached in reasonable time, as the scene and the
     # command line check it (an outside audit: 30 N on list 119 ran for minutes here)
-    P_flu = linearised_flutter_load(rod, n_elements)
-    if not P_flu < P <= CYCLE_LOAD_MAX * P_flu:
-        raise ParameterError(f"P must be in ({P_flu:.6g}, {CYCLE_LOAD_MAX * P_flu:.6g}] N: above "
-                             f"the damped flutter load of the rod linearised on {n_elements} "
-                             f"elements and at most {CYCLE_LOAD_MAX:g} times it, got {P:g}")
+    check_cycle_load(rod, P, n_elements)
     n = model.n_dof
     y = np.zeros(2 * n)
     y[:n] = initial_tip_rotation * np.linspace(0, 1, n + 1)[1:]
@@ -663,6 +659,26 @@ def linearised_flutter_load(rod: Rod, n_elements: int) -> float:
     except ConvergenceError:
         raise ParameterError(f"the linearised rod does not flutter below "
                              f"{40 * 2**8 * rod.load_unit:.4g} N, so no cycle is sought") from None
+
+
+def check_cycle_load(rod: Rod, P: float, n_elements: int, name: str = "P",
+                     P_flu: float | None = None) -> float:
+    """The damped flutter load ``P_flu`` [N] of the rod linearised on ``n_elements``, after
+    refusing (:class:`ParameterError`, naming ``name``) a load ``P`` outside
+    ``(P_flu, CYCLE_LOAD_MAX P_flu]``: below, the straight rod is stable and no cycle exists;
+    far above, the stiff integrations run for minutes (outside audits: 1e6 N, 30 N). The one
+    check of the cycle solvers, the beck_limit_cycle scene and the command line (which passes
+    ``P_flu``, computed already)."""
+    if P_flu is None:
+        P_flu = linearised_flutter_load(rod, n_elements)
+    P_top = CYCLE_LOAD_MAX * P_flu
+    if not P_flu < P <= P_top:
+        raise ParameterError(
+            f"{name} must be in ({P_flu:.6g}, {P_top:.6g}] N: above the damped flutter load "
+            f"P_flu = {P_flu:.6g} N of the rod linearised on {n_elements} elements (below it the "
+            f"straight rod is stable and small motions decay) and at most {CYCLE_LOAD_MAX:g} "
+            f"P_flu, got {P!r}")
+    return P_flu
 
 
 def flutter_mode_start(model: NonlinearRod, P: float, amplitude: float) -> NDArray:

@@ -369,11 +369,10 @@ def _check_cycle_rod(rod: Rod, P: float, n_elements: int, t_max_scales: float | 
     time scales) within ``t_max_scales`` (twice over; not checked if None: no approach is
     awaited), gamma and the tip-mass ratio at most 100, the load in
     (P_flu, CYCLE_LOAD_MAX P_flu] of the rod linearised on ``n_elements``."""
-    from flutterfriction.analysis.rod_dynamics import linearised_flutter_load
+    from flutterfriction.analysis.rod_dynamics import check_cycle_load
     from flutterfriction.models.rod import (
         CYCLE_ATTRACTION_SCALES,
         CYCLE_GAMMA_MAX,
-        CYCLE_LOAD_MAX,
         CYCLE_TIP_MASS_RATIO_MAX,
     )
 
@@ -393,12 +392,7 @@ def _check_cycle_rod(rod: Rod, P: float, n_elements: int, t_max_scales: float | 
         if not value <= limit:
             raise ParameterError(f"{key}: {text} must be <= {limit:g} for the cycle solvers, "
                                  f"got {value:.4g}")
-    P_flu = linearised_flutter_load(rod, n_elements)
-    if not P_flu < P <= CYCLE_LOAD_MAX * P_flu:
-        raise ParameterError(f"P_N must be in ({P_flu:.6g}, {CYCLE_LOAD_MAX * P_flu:.6g}] N: "
-                             f"above the damped flutter load P_flu of the rod linearised on "
-                             f"{n_elements} elements and at most {CYCLE_LOAD_MAX:g} P_flu, "
-                             f"got {P:g}")
+    check_cycle_load(rod, P, n_elements, "P_N")
 
 
 def check_beck_limit_cycle(params: dict[str, Any]) -> None:
