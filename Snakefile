@@ -8,7 +8,9 @@ import yaml
 # One BLAS thread per job: the matrices are small and Snakemake already runs jobs in parallel;
 # two threads per job on two cores made small eigenvalue solves up to 100x slower (measured
 # 1.57 s vs 6 ms for one damped rod spectrum). Results do not depend on it (CI's
-# reproducibility check). Jobs inherit the environment; a user's own setting is kept.
+# reproducibility check). Jobs inherit the environment; a user's own setting is kept. (The
+# variables of flutterfriction.threads.THREAD_VARIABLES, written out: importing the package
+# would load numpy, and BLAS reads them when it loads.)
 for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
     os.environ.setdefault(_var, "1")
 

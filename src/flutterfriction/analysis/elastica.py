@@ -428,10 +428,12 @@ def _stable_root(length: float, B: float, loads: ElasticaLoads, fP: NDArray, g: 
                  last: float = 0.0) -> float:
     """Where the loading path was lost (``last``: its last end rotation), the stable
     equilibrium it leads to: among every root of ``theta(0; theta(l)) = 0`` on :data:`_SCAN`
-    (sign changes, then Newton), the stable ones on the side of ``last`` (or, if the path was
-    still straight, of the linear response at a load factor of 1e-6); of those, the least
-    rotated. A perfect column (no transverse load) past its Euler load has two mirror-image
-    equilibria: refused."""
+    (sign changes, then Newton), the stable ones on the side of ``last`` when the path had
+    bent the rod (above :data:`_SIDE_FROM_PATH`), else on the side the transverse loads push
+    it (the linear response at a load factor of 1e-6); of those, the least rotated. Refused: a
+    perfect column (no transverse load) past its Euler load (two mirror-image equilibria), and
+    a still straight rod under transverse loads pushing opposite ways (the side is their
+    projection on the buckling mode, not computed here)."""
     scale = float(np.max(np.abs(np.r_[fP, g])))
     if scale > _SCAN_LIMIT:
         raise ConvergenceError(
