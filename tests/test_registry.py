@@ -137,6 +137,20 @@ def test_the_registry_does_not_import_the_plotting_code():
         "figure 'toy': a plot function and a caption are required"]
 
 
+
+def test_the_configuration_check_loads_no_compiled_kernels():
+    """Every `snakemake` call checks the whole configuration before any job; the rod cycle's
+    load check linearises the nonlinear rod, which needs no numba (importing it cost ~0.25 s
+    of every call, no-op included, before the first job)."""
+    code = ("import sys, yaml; from flutterfriction.config import validate_config; "
+            "from flutterfriction.registry import SCENES; "
+            "cfg = yaml.safe_load(open('workflow/config.yaml')); "
+            "assert not validate_config(cfg, 'workflow/schemas/config.schema.yaml', "
+            "scenes=SCENES); print('numba' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True, cwd=ROOT).stdout
+    assert out.strip() == "False"
+
 @pytest.mark.slow  # two `snakemake -n` plans (~3 s each)
 def test_the_longest_jobs_start_first_in_both_presets(tmp_path):
     """Snakemake runs the highest priority first: every solve job holding a slow scene (the

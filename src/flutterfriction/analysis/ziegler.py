@@ -6,6 +6,7 @@ nothing here uses the chapter's formulas (19)–(48).
 
 from __future__ import annotations
 
+import functools
 import math
 from fractions import Fraction
 from typing import Any
@@ -203,6 +204,9 @@ def damped_flutter_load(pendulum: ZieglerPendulum, method: str = "routh") -> flo
     return p * pendulum.load_unit
 
 
+# Memoised (the pendulum is a frozen dataclass): the configuration check and the §2.9 scenes
+# ask for the same pendulum's load 3-5 times in one process, ~65 ms each (the exact scan).
+@functools.lru_cache(maxsize=256)
 def damped_divergence_load(pendulum: ZieglerPendulum, method: str = "algebraic") -> float:
     """Divergence load [N] with viscous hinges: the follower load at which the unstable pair
     becomes real. ``method``: ``"algebraic"`` (Routh/Sturm root counts and the resultant of the

@@ -32,7 +32,6 @@ from numpy.typing import NDArray
 
 from flutterfriction.errors import ConvergenceError, ParameterError, check_integer, check_real
 from flutterfriction.models.rod import Rod
-from flutterfriction.models.rod_kernel import jacobians, rhs_one
 
 
 def _integration_matrix(x: NDArray) -> NDArray:
@@ -233,6 +232,8 @@ class NonlinearRod:
     def rhs_at(self, P: float):
         """``f(t, y)``: :meth:`rhs` for one real state at the load ``P`` [N], for an
         integrator's many calls (the compiled kernel with its arguments bound once)."""
+        from flutterfriction.models.rod_kernel import rhs_one  # numba: imported where used
+
         r = self.rod
         args = (check_real("P", P), self.phi, self.w, self.S, self.wg, self.K, self.C, r.rho,
                 r.tip_mass, r.kappa)
@@ -257,6 +258,8 @@ class NonlinearRod:
         (:func:`flutterfriction.models.rod_kernel.jacobian_one`: ~17 us per state at 4
         elements against ~400 us by complex steps on the batched definition, which checks it
         in ``tests/test_rod_nonlinear.py``)."""
+        from flutterfriction.models.rod_kernel import jacobians  # numba: imported where used
+
         r = self.rod
         # C order always: one compiled specialisation (a second layout compiles again, ~4 s)
         Y = np.ascontiguousarray(Y, dtype=float)
