@@ -400,6 +400,10 @@ def test_scenes_that_are_not_a_mapping_are_one_line(config):
         "config: scenes: 'foo' is not of type 'object'"]
 
 
+#: List (119)'s rod with a tip mass M = 3 rho l (tan(alpha) = 3).
+_ROD_TAN_3 = {"length": 0.35, "B": 0.0332, "rho": 0.0546, "D": 7.078e-6, "tip_mass": 0.05733}
+
+
 @pytest.mark.parametrize(("scene", "key", "value", "match"), [
     # P = 100 P*_flu, beyond the damped divergence load: 92 s of integration, then a failure
     ("fig13", "load_factor", 100.0, "scenes.fig13: load_factor must be in (1, 3.79856)"),
@@ -430,6 +434,19 @@ def test_scenes_that_are_not_a_mapping_are_one_line(config):
                                            "m1": 0.1, "m2": 0.1, "m3": 0.0, "k1": 0.2,
                                            "k2": 0.2},
      "scenes.limit_cycle_amplitude: pendulum: a limit cycle needs hinge viscosity"),
+    # a tip mass in the rod of a scene whose tip mass is its own key was silently ignored: the
+    # loads of another rod under your rod's title (an outside audit)
+    ("fig11", "rod", _ROD_TAN_3, "scenes.fig11: rod.tip_mass must be 0 here: fig11 is the Beck "
+                                 "rod, without a tip mass; for a tip mass draw fig12 with "
+                                 "tan_alpha = M/(rho l) = 3; got 0.05733 kg"),
+    ("fig12", "rod", _ROD_TAN_3, "scenes.fig12: rod.tip_mass must be 0 here: fig12 sets the tip "
+                                 "mass by its key tan_alpha = M/(rho l): give tan_alpha: 3"),
+    ("errata_rods", "rod", _ROD_TAN_3, "scenes.errata_rods: rod.tip_mass must be 0 here"),
+    # a ratio out of reach ended in scipy's "f(a) and f(b) must have different signs"
+    ("fig19_theory", "flutter_ratio", 1.5, "scenes.fig19_theory: flutter_ratio must lie in "
+                                           "(0.646986, 1.19003)"),
+    ("fig19_theory", "divergence_ratio", 3.0, "scenes.fig19_theory: divergence_ratio must lie "
+                                              "in ("),
     # (the quick preset's first mesh has 2 elements: its own interval, its own line)
     ("beck_limit_cycle", "P_N", 1.0e6, "scenes.beck_limit_cycle: P_N must be in ("),
     ("beck_limit_cycle", "P_N", 1.0, "scenes.beck_limit_cycle: P_N must be in ("),

@@ -304,3 +304,19 @@ def test_a_pendulum_damped_at_one_hinge_only_is_answered_or_refused_quickly():
     p = ZieglerPendulum(l1=1, l2=1, d=1, h=0, m1=2, m2=1, m3=0, k1=1, k2=1, c1=0.01, c2=0.0)
     star, is_eq54 = damped_flutter_load_star(p)
     assert star == pytest.approx(damped_flutter_load(p, "routh"), rel=1e-14) and not is_eq54
+
+
+def test_shooting_that_stalls_at_round_off_is_a_solution():
+    """An outside audit's own pendulum at 1.5 P_flu: MINPACK stopped with "not making good
+    progress" at a residual of 5e-16 (its xtol 1e-13 out of reach of the integration), and
+    Figs. 13-14 failed. The orbit is the auditor's (their DOP853 integration of eq. (10) with
+    the viscous terms, rtol 1e-12, 250 s: alpha1 0.8520107938819 rad, T 0.9430458153929 s;
+    agreement 5e-12, tolerance 1e-10 relative)."""
+    p = ZieglerPendulum(l1=0.2, l2=0.15, d=0.2, h=0.05, m1=0.3, m2=0.1, m3=0.05, k1=0.5,
+                        k2=0.3, c1=0.004, c2=0.002)
+    P = 1.5 * damped_flutter_load(p, "routh")
+    a0 = np.radians(0.1)
+    cycle = dy.limit_cycle(p, P, np.array([a0, a0, 0.0, 0.0]), tol=1e-8)
+    shot = dy.shoot_periodic_orbit(p, P, cycle)
+    assert shot.alpha1_amplitude_rad == pytest.approx(0.8520107938819, rel=1e-10)
+    assert shot.period_s == pytest.approx(0.9430458153929, rel=1e-10)

@@ -166,7 +166,7 @@ _ENTRIES = [
         "fig19_theory": _fig(
             "ziegler_damped:plot_fig19_theory",
             "Fig. 19's theoretical bars for list (47), and the hinge viscosity inferred from "
-            "the quoted ratios 0.70 and 1.49.")}),
+            "the quoted ratios 0.70 and 1.49.")}, check=ziegler_damped.check_fig19_theory),
     Scene("paradox_map", ziegler_damped.paradox_map, "ziegler_paradox", {"paradox_map": _fig(
         "ziegler_damped:plot_paradox_map",
         "Beyond the chapter: vanishing-viscosity over undamped flutter load against c1/c2 and "
@@ -205,12 +205,12 @@ _ENTRIES = [
     Scene("fig11", rod.fig11, "rods", {"fig11": _fig(
         "rod:plot_fig11",
         "Fig. 11: Re and Im of ω̃ against p for the Beck rod, without and with internal "
-        "damping (list 119): flutter at p = 20.05 and 10.94.")}),
+        "damping (list 119): flutter at p = 20.05 and 10.94.")}, check=rod.check_fig11),
     Scene("fig12", rod.fig12, "rods", {"fig12": _fig(
         "rod:plot_fig12",
         "Fig. 12: the Pflüger rod, side by side as printed (tan α = 1: flutter 16.21 / 7.91, "
         "divergence 34.46 / 34.86) and at the tip-mass ratio tan α = 1.561 that reproduces the "
-        "quoted 16.51 / 7.78 and 30.22 / 30.52 (the erratum).")}),
+        "quoted 16.51 / 7.78 and 30.22 / 30.52 (the erratum).")}, check=rod.check_fig12),
     Scene("rod_fe_convergence", rod.rod_fe_convergence, "rods", {"rod_fe_convergence": _fig(
         "rod:plot_fe_convergence",
         "The finite-element twin: error of the flutter load and pulsation against elements "
@@ -219,7 +219,7 @@ _ENTRIES = [
         "rod:plot_stability_map",
         "Beyond the chapter: flutter and divergence loads against the tip-mass ratio, "
         "undamped and with vanishing internal damping.")}, sweep=rod.ROD_STABILITY_MAP),
-    Scene("errata_rods", rod.errata_rods, "rods"),
+    Scene("errata_rods", rod.errata_rods, "rods", check=rod.check_errata_rods),
     Scene("self_adjoint", rod.self_adjoint, "rods"),
     # §2.9–2.11 Nonlinear dynamics and limit cycles
     Scene("fig13", ziegler_nonlinear.fig13, "limit_cycles", {"fig13": _fig(

@@ -229,6 +229,12 @@ def _converged_cycle(crossings: list[tuple[float, NDArray]], tol: float
     return None
 
 
+#: Shooting's residual bound |phi_T(x0) - x0| (states in the pendulum's time unit), and the
+#: round-off level below which a stalled solve counts as converged (the integrations' rtol is
+#: 1e-12; measured residuals at the solution 5e-16).
+_SHOOTING_RESIDUAL, _SHOOTING_ROUND_OFF = 1e-9, 1e-12
+
+
 def shoot_periodic_orbit(pendulum: ZieglerPendulum, P: float, guess: LimitCycle,
                          H: float = 0.0, rtol: float = 1e-12, atol: float = 1e-14) -> LimitCycle:
     """Periodic orbit by shooting (independent of the transient): unknowns ``(alpha1, alpha2,
@@ -251,8 +257,13 @@ def shoot_periodic_orbit(pendulum: ZieglerPendulum, P: float, guess: LimitCycle,
 
     z0 = np.array([x_guess[0], x_guess[1], x_guess[3], guess.period_s])
     res = root(residual, z0, method="hybr", options={"xtol": 1e-13})
-    if not res.success or np.max(np.abs(res.fun)) > 1e-9:
-        raise ConvergenceError(f"shooting did not converge: {res.message}")
+    worst = float(np.max(np.abs(res.fun)))
+    # MINPACK's "not making good progress" also ends a solve that sits at the integration's
+    # round-off, its steps below xtol out of reach: a residual there is a solution (an outside
+    # audit's own pendulum: residual 5e-16 reported as failed, at 1.2 and 1.5 P_flu)
+    if not (worst <= _SHOOTING_RESIDUAL and (res.success or worst <= _SHOOTING_ROUND_OFF)):
+        raise ConvergenceError(f"shooting did not converge: {res.message.strip()} "
+                               f"(residual {worst:.3g}, bound {_SHOOTING_RESIDUAL:g})")
     x0 = np.array([res.x[0], res.x[1], 0.0, res.x[2]])
     a1, a2 = _amplitudes(pendulum, P, H, x0, res.x[3], "DOP853", rtol, atol)
     cycle = LimitCycle(a1, a2, float(res.x[3]), tuple(float(v) for v in x0), 0.0, 0)

@@ -33,6 +33,44 @@ def _rod(params: dict[str, Any]) -> Rod:
     return Rod(**r)
 
 
+#: The scenes whose tip mass is their own key (or none), as :func:`_rod_of_groups` says.
+_TIP_MASS_SET_BY = {
+    "fig11": "fig11 is the Beck rod, without a tip mass; for a tip mass draw fig12 with "
+             "tan_alpha = M/(rho l) = {t:.6g}",
+    "fig12": "fig12 sets the tip mass by its key tan_alpha = M/(rho l): give tan_alpha: "
+             "{t:.6g} instead",
+    "errata_rods": "errata_rods scans tan(alpha) = M/(rho l) itself",
+}
+
+
+def _rod_of_groups(params: dict[str, Any], scene: str) -> Rod:
+    """The rod of a scene that takes only its groups eta, gamma (eq. 106) and its load unit
+    from it, its tip mass being set otherwise (:data:`_TIP_MASS_SET_BY`): a ``rod.tip_mass``
+    there is refused, not ignored (an outside audit got Fig. 12's fitted loads, 16.51 ...,
+    under the title of its own rod with tan(alpha) = 3)."""
+    rod = _rod(params)
+    if rod.tip_mass != 0:
+        t = rod.groups().tan_alpha
+        raise ParameterError(f"rod.tip_mass must be 0 here: "
+                             f"{_TIP_MASS_SET_BY[scene].format(t=t)}; got {rod.tip_mass!r} kg")
+    return rod
+
+
+def check_fig11(params: dict[str, Any]) -> None:
+    """Fig. 11's rod as :func:`fig11` refuses it (the configuration check)."""
+    _rod_of_groups(params, "fig11")
+
+
+def check_fig12(params: dict[str, Any]) -> None:
+    """Fig. 12's rod as :func:`fig12` refuses it (the configuration check)."""
+    _rod_of_groups(params, "fig12")
+
+
+def check_errata_rods(params: dict[str, Any]) -> None:
+    """The erratum's rod as :func:`errata_rods` refuses it (the configuration check)."""
+    _rod_of_groups(params, "errata_rods")
+
+
 def _fe_n(params: dict[str, Any]) -> int:
     n = params.get("fe_elements", 32)
     if isinstance(n, bool) or not isinstance(n, int) or n < 2:
@@ -50,8 +88,8 @@ def _loads_quantities(prefix: str, g: RodGroups, n_fe: int) -> tuple[dict, ar.Ro
     return q, exact
 
 
-def _branch_scene(params: dict[str, Any], tan_alpha: float) -> dict[str, Any]:
-    rod = _rod(params)
+def _branch_scene(params: dict[str, Any], tan_alpha: float, scene: str) -> dict[str, Any]:
+    rod = _rod_of_groups(params, scene)
     g_damped = RodGroups(tan_alpha=tan_alpha, eta=rod.groups().eta, gamma=rod.groups().gamma)
     g_undamped = RodGroups(tan_alpha=tan_alpha)
     p_max = check_positive("p_max", params.get("p_max", 35.0))
@@ -82,7 +120,7 @@ def fig11(params: dict[str, Any]) -> dict[str, Any]:
     """Beck rod (no tip mass), list (119): branches of omega~ against p, undamped and with
     internal damping; flutter at 20.05 and 10.94 (§2.7)."""
     take(params, {"rod", "p_max", "n_points", "n_modes", "fe_elements", "P_N"})
-    return _branch_scene(params, 0.0)
+    return _branch_scene(params, 0.0, "fig11")
 
 
 #: Fig. 12's caption: "with tan(alpha) = M/(rho l) = 1"; its quoted loads need tan(alpha) ~ 1.561.
@@ -101,7 +139,7 @@ def fig12(params: dict[str, Any]) -> dict[str, Any]:
     """
     take(params, {"rod", "tan_alpha", "p_max", "n_points", "n_modes", "fe_elements", "P_N",
                    "stated_tan_alpha"})
-    out = _branch_scene(params, check_nonnegative("tan_alpha", params["tan_alpha"]))
+    out = _branch_scene(params, check_nonnegative("tan_alpha", params["tan_alpha"]), "fig12")
     stated = check_nonnegative("stated_tan_alpha",
                                params.get("stated_tan_alpha", FIG12_STATED_TAN_ALPHA))
     rod = _rod(params)
@@ -145,7 +183,7 @@ def errata_rods(params: dict[str, Any]) -> dict[str, Any]:
     """Fig. 12's quoted loads (16.51, 30.22, 7.78, 30.52) against the stated tan(alpha) = 1, and
     the interval of tan(alpha) that reproduces all four to their printed digits."""
     take(params, {"rod", "stated_tan_alpha", "quoted", "bracket"})
-    rod = _rod(params)
+    rod = _rod_of_groups(params, "errata_rods")
     eta = rod.groups().eta
     stated = check_positive("stated_tan_alpha", params.get("stated_tan_alpha", 1.0))
     quoted = params["quoted"]  # {p_flu_undamped, p_div_undamped, p_flu_damped, p_div_damped}
