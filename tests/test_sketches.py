@@ -6,6 +6,7 @@ import math
 
 import matplotlib
 import pytest
+from conftest import ROOT
 
 from flutterfriction.errors import ParameterError
 from flutterfriction.parameters import LIST_47, LIST_119
@@ -78,3 +79,41 @@ def test_the_sketches_draw():
                 plot_fig23(fig23({}))):
         assert fig._suptitle is not None or fig.axes[0].get_title().startswith("Fig.")
         fig.savefig(__import__("io").BytesIO(), format="png", dpi=40)
+
+
+#: Pendulums of one's own (outside audit): d = l1 (B = D, as eq. 46's), d = 3 l1 / 4 (m1 under
+#: alpha1), h = 0 (B = D = E), a long l1, a long l2. With the chapter's label places their
+#: sketches failed the figure check (overlapping labels) and ended the run red.
+OWN_PENDULUMS = [
+    dict(l1=0.2, l2=0.15, d=0.2, h=0.05, m1=0.3, m2=0.1, m3=0.05, k1=0.5, k2=0.3),
+    dict(l1=0.2, l2=0.15, d=0.15, h=0.05, m1=0.3, m2=0.1, m3=0.05, k1=0.5, k2=0.3),
+    dict(l1=0.1, l2=0.1, d=0.1, h=0.0, m1=0.2, m2=0.2, m3=0.0, k1=0.189, k2=0.189),
+    dict(l1=0.3, l2=0.1, d=0.05, h=0.09, m1=0.1, m2=0.5, m3=0.2, k1=1.0, k2=0.2),
+    dict(l1=0.1, l2=0.3, d=0.08, h=0.1, m1=1.0, m2=0.1, m3=0.3, k1=0.3, k2=1.0),
+]
+
+
+@pytest.mark.parametrize("figure", ["fig02", "fig18"])
+def test_the_pendulum_sketches_of_ones_own_pendulum_pass_the_figure_check(figure):
+    import copy
+
+    from flutterfriction.config import load_config, scene_params
+    from flutterfriction.figure_check import check_figure
+    from flutterfriction.registry import figures
+    from flutterfriction.scenes import build_scene
+    from flutterfriction.sources import resolve
+
+    scene, spec = figures()[figure]
+    base = scene_params(load_config(ROOT / "workflow" / "config.yaml"), scene.name)
+    for pendulum in OWN_PENDULUMS:
+        params = copy.deepcopy(base) | {"pendulum": pendulum}
+        plot = spec.plot if callable(spec.plot) else resolve(spec.plot)
+        fig = plot(build_scene(scene.name, params, scene.compute))
+        fig.set_dpi(100)  # as the quick preset saves it (paper: 200; both checked in the run)
+        assert check_figure(fig) == [], pendulum
+        # every point and the loaded end inside the axes (a long l2 ran off Fig. 2's)
+        ax = fig.axes[0]
+        x0, x1 = ax.get_xlim()
+        y0, y1 = ax.get_ylim()
+        assert all(x0 < x < x1 and y0 < y < y1 for line in ax.lines
+                   for x, y in line.get_xydata()), pendulum

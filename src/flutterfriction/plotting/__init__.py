@@ -99,9 +99,9 @@ def list47(data: dict[str, Any], shown: str = "list (47)", short: bool = False) 
 
 
 def list47_viscous(data: dict[str, Any],
-                   shown: str = "list (47), c1 = c2 = 0.006 N m s") -> str:
+                   shown: str = "list (47), c1 = c2 = 0.006 N m s", short: bool = False) -> str:
     """:func:`chapter_list` for the viscous pendulum of §2.10."""
-    return chapter_list(data, "pendulum", "list47_viscous", shown)
+    return chapter_list(data, "pendulum", "list47_viscous", shown, short)
 
 
 def list119(data: dict[str, Any], shown: str = "list (119)") -> str:

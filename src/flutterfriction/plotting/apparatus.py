@@ -14,7 +14,15 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Circle, FancyArrowPatch, Rectangle
 
 from flutterfriction.plotting import list47, own_parameters_note
-from flutterfriction.plotting.pendulum import MASS, ROD, SPRING, draw_ground, draw_pendulum
+from flutterfriction.plotting.pendulum import (
+    MASS,
+    ROD,
+    SPRING,
+    declutter,
+    draw_ground,
+    draw_pendulum,
+    label_at,
+)
 
 FORCE = {"W": "C0", "R": "C2", "P": "C3", "O": "C4"}
 PLATE = "0.82"
@@ -70,7 +78,7 @@ def _top_view(ax: Axes, data: dict[str, Any], s: float) -> None:
     ax.annotate("wheel: axle along BC,\nrolls freely normal to BC", C + r * n,
                 xytext=(x0 - 0.008, 0.045), textcoords="data", fontsize=7.5, ha="right",
                 va="bottom", arrowprops={"arrowstyle": "-", "color": "0.3", "lw": 0.7})
-    ax.annotate("C", C - (r + 0.004) * n, ha="center", va="top", fontsize=10)
+    label_at(ax, "C", C, -(r + 0.004) * n, ha="center", va="top", fontsize=10)
     handles = [Line2D([], [], color=ROD, lw=2, label="rigid rods AB, BC"),
                Line2D([], [], color=SPRING, lw=0.8, label="rotational springs at A, B"),
                Line2D([], [], color=MASS, marker="o", ls="none", mec="k", mew=0.5,
@@ -85,11 +93,14 @@ def _top_view(ax: Axes, data: dict[str, Any], s: float) -> None:
                  f"α2 = {a2:g}°;\nthe plate transmits only the friction along BC "
                  f"(its component normal to BC: {top['force_transverse_to_BC']:.0f} N)",
                  fontsize=8)
+    # the chapter's view; a longer pendulum of one's own widens it, and its height grows
+    # with it, keeping the room under the rods that the key takes (it covered them)
     ax.set_xlim(-0.045, b + 0.125)
-    ax.set_ylim(-0.085, 0.075)
+    ax.set_ylim(0.075 - 0.16 * max(1.0, (b + 0.17) / 0.37), 0.075)
     ax.set_aspect("equal")
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y (horizontal plane) [m]")
+    declutter(ax)
 
 
 def _side_view(ax: Axes, data: dict[str, Any], s: float) -> None:

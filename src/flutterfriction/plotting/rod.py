@@ -353,8 +353,9 @@ def plot_beck_work_precision(data: dict[str, Any]) -> Figure:
                    reverse=True)
     dts = sorted({r["setting"] for r in data["runs"] if r["method"] == "generalized-alpha"},
                  reverse=True)
-    fig.suptitle(f"Nonlinear Beck rod, {list119(data)}, 5.5 N: one return to the Poincaré section "
-                 "near the cycle (dotted: the 0.1% target)\nalong each line: LSODA, BDF, "
+    P_N = (data.get("params") or {}).get("P_N", 5.5)  # (data without parameters: §2.9's)
+    fig.suptitle(f"Nonlinear Beck rod, {list119(data)}, {P_N:g} N: one return to the Poincaré "
+                 "section near the cycle (dotted: the 0.1% target)\nalong each line: LSODA, BDF, "
                  f"Radau at rtol {', '.join(f'{x:g}' for x in rtols)}; generalized-α "
                  f"(ρ∞ = 0.8, second order) at fixed steps "
                  f"{', '.join(f'{x * 1e3:g}' for x in dts)} ms", fontsize=8)

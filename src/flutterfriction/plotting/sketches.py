@@ -68,8 +68,10 @@ def plot_fig01(data: dict[str, Any]) -> Figure:
     ax.set_ylim(-0.2 * L, 0.8 * L)
     ax.set_axis_off()
     ax.legend(loc="upper left", fontsize=8, frameon=False)
-    ax.set_title(f"Two rigid bars, exact kinematics (l1 = l2 = {bars['l1'] * 1e3:.0f} mm, "
-                 f"P = {bars['P']:g} N)", fontsize=9)
+    lengths = (f"l1 = l2 = {bars['l1'] * 1e3:.4g} mm" if bars["l1"] == bars["l2"] else
+               f"l1 = {bars['l1'] * 1e3:.4g} mm, l2 = {bars['l2'] * 1e3:.4g} mm")
+    ax.set_title(f"Two rigid bars, exact kinematics ({lengths}, P = {bars['P']:g} N)",
+                 fontsize=9)
 
     # -- clamped rod, vertical, drawn to scale
     ax = axes[0, 1]

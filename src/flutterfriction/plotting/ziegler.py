@@ -12,7 +12,7 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Arc, Patch
 
 from flutterfriction.plotting import REGIME_COLOURS, list47, pendulum_text
-from flutterfriction.plotting.pendulum import MASS, ROD, draw_pendulum
+from flutterfriction.plotting.pendulum import MASS, ROD, declutter, draw_pendulum, label_at
 
 
 def _shade_regimes(ax, edges: list[float], names: list[str], x_max: float) -> None:
@@ -304,8 +304,8 @@ def plot_fig02(data: dict[str, Any]) -> Figure:
                                 (pts["B"], data["alpha2"], r"$\alpha_2$")):
         ax.add_patch(Arc(centre, 1.2 * L, 1.2 * L, theta1=0, theta2=np.degrees(angle), lw=0.8))
         mid = angle / 2
-        ax.annotate(name, centre + 0.7 * L * np.array([np.cos(mid), np.sin(mid)]),
-                    ha="center", va="center")
+        label_at(ax, name, centre, 0.7 * L * np.array([np.cos(mid), np.sin(mid)]),
+                 ha="center", va="center")
     draw_pendulum(ax, pts, data["masses"], scale=L, loads={"P": 0.45 * L, "H": 0.45 * L},
                   labels=True)
     A, B, C, D, E = (pts[k] for k in "ABCDE")
@@ -314,23 +314,28 @@ def plot_fig02(data: dict[str, Any]) -> Figure:
     # Lengths d = |AD|, l1 = |AB|, h = |BE|, l2 = |BC|, on the upper side of the rods.
     for p, q, nn, off, name in ((A, D, n1, 0.25, "$d$"), (A, B, n1, 0.42, "$l_1$"),
                                 (B, E, n2, 0.2, "$h$"), (B, C, n2, 0.62, "$l_2$")):
-        _dimension(ax, p, q, nn, off * L, name)
+        if np.linalg.norm(q - p) > 0.02 * L:  # h = 0 (eq. 46's pendulum): no length to show
+            _dimension(ax, p, q, nn, off * L, name)
     for name, p, dxy in (("$k_1$", A, (0.1, -0.16)), ("$k_2$", B, (0.1, -0.15)),
                          ("$m_1$", D, (0.06, -0.16)), ("$m_2$", C, (0.15, -0.1)),
                          ("$m_3$", E, (0.13, -0.08))):
-        ax.annotate(name, p + L * np.array(dxy), ha="center", va="center", color="0.2")
+        label_at(ax, name, p, L * np.array(dxy), ha="center", va="center", color="0.2")
     o = np.array([1.75 * L, -0.45 * L])
     ax.annotate("", o + [0.3 * L, 0], o, arrowprops={"arrowstyle": "-|>", "lw": 0.8})
     ax.annotate("", o + [0, 0.3 * L], o, arrowprops={"arrowstyle": "-|>", "lw": 0.8})
     ax.annotate(r"$\mathbf{e}_1$", o + [0.33 * L, 0], va="center")
     ax.annotate(r"$\mathbf{e}_2$", o + [0, 0.33 * L], ha="center")
     ax.set_aspect("equal")
+    # the chapter's proportions, widened for a pendulum of one's own (l2 >> l1 ran off it)
     top = max(p[1] for p in pts.values())
-    ax.set_xlim(-0.5 * L, 2.45 * L)
+    right = max(p[0] for p in pts.values())
+    ax.set_xlim(min(-0.5 * L, min(p[0] for p in pts.values()) - 0.3 * L),
+                max(2.45 * L, right + 0.75 * L))
     ax.set_ylim(-0.55 * L, top + 0.45 * L)
     ax.set_axis_off()
     ax.set_title("The Ziegler double pendulum (follower load P parallel to BC, dead load H "
                  "parallel to $\\mathbf{e}_1$)", fontsize=8)
+    declutter(ax)
     return fig
 
 

@@ -9,7 +9,7 @@ import numpy as np
 from matplotlib.collections import LineCollection
 from matplotlib.figure import Figure
 
-from flutterfriction.plotting import list47_viscous, pendulum_text
+from flutterfriction.plotting import list47_viscous, own_parameters_note, pendulum_text
 
 
 def time_coloured(ax, x, y, t, lw=0.8):
@@ -124,10 +124,14 @@ def plot_fig20(data: dict[str, Any]) -> Figure:
         ax.set_ylabel(r"transverse acceleration of C [m/s$^2$]")
     ax1.legend(fontsize=7, loc="upper left", ncol=2)  # lower left, it hid the first peaks
     a0 = data.get("alpha0_deg", 0.5)  # (data from before the key was stored: the default)
-    fig.suptitle(f"Fig. 20: {list47_viscous(data)}, P = {data['P']:.3f} N (middle of "
-                 f"the flutter interval {data['P_flu']:.2f}–{data['P_div']:.2f} N), from "
+    # one's own pendulum in short, its values on a line of their own (in the title's line
+    # they widened the figure to the title's length)
+    note = own_parameters_note(data, "pendulum", "list47_viscous", width=140)
+    fig.suptitle(f"Fig. 20: {list47_viscous(data, short=True)}, P = {data['P']:.3f} N (middle "
+                 f"of the flutter interval {data['P_flu']:.2f}–{data['P_div']:.2f} N), from "
                  f"α1 = α2 = {a0:g}° at rest\nsimulations only: the measured acceleration of "
-                 "the printed figure is an experiment, not reproduced", fontsize=8)
+                 "the printed figure is an experiment, not reproduced"
+                 + (f"\n{note}" if note else ""), fontsize=8)
     ax1.set_title(f"the first {t[-1]:g} s", fontsize=8)
     ax2.set_title(f"detail: the first {tl[-1]:g} s (the linear solution is cut there)",
                   fontsize=8)
@@ -151,10 +155,12 @@ def plot_fig21(data: dict[str, Any]) -> Figure:
     ax2.set_title(f"the scratch on the plate (moving at {data['plate_speed'] * 1000:g} mm/s)",
                   fontsize=8)
     w0, T = data.get("omega0", 0.5), data.get("duration", 2.04)  # (older data: the defaults)
-    fig.suptitle(f"Fig. 21: P = {data['P']:.3f} N (middle of the flutter interval), {T:g} s "
+    note = own_parameters_note(data, "pendulum", "list47_viscous", width=140)
+    fig.suptitle(f"Fig. 21: {list47_viscous(data, short=True)}, P = {data['P']:.3f} N (middle "
+                 f"of the flutter interval), {T:g} s "
                  f"from α1 = α2 = 0 with angular velocities {w0:g} rad/s (computed)\n"
                  "the photo of the scratch and the camera's spots are an experiment, not "
-                 "reproduced", fontsize=8)
+                 "reproduced" + (f"\n{note}" if note else ""), fontsize=8)
     for ax in (ax1, ax2):
         ax.set_xlabel("x [mm]")
         ax.set_ylabel("y [mm]")
