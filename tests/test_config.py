@@ -442,6 +442,11 @@ _ROD_TAN_3 = {"length": 0.35, "B": 0.0332, "rho": 0.0546, "D": 7.078e-6, "tip_ma
     ("fig12", "rod", _ROD_TAN_3, "scenes.fig12: rod.tip_mass must be 0 here: fig12 sets the tip "
                                  "mass by its key tan_alpha = M/(rho l): give tan_alpha: 3"),
     ("errata_rods", "rod", _ROD_TAN_3, "scenes.errata_rods: rod.tip_mass must be 0 here"),
+    # 10^200 as a damping ratio wrote NaN into the data; d/l1 up to 2 failed in the job
+    ("paradox_map", "log10_c_range", [-2.0, 200.0], "scenes.paradox_map: log10_c_range must be "
+                                                    "an increasing range within [-6, 6]"),
+    ("paradox_map", "d_ratio_range", [0.1, 2.0], "scenes.paradox_map: d_ratio_range must be an "
+                                                 "increasing range within [1e-06, 1]"),
     # a ratio out of reach ended in scipy's "f(a) and f(b) must have different signs"
     ("fig19_theory", "flutter_ratio", 1.5, "scenes.fig19_theory: flutter_ratio must lie in "
                                            "(0.646986, 1.19003)"),

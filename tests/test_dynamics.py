@@ -86,6 +86,11 @@ def test_simulate_rejects_bad_input():
         dy.simulate(SEC29, 1.0, [0.0] * 4, -1.0)
     with pytest.raises(ParameterError, match="P"):
         dy.simulate(SEC29, math.nan, [0.0] * 4, 1.0)
+    # an infinite or astronomically long motion ran until killed (an outside audit)
+    with pytest.raises(ParameterError, match="t_end must be finite"):
+        dy.simulate(SEC29, 3.0, [0.01, 0.0, 0.0, 0.0], math.inf)
+    with pytest.raises(ParameterError, match=r"t_end must be in \(0, 1.029e\+04\] s \(100000 time "):
+        dy.simulate(SEC29, 3.0, [0.01, 0.0, 0.0, 0.0], 1e9)
 
 
 def test_tip_acceleration_is_second_derivative_of_position():

@@ -75,3 +75,16 @@ def test_cpu_times_are_timings_not_data():
     kept, timings = split_timings(data)
     assert kept == {"cycle": {"period_s": 0.136}, "runs": [{}]}
     assert merge_timings(kept, timings) == data
+
+
+@pytest.mark.parametrize("bad", [float("nan"), float("inf"), -np.inf, np.float64("nan")])
+def test_write_json_refuses_a_non_finite_number_and_says_where(tmp_path, bad):
+    """Strict JSON (an outside audit found NaN written silently into a scene's data): nothing
+    is written, the old file stays, the message names the file and the place."""
+    path = tmp_path / "d.json"
+    write_json(path, {"ok": 1})
+    with pytest.raises(ValueError, match=r"d\.json: not written: a non-finite number .* at "
+                                         r"cases/1/re/2$"):
+        write_json(path, {"cases": [{}, {"re": np.array([0.0, 1.0, bad])}], "p": 1.0})
+    assert read_json(path) == {"ok": 1}
+    assert os.listdir(tmp_path) == ["d.json"]

@@ -449,3 +449,14 @@ def test_refusals_show_the_value_and_eq118_refuses_non_finite_arguments():
     for p, w in ((math.nan, 1j), (1.0, complex(math.inf, 0.0))):
         with pytest.raises(ParameterError, match="must be finite"):
             characteristic_function(p, w, RodGroups())
+
+
+def test_a_mesh_or_a_load_list_beyond_the_solvers_range_is_refused_before_any_work():
+    """An outside audit: critical_loads(n_elements=10**9) asked numpy for 7.5 GB (a bare
+    MemoryError), branches along 1e7 loads ran for minutes."""
+    from flutterfriction.analysis.rod import MAX_BRANCH_LOADS, branches, critical_loads
+
+    with pytest.raises(ParameterError, match=r"n_elements must be an integer in \[1, 200\]"):
+        critical_loads(RodGroups(), n_elements=10**9)
+    with pytest.raises(ParameterError, match=f"p_values must hold at most {MAX_BRANCH_LOADS}"):
+        branches(RodGroups(), np.linspace(0.0, 10.0, MAX_BRANCH_LOADS + 1))

@@ -56,8 +56,34 @@ def write_text(path: str | os.PathLike, text: str) -> None:
 
 
 def write_json(path: str | os.PathLike, data: Any) -> None:
-    """Atomic JSON write; keys sorted and no timestamps, so reruns give identical files."""
-    write_text(path, json.dumps(data, indent=1, sort_keys=True, default=_default) + "\n")
+    """Atomic strict JSON write; keys sorted and no timestamps, so reruns give identical files.
+
+    A NaN or an infinity is refused (:class:`ValueError` naming the file and where in the
+    data), nothing is written: JSON has no such numbers, and a non-finite result is a
+    failure, not data (an outside audit found 210 NaN written silently into a scene's data)."""
+    try:
+        text = json.dumps(data, indent=1, sort_keys=True, default=_default, allow_nan=False)
+    except ValueError:
+        raise ValueError(f"{path}: not written: a non-finite number (NaN or inf) at "
+                         f"{_non_finite_at(data) or 'an entry'}") from None
+    write_text(path, text + "\n")
+
+
+def _non_finite_at(data: Any, where: str = "") -> str | None:
+    """The path (``key/3/key``) of the first NaN or infinity in ``data``, else None."""
+    if isinstance(data, np.ndarray | list | tuple):
+        items = enumerate(data.tolist() if isinstance(data, np.ndarray) else data)
+    elif isinstance(data, dict):
+        items = ((k, data[k]) for k in sorted(data, key=str))
+    else:
+        value = data.item() if isinstance(data, np.generic) else data
+        bad = isinstance(value, float) and value - value != 0
+        return (where or "the top level") if bad else None
+    for key, value in items:
+        found = _non_finite_at(value, f"{where}/{key}" if where else str(key))
+        if found:
+            return found
+    return None
 
 
 def read_json(path: str | os.PathLike) -> Any:

@@ -170,7 +170,8 @@ _ENTRIES = [
     Scene("paradox_map", ziegler_damped.paradox_map, "ziegler_paradox", {"paradox_map": _fig(
         "ziegler_damped:plot_paradox_map",
         "Beyond the chapter: vanishing-viscosity over undamped flutter load against c1/c2 and "
-        "the mass distribution, with the curve where the paradox vanishes.")}),
+        "the mass distribution, with the curve where the paradox vanishes.")},
+          check=ziegler_damped.check_paradox_map),
     Scene("damped_dead_load", ziegler_damped.damped_dead_load, "ziegler_paradox"),
     Scene("errata_damped", ziegler_damped.errata_damped, "ziegler_paradox"),
     # §2.5–2.8 The Beck and Pflüger rods

@@ -18,7 +18,13 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import root
 
 from flutterfriction.analysis.events import from_the_section
-from flutterfriction.errors import ConvergenceError, ParameterError, check_finite_array, check_real
+from flutterfriction.errors import (
+    ConvergenceError,
+    ParameterError,
+    check_finite_array,
+    check_positive,
+    check_real,
+)
 from flutterfriction.models.ziegler import ZieglerPendulum
 
 _PARAM_NAMES = "l1 l2 d h m1 m2 m3 k1 k2 c1 c2 P H"
@@ -62,13 +68,25 @@ def _checked_start(P: float, H: float, state0: ArrayLike) -> tuple[float, float,
     return P, H, check_finite_array("state0", state0, (4,),
                                     "4 finite numbers [a1, a2, a1_dot, a2_dot]")
 
+#: The longest motion :func:`simulate` integrates, in the pendulum's time unit tau =
+#: l2 sqrt(m2/k2) (eq. 17): 1e4 tau take ~10 s of work (§2.9's cycle, DOP853 at rtol 1e-10),
+#: so this bounds one call to minutes; the §2.9 scenes stay within 1e4.
+SIMULATE_MAX_TIME_UNITS = 1e5
+
+
 def simulate(pendulum: ZieglerPendulum, P: float, state0: ArrayLike, t_end: float,
              t_eval: ArrayLike | None = None, H: float = 0.0, method: str = "DOP853",
              rtol: float = 1e-10, atol: float = 1e-12, **kwargs):
-    """Integrate eq. (10) from ``state0 = [alpha1, alpha2, alpha1_dot, alpha2_dot]``."""
+    """Integrate eq. (10) from ``state0 = [alpha1, alpha2, alpha1_dot, alpha2_dot]`` over
+    ``(0, t_end]``, ``t_end`` [s] at most :data:`SIMULATE_MAX_TIME_UNITS` time units of the
+    pendulum (refused beyond, and infinite: an outside audit's ``t_end = inf`` ran until
+    killed)."""
     P, H, x0 = _checked_start(P, H, state0)
-    if not t_end > 0:
-        raise ParameterError(f"t_end must be > 0, got {t_end}")
+    t_end = check_positive("t_end", t_end, "s")
+    limit = SIMULATE_MAX_TIME_UNITS * time_unit(pendulum)
+    if t_end > limit:
+        raise ParameterError(f"t_end must be in (0, {limit:.4g}] s ({SIMULATE_MAX_TIME_UNITS:g} "
+                             f"time units l2 sqrt(m2/k2) of this pendulum), got {t_end:g}")
     if method in ("Radau", "BDF", "LSODA"):  # implicit: give them the analytic Jacobian
         kwargs["jac"] = lambda t, x: jacobian(pendulum, x, P, H)
     sol = solve_ivp(lambda t, x: pendulum.equations_of_motion(x, P, H, check=False),

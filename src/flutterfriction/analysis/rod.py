@@ -775,6 +775,8 @@ def critical_loads(g: RodGroups, p_max: float = 80.0, n_elements: int | None = N
     p_max = _check_p_max(p_max)
     step = _check_step(step, p_max)
     check_groups(g)
+    if n_elements is not None:  # (10**9 asked numpy for 7.5 GB; an outside audit)
+        _check_mesh(n_elements)
     n_el = _scan_elements(p_max) if n_elements is None else n_elements
     delta = _damping(g)
     g_scan = g
@@ -866,6 +868,10 @@ def continue_critical_loads(g: RodGroups, previous: RodCriticalLoads) -> RodCrit
 
 
 # ---------------------------------------------------------------------- branches (Figs. 11, 12)
+#: Most loads :func:`branches` continues along, in one call (~1 ms a load: a minute or two).
+MAX_BRANCH_LOADS = 100_000
+
+
 def branches(g: RodGroups, p_values: NDArray, n_modes: int = 2,
              n_elements: int = 16) -> NDArray:
     """Eigenvalue branches ``omega~(p)`` continued along ``p_values``, shape (len(p), 2 n_modes).
@@ -880,6 +886,9 @@ def branches(g: RodGroups, p_values: NDArray, n_modes: int = 2,
     if p_values.ndim != 1 or p_values.size == 0:
         raise ParameterError(f"p_values must be a non-empty 1-d array of loads, got shape "
                              f"{p_values.shape}")
+    if p_values.size > MAX_BRANCH_LOADS:  # (1e7 loads ran for minutes; an outside audit)
+        raise ParameterError(f"p_values must hold at most {MAX_BRANCH_LOADS} loads (~1 ms "
+                             f"each), got {p_values.size}")
     for p in p_values:
         _check_load(p, "p_values")
     _check_mesh(n_elements, n_modes)

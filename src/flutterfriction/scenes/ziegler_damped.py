@@ -23,7 +23,7 @@ from flutterfriction.analysis.ziegler import (
 )
 from flutterfriction.closed_forms import ziegler as cf
 from flutterfriction.closed_forms import ziegler_damped as cfd
-from flutterfriction.errors import ParameterError, check_positive
+from flutterfriction.errors import ParameterError, check_positive, check_real
 from flutterfriction.models.ziegler import ZieglerPendulum
 from flutterfriction.scenes.common import n_points, pendulum_of, quantity, take
 
@@ -210,6 +210,40 @@ def fig19_theory(params: dict[str, Any]) -> dict[str, Any]:
 
 
 # ---------------------------------------------------------------------- paradox map
+def _map_range(params: dict[str, Any], key: str, default: list[float], lo: float, hi: float,
+               what: str) -> list[float]:
+    """An increasing range ``[a, b]`` of ``params[key]`` within ``[lo, hi]``."""
+    r = params.get(key, default)
+    if not (isinstance(r, list) and len(r) == 2):
+        raise ParameterError(f"{key} must be a list of two numbers [a, b], got {r!r}")
+    a, b = (check_real(key, v) for v in r)
+    if not lo <= a < b <= hi:
+        raise ParameterError(f"{key} must be an increasing range within [{lo:g}, {hi:g}] "
+                             f"({what}), got {r}")
+    return [a, b]
+
+
+def _paradox_map_ranges(params: dict[str, Any]) -> tuple[list[float], ...]:
+    """The map's ranges, within the pendulum model's (an outside audit: log10_c_range up to
+    200 wrote NaN into the data): the damping ratio c1/c2 and m1/m2 within the model's ratios
+    10^+-RATIO_DECADES, d/l1 in (0, 1] (D on the rod AB)."""
+    from flutterfriction.models.ziegler import RATIO_DECADES
+
+    decades = f"the model's ratios 10^-{RATIO_DECADES} ... 10^{RATIO_DECADES}"
+    lc = _map_range(params, "log10_c_range", [-2.0, 2.0], -RATIO_DECADES, RATIO_DECADES,
+                    f"log10 of c1/c2, {decades}")
+    lm = _map_range(params, "log10_mass_ratio_range", [-1.0, 1.0], -RATIO_DECADES,
+                    RATIO_DECADES, f"log10 of m1/m2, {decades}")
+    yd = _map_range(params, "d_ratio_range", [0.1, 1.0], 10.0**-RATIO_DECADES, 1.0,
+                    "d/l1: D on the rod AB")
+    return lc, lm, yd
+
+
+def check_paradox_map(params: dict[str, Any]) -> None:
+    """The map's ranges as :func:`paradox_map` refuses them (the configuration check)."""
+    _paradox_map_ranges(params)
+
+
 def paradox_map(params: dict[str, Any]) -> dict[str, Any]:
     """lim_{eps->0} P*_flu / P_flu(undamped) over the damping ratio c1/c2 and the mass
     distribution (m1/m2 with d = l1; d/l1 with m1 = m2), from the closed form, verified by
@@ -220,9 +254,7 @@ def paradox_map(params: dict[str, Any]) -> dict[str, Any]:
     n = int(params.get("n_grid", 81))
     if n < 5:
         raise ParameterError(f"n_grid must be >= 5, got {n}")
-    lc = np.linspace(*params.get("log10_c_range", [-2.0, 2.0]), n)
-    lm = np.linspace(*params.get("log10_mass_ratio_range", [-1.0, 1.0]), n)
-    yd = np.linspace(*params.get("d_ratio_range", [0.1, 1.0]), n)
+    lc, lm, yd = (np.linspace(*r, n) for r in _paradox_map_ranges(params))
 
     def ratio(p: ZieglerPendulum, c: float) -> float:
         g = p.groups()
