@@ -89,7 +89,8 @@ def test_simulate_rejects_bad_input():
     # an infinite or astronomically long motion ran until killed (an outside audit)
     with pytest.raises(ParameterError, match="t_end must be finite"):
         dy.simulate(SEC29, 3.0, [0.01, 0.0, 0.0, 0.0], math.inf)
-    with pytest.raises(ParameterError, match=r"t_end must be in \(0, 1.029e\+04\] s \(100000 time "):
+    with pytest.raises(ParameterError,
+                       match=r"t_end must be in \(0, 1.029e\+04\] s \(100000 time "):
         dy.simulate(SEC29, 3.0, [0.01, 0.0, 0.0, 0.0], 1e9)
 
 
