@@ -113,29 +113,34 @@ class Rod:
     @property
     def time_scale(self) -> float:
         """``T = l^2 sqrt(rho/B)`` [s]: t = T tau (eq. 106)."""
-        return power_product((self.length, 2), (self.rho, 0.5), (self.B, -0.5))
+        return power_product((self.length, 2), (self.rho, 0.5), (self.B, -0.5),
+                             name="length, rho, B: the time scale l^2 sqrt(rho/B)")
 
     @property
     def load_unit(self) -> float:
         """``B/l^2`` [N]: P = p B/l^2 (eq. 106)."""
-        return power_product((self.B, 1), (self.length, -2))
+        return power_product((self.B, 1), (self.length, -2),
+                             name="B, length: the load unit B/l^2")
 
     def groups(self) -> RodGroups:
         """Eq. (106)."""
         return RodGroups(
-            tan_alpha=power_product((self.tip_mass, 1), (self.rho, -1), (self.length, -1)),
-            eta=power_product((self.D, 1), (self.B, -0.5), (self.rho, -0.5), (self.length, -2)),
+            tan_alpha=power_product((self.tip_mass, 1), (self.rho, -1), (self.length, -1),
+                                    name="tip_mass: tan(alpha) = M/(rho l)"),
+            eta=power_product((self.D, 1), (self.B, -0.5), (self.rho, -0.5), (self.length, -2),
+                              name="D: eta = D/(B l^2) sqrt(B/rho)"),
             gamma=power_product((self.kappa, 1), (self.length, 2), (self.rho, -0.5),
-                                (self.B, -0.5)))
+                                (self.B, -0.5), name="kappa: gamma = kappa l^2/sqrt(rho B)"))
 
 
-def power_product(*factors: tuple[float, float]) -> float:
+def power_product(*factors: tuple[float, float], name: str = "power_product") -> float:
     """``prod x**a`` over ``(x, a)``, ``x >= 0``, ``a`` in {±1/2, ±1, ±2}, with no overflow or
     underflow on the way: each ``x`` is split into its mantissa and binary exponent
     (``math.frexp``), the mantissas multiplied (a product of numbers in [1/2, 2)) and the
     exponents added, so that ``l^2 = 1e-320`` (a subnormal: digits lost) or
     ``rho/B = 1e400`` (an overflow) never occur when the result itself is a normal float
-    (eq. 106's groups and units of extreme SI input). Exact to a few ulps."""
+    (eq. 106's groups and units of extreme SI input). Exact to a few ulps. ``name``: the
+    parameters and the group, for the refusal of a result outside the normal double range."""
     mantissa, exponent = 1.0, 0
     for x, a in factors:
         if x == 0:
@@ -149,15 +154,16 @@ def power_product(*factors: tuple[float, float]) -> float:
         mantissa, shift = math.frexp(mantissa * m ** int(a))
         exponent += shift + e * int(a)
     if exponent > sys.float_info.max_exp:
-        raise ParameterError(f"the product of {[x for x, _ in factors]} to the powers "
-                             f"{[a for _, a in factors]} exceeds the double range (2^{exponent})")
+        raise ParameterError(f"{name} is beyond the double range (2^{exponent}; the "
+                             f"product of {[x for x, _ in factors]} to the powers "
+                             f"{[a for _, a in factors]}): rescale the input")
     if exponent < sys.float_info.min_exp:
         # A non-zero product below the normal range would round to a subnormal or to 0: a
         # damping group of 0 turns the vanishing-damping answer (10.94) into the undamped one
         # (20.05) without a sign.
-        raise ParameterError(f"the product of {[x for x, _ in factors]} to the powers "
-                             f"{[a for _, a in factors]} is below the normal double range "
-                             f"(2^{exponent}): rescale the input")
+        raise ParameterError(f"{name} is below the normal double range (2^{exponent}; the "
+                             f"product of {[x for x, _ in factors]} to the powers "
+                             f"{[a for _, a in factors]}): rescale the input")
     return math.ldexp(mantissa, exponent)
 
 
