@@ -83,7 +83,7 @@ def test_plot_draws_stability_and_the_chapter_cycle():
 
 
 @pytest.mark.parametrize(("over", "match"), [
-    ({"check_loads": [1.0]}, r"^check load 1.0 N is outside the branch \(2\.94"),
+    ({"check_loads": [1.0]}, r"^check_loads: 1 N is outside the branch \(2\.94"),
     ({"P_max": 1.0}, r"^P_max = 1.0 N must be above the damped flutter load 2\.94"),
 ])
 def test_loads_off_the_branch_are_refused_before_it_is_computed(over, match):

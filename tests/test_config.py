@@ -442,6 +442,17 @@ _ROD_TAN_3 = {"length": 0.35, "B": 0.0332, "rho": 0.0546, "D": 7.078e-6, "tip_ma
     ("fig12", "rod", _ROD_TAN_3, "scenes.fig12: rod.tip_mass must be 0 here: fig12 sets the tip "
                                  "mass by its key tan_alpha = M/(rho l): give tan_alpha: 3"),
     ("errata_rods", "rod", _ROD_TAN_3, "scenes.errata_rods: rod.tip_mass must be 0 here"),
+    # accepted by the check, refused in the job (an outside audit)
+    ("fig05", "eps_values", [0.1, 1.0e200], "scenes.fig05: eps_values: c1: the relative "
+                                            "viscosity"),
+    ("paradox_limit", "eps_min", 1.0e-200, "scenes.paradox_limit: eps_min: c1: the relative"),
+    ("damped_dead_load", "eps_values", [1.0e200], "scenes.damped_dead_load: eps_values: c1:"),
+    ("fig11", "P_N", 1.0e200, "scenes.fig11: P_N must be in [-271.02, 271.02] N (p = P l^2/B "
+                              "within the rod solver's range +-1000)"),
+    ("fig22", "path", [[0.0, 0.0], [1.0e308, 0.0]], "scenes.fig22: "),
+    ("beck_branch", "check_loads", [3.5, 5.5, 7.5], "scenes.beck_branch: check_loads: 7.5 N is "
+                                                    "outside the branch (2.9645"),
+    ("beck_branch", "P_cycle", 7.5, "scenes.beck_branch: P_cycle must be in (2.9"),
     # 10^200 as a damping ratio wrote NaN into the data; d/l1 up to 2 failed in the job
     ("paradox_map", "log10_c_range", [-2.0, 200.0], "scenes.paradox_map: log10_c_range must be "
                                                     "an increasing range within [-6, 6]"),

@@ -149,12 +149,12 @@ _ENTRIES = [
     Scene("fig05", ziegler_damped.fig05, "ziegler_paradox", {"fig05": _fig(
         "ziegler_damped:plot_fig05",
         "Fig. 5: Re and Im of ω̃ against γ, undamped and for ε = 0.1, 0.5 (eq. 51): flutter "
-        "at 2, 1.338, 1.458 K/L.")}),
+        "at 2, 1.338, 1.458 K/L.")}, check=ziegler_damped.check_fig05),
     Scene("paradox_limit", ziegler_damped.paradox_limit, "ziegler_paradox", {
         "paradox_limit": _fig(
             "ziegler_damped:plot_paradox_limit",
             "The damped flutter load as ε → 0 (log axis): it tends to 4/3 K/L, not to the "
-            "undamped 2 K/L.")}),
+            "undamped 2 K/L.")}, check=ziegler_damped.check_paradox_limit),
     Scene("fig18", apparatus.fig18, "ziegler_paradox", {"fig18": _fig(
         "apparatus:plot_fig18",
         "Fig. 18: the wheel at the pendulum's end on the sliding plate (top view, list (47) "
@@ -172,7 +172,8 @@ _ENTRIES = [
         "Beyond the chapter: vanishing-viscosity over undamped flutter load against c1/c2 and "
         "the mass distribution, with the curve where the paradox vanishes.")},
           check=ziegler_damped.check_paradox_map),
-    Scene("damped_dead_load", ziegler_damped.damped_dead_load, "ziegler_paradox"),
+    Scene("damped_dead_load", ziegler_damped.damped_dead_load, "ziegler_paradox",
+          check=ziegler_damped.check_damped_dead_load),
     Scene("errata_damped", ziegler_damped.errata_damped, "ziegler_paradox"),
     # §2.5–2.8 The Beck and Pflüger rods
     Scene("elastica", rod_statics.elastica, "rods", {
@@ -270,7 +271,8 @@ _ENTRIES = [
         "beck_branch:plot_beck_branch",
         "Beyond the chapter: the rod's whole branch of limit cycles, from the Hopf point "
         "through the 5.5 N cycle of Figs. 15–17 to 7 N: tip amplitude and period against the "
-        "load, stability from the Floquet multipliers, the onset normal form.")}, slow=True),
+        "load, stability from the Floquet multipliers, the onset normal form.")}, slow=True,
+          check=branch.check_beck_branch),
     Scene("beck_work_precision", rod.beck_work_precision, "limit_cycles", {
         "beck_work_precision": _fig(
             "rod:plot_beck_work_precision",
@@ -288,7 +290,7 @@ _ENTRIES = [
         "slip, to scale with a 0.5 m bar); the "
         "spring–slider model of §3.1 and its p_T–u_T response (slip onset at |p_T| = μ p_N, "
         "unloaded to p_T = 0 at u_T = u_T^s); the Coulomb cone with the normal a and the slip "
-        "direction b.")}),
+        "direction b.")}, check=solids.check_fig22),
     Scene("acoustic_eigenvalues", solids.acoustic_eigenvalues, "solids", {
         "acoustic_eigenvalues": _fig(
             "solids:plot_acoustic_eigenvalues",

@@ -50,6 +50,42 @@ def cycle_shapes(model, y, T: float, P: float, n_times: int = 12, n_s: int = 41,
     return out
 
 
+def _branch_settings(params: dict[str, Any]) -> tuple[Rod, int, float, float, float, float]:
+    """The rod, elements, ``P_max``, ``P_cycle``, ``A_scale`` and the damped flutter load of
+    the linearised rod where the branch starts (as cycle_branch computes it: a few small
+    eigenproblems), refused before the branch is computed: ``P_max`` not above the flutter
+    load, a check load or ``P_cycle`` off the branch (an outside audit: ``P_cycle`` beyond
+    ``P_max`` was skipped silently, a check load beyond it failed after the branch)."""
+    from flutterfriction.analysis.damped import flutter_onset
+    from flutterfriction.models.rod_nonlinear import NonlinearRod
+
+    take(params, ALLOWED)
+    rod = _rod(params)
+    n_el = int(params.get("n_elements", 4))
+    P_max = check_positive("P_max", params.get("P_max", 7.0), "N")
+    P_cycle = check_positive("P_cycle", params.get("P_cycle", 5.5), "N")
+    A_scale = check_positive("A_scale", params.get("A_scale", 0.3), "m")
+    M0, C0, K0, K1 = NonlinearRod(rod, n_el).linear_matrices()
+    P_flu = float(flutter_onset(M0, C0, K0, K1, load_max=40 * rod.load_unit, n_scan=64))
+    if not P_max > P_flu:
+        raise ParameterError(f"P_max = {P_max} N must be above the damped flutter load "
+                             f"{P_flu:.4f} N, where the branch starts")
+    if not P_flu < P_cycle <= P_max:
+        raise ParameterError(f"P_cycle must be in ({P_flu:.4f}, {P_max:g}] N, on the branch "
+                             f"(the chapter's cycle is landed on there), got {P_cycle:g}")
+    for L in [float(x) for x in params.get("check_loads", [])]:
+        if not P_flu < L <= P_max:
+            raise ParameterError(f"check_loads: {L:g} N is outside the branch "
+                                 f"({P_flu:.4f}, {P_max:g}] N")
+    return rod, n_el, P_max, P_cycle, A_scale, P_flu
+
+
+def check_beck_branch(params: dict[str, Any]) -> None:
+    """The branch's parameters as :func:`beck_branch` refuses them (the configuration
+    check)."""
+    _branch_settings(params)
+
+
 def beck_branch(params: dict[str, Any]) -> dict[str, Any]:
     """The branch of limit cycles from the Hopf point to ``P_max`` on ``n_elements`` P2
     elements (the cycle at ``P_cycle``, the chapter's 5.5 N, landed on exactly), checked:
@@ -65,26 +101,8 @@ def beck_branch(params: dict[str, Any]) -> dict[str, Any]:
     )
     from flutterfriction.models.rod_nonlinear import NonlinearRod
 
-    take(params, ALLOWED)
-    rod = _rod(params)
-    n_el = int(params.get("n_elements", 4))
-    P_max = check_positive("P_max", params.get("P_max", 7.0), "N")
-    P_cycle = check_positive("P_cycle", params.get("P_cycle", 5.5), "N")
-    A_scale = check_positive("A_scale", params.get("A_scale", 0.3), "m")
+    rod, n_el, P_max, P_cycle, A_scale, P_flu = _branch_settings(params)
     rtol = float(params.get("rtol", 1e-9))
-    # The loads the branch must reach, checked before it is computed: the damped flutter load
-    # of the linearised rod, as cycle_branch computes it (a few small eigenproblems).
-    from flutterfriction.analysis.damped import flutter_onset
-
-    M0, C0, K0, K1 = NonlinearRod(rod, n_el).linear_matrices()
-    P_flu = float(flutter_onset(M0, C0, K0, K1, load_max=40 * rod.load_unit, n_scan=64))
-    if not P_max > P_flu:
-        raise ParameterError(f"P_max = {P_max} N must be above the damped flutter load "
-                             f"{P_flu:.4f} N, where the branch starts")
-    for L in [float(x) for x in params.get("check_loads", [])]:
-        if not P_flu < L <= P_max:
-            raise ParameterError(f"check load {L} N is outside the branch "
-                                 f"({P_flu:.4f}, {P_max}] N")
     land = (P_cycle,) if P_cycle < P_max else ()
     b = cycle_branch(rod, n_elements=n_el, A_first=float(params.get("A_first", 0.01)),
                      A_max=A_scale, rtol=rtol, max_points=int(params.get("max_points", 80)),

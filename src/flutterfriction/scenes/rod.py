@@ -15,6 +15,7 @@ from flutterfriction.errors import (
     ParameterError,
     check_nonnegative,
     check_positive,
+    check_real,
 )
 from flutterfriction.models.rod import Rod, RodGroups
 from flutterfriction.models.rod_fe import assemble
@@ -56,14 +57,28 @@ def _rod_of_groups(params: dict[str, Any], scene: str) -> Rod:
     return rod
 
 
+def _load_of(params: dict[str, Any], rod: Rod) -> float | None:
+    """``P_N`` [N] as the load p = P l^2/B within the rod solver's range
+    (:data:`~flutterfriction.analysis.rod.P_MAX_LIMIT`), or None if absent (an outside audit's
+    1e200 N was refused only after seconds of work)."""
+    if "P_N" not in params:
+        return None
+    P = check_real("P_N", params["P_N"])
+    top = ar.P_MAX_LIMIT * rod.load_unit
+    if abs(P) > top:
+        raise ParameterError(f"P_N must be in [-{top:.6g}, {top:.6g}] N (p = P l^2/B within "
+                             f"the rod solver's range +-{ar.P_MAX_LIMIT:g}), got {P:g}")
+    return P / rod.load_unit
+
+
 def check_fig11(params: dict[str, Any]) -> None:
-    """Fig. 11's rod as :func:`fig11` refuses it (the configuration check)."""
-    _rod_of_groups(params, "fig11")
+    """Fig. 11's rod and load as :func:`fig11` refuses them (the configuration check)."""
+    _load_of(params, _rod_of_groups(params, "fig11"))
 
 
 def check_fig12(params: dict[str, Any]) -> None:
-    """Fig. 12's rod as :func:`fig12` refuses it (the configuration check)."""
-    _rod_of_groups(params, "fig12")
+    """Fig. 12's rod and load as :func:`fig12` refuses them (the configuration check)."""
+    _load_of(params, _rod_of_groups(params, "fig12"))
 
 
 def check_errata_rods(params: dict[str, Any]) -> None:
@@ -107,7 +122,7 @@ def _branch_scene(params: dict[str, Any], tan_alpha: float, scene: str) -> dict[
         from flutterfriction.analysis.rod import fe_eigenvalues
         from flutterfriction.analysis.stability import classify
 
-        p_load = float(params["P_N"]) / rod.load_unit
+        p_load = _load_of(params, rod)
         exact = ar.eigenvalues(p_load, g_damped, n_modes=3)
         quantities[f"regime_at_{params['P_N']:g}N"] = quantity(
             str(classify(exact)), str(classify(fe_eigenvalues(g_damped, p_load, n_fe))),

@@ -37,6 +37,14 @@ def _direction_in_plane(theta: np.ndarray) -> np.ndarray:
 
 
 # ---------------------------------------------------------------------- Fig. 22
+def check_fig22(params: dict[str, Any]) -> None:
+    """Fig. 22's contact and path as :func:`fig22` refuses them (the configuration check: the
+    scene itself, exact and ~ms; an outside audit's path refused only in its job)."""
+    import copy
+
+    fig22(copy.deepcopy(params))
+
+
 def fig22(params: dict[str, Any]) -> dict[str, Any]:
     """The Coulomb cone, the normal a and the slip direction b, and a computed force path."""
     take(params, {"k_N", "k_T", "mu", "path"})

@@ -46,10 +46,42 @@ def _eps_list(params: dict[str, Any], key: str = "eps_values") -> list[float]:
     return [check_positive(key, v) for v in values]
 
 
+def _check_viscosities(params: dict[str, Any], keys: tuple[str, ...]) -> None:
+    """Each relative viscosity epsilon of ``keys`` (a list or one number) within the pendulum
+    model's range (:meth:`ZieglerPendulum.check_numerical_range`), before any job: an outside
+    audit's eps = 1e200 passed the configuration check and was refused in the job."""
+    p0 = pendulum_of(params)
+    for key in keys:
+        values = params.get(key)
+        if values is None:
+            continue
+        for eps in values if isinstance(values, list) else [values]:
+            try:
+                with_viscosity(p0, check_positive(key, eps)).check_numerical_range()
+            except ParameterError as exc:
+                raise ParameterError(f"{key}: {exc}") from None
+
+
+def check_fig05(params: dict[str, Any]) -> None:
+    """Fig. 5's viscosities as the pendulum model refuses them (the configuration check)."""
+    _check_viscosities(params, ("eps_values",))
+
+
+def check_paradox_limit(params: dict[str, Any]) -> None:
+    """The paradox limit's viscosities as the model refuses them (the configuration check)."""
+    _check_viscosities(params, ("eps_min", "eps_max"))
+
+
+def check_damped_dead_load(params: dict[str, Any]) -> None:
+    """The viscosities as the pendulum model refuses them (the configuration check)."""
+    _check_viscosities(params, ("eps_values",))
+
+
 # ---------------------------------------------------------------------- Fig. 5
 def fig05(params: dict[str, Any]) -> dict[str, Any]:
     """Re and Im of omega~ against gamma, undamped and for each epsilon (eqs. 33, 51)."""
     take(params, {"pendulum", "eps_values", "gamma_max", "n_points"})
+    _check_viscosities(params, ("eps_values",))
     p0 = pendulum_of(params)
     u = p0.load_unit
     T = p0.l2 * math.sqrt(p0.m2 / p0.k2)  # omega~ = s T (eq. 30)
@@ -87,6 +119,7 @@ def fig05(params: dict[str, Any]) -> dict[str, Any]:
 def paradox_limit(params: dict[str, Any]) -> dict[str, Any]:
     """P*_flu against epsilon -> 0 (log axis): the jump from 2 K/L to 4/3 K/L (eq. 54)."""
     take(params, {"pendulum", "eps_min", "eps_max", "n_points"})
+    _check_viscosities(params, ("eps_min", "eps_max"))
     p0 = pendulum_of(params)
     u = p0.load_unit
     g = p0.groups()
@@ -291,6 +324,7 @@ def paradox_map(params: dict[str, Any]) -> dict[str, Any]:
 def damped_dead_load(params: dict[str, Any]) -> dict[str, Any]:
     """§2.2 after eq. (31): viscosity leaves the dead-load critical load at H_cr (eq. 22)."""
     take(params, {"pendulum", "eps_values"})
+    _check_viscosities(params, ("eps_values",))
     p0 = pendulum_of(params)
     u = p0.load_unit
     e_cr = cf.buckling_etas(p0.groups())[0]
