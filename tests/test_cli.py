@@ -607,3 +607,20 @@ def test_the_command_line_computes_with_one_blas_thread(monkeypatch, capsys):
         monkeypatch.setenv("OPENBLAS_NUM_THREADS", "2")  # the user's choice is kept
         assert cli.main(["rod", "--mass-ratio", "0", "--json"]) == 0
     assert seen == [{1}, {1}, {2}]
+
+
+def test_a_full_disk_is_one_line_and_minus_zero_is_zero(capsys):
+    """An outside audit: `> /dev/full` ended in an OSError traceback; `--h -0` was echoed as
+    -0.0."""
+    import os
+
+    if not os.path.exists("/dev/full"):
+        pytest.skip("no /dev/full here")
+    with open("/dev/full", "w") as full:
+        proc = subprocess.run([sys.executable, "-m", "flutterfriction", *_args(), "--json"],
+                              stdout=full, stderr=subprocess.PIPE, text=True)
+    assert proc.returncode == 1
+    assert proc.stderr.strip() == ("flutterfriction: error: cannot write the result: No space "
+                                   "left on device")
+    code, out, _ = _run(capsys, [*_args(h="-0"), "--json"])
+    assert code == 0 and '"h": 0.0' in out

@@ -129,7 +129,7 @@ def _number(text: str) -> float:
     value = float(word)
     if not math.isfinite(value):
         raise argparse.ArgumentTypeError(f"must be finite, got {text!r}")
-    return value
+    return value + 0.0  # -0 is 0 (it was echoed as -0.0; an outside audit)
 
 
 def _integer(text: str) -> int:
@@ -734,8 +734,13 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 1
     try:
         _print(result, args.json)
+        sys.stdout.flush()  # a write error shows here, not at exit (with a traceback)
     except BrokenPipeError:  # e.g. piped into `head`: not an error of ours
         sys.stderr.close()
+    except OSError as exc:  # e.g. a full disk (`> /dev/full`): one line, not a traceback
+        print(f"flutterfriction: error: cannot write the result: {exc.strerror or exc}",
+              file=sys.stderr)
+        return 1
     return 0
 
 
