@@ -443,6 +443,10 @@ _ROD_TAN_3 = {"length": 0.35, "B": 0.0332, "rho": 0.0546, "D": 7.078e-6, "tip_ma
                                  "mass by its key tan_alpha = M/(rho l): give tan_alpha: 3"),
     ("errata_rods", "rod", _ROD_TAN_3, "scenes.errata_rods: rod.tip_mass must be 0 here"),
     # accepted by the check, refused in the job (an outside audit)
+    ("acoustic_eigenvalues", "g_min", 1.0e-200, "scenes.acoustic_eigenvalues: g_min: |p.q|/g = "
+                                                "1.6e+199 takes eq. (184) beyond the double"),
+    ("acoustic_eigenvalues", "g_max", 1.0e200, "scenes.acoustic_eigenvalues: g_max must be <= "
+                                               "10000 |p| |q| / ||A_el|| = 15444.9 here"),
     ("fig05", "eps_values", [0.1, 1.0e200], "scenes.fig05: eps_values: c1: the relative "
                                             "viscosity"),
     ("paradox_limit", "eps_min", 1.0e-200, "scenes.paradox_limit: eps_min: c1: the relative"),

@@ -402,3 +402,91 @@ def test_notebooks_note_the_scenes_computed_with_your_own_parameters():
         text = nb.read_text()
         assert "NOTE.update(Markdown(own_parameters_note(READ)))" in text, nb.name
         assert 'READ[name] = data.get("params")' in text, nb.name
+
+
+def test_an_atol_that_checks_nothing_and_an_empty_key_are_refused():
+    """Outside audit: `atol: 1.0e+300` (passes any value) and `key: ''` were accepted. atol is
+    bounded as rtol is: below 0.5 |quoted| (the file's largest: 0.08), or at most 0.5 for a
+    quoted 0 (the file's largest: half a unit of a count)."""
+    from flutterfriction.reference import reference_problems
+
+    entry = {**_one_quantity(), "quoted": 2.0}
+    entry["tolerance"] = {"atol": 1.0e300, "rtol": 0.0, "why": "w"}
+    assert reference_problems({"quantities": [entry], "errata": []}) == [
+        "quantities[0] (id x): tolerance: atol must be < 0.5 |quoted| = 1 (a tolerance that "
+        "wide checks nothing), got 1e+300"]
+    entry = {**_one_quantity(), "quoted": 0.0}
+    entry["agreement"] = {"atol": 0.6, "rtol": 0.0, "why": "w"}
+    assert reference_problems({"quantities": [entry], "errata": []}) == [
+        "quantities[0] (id x): agreement: atol must be <= 0.5 for a quoted 0 (half a unit of a "
+        "count), got 0.6"]
+    entry = {**_one_quantity(), "quoted": 2.0}
+    entry["tolerance"] = {"atol": 0.999, "rtol": 0.0, "why": "w"}  # just inside
+    assert reference_problems({"quantities": [entry], "errata": []}) == []
+    assert reference_problems({"quantities": [_one_quantity(key="")], "errata": []}) == [
+        "quantities[0] (id x): key must be a non-empty string"]
+
+
+def test_unknown_top_level_keys_leave_out_the_anchors_and_a_yaml_error_is_one_line(
+        reference, tmp_path):
+    """Outside audit: an unknown top-level key listed the ten `_...` anchor keys as unknown
+    with it; a YAML syntax error in load_reference was a bare yaml exception."""
+    from flutterfriction.errors import ParameterError
+    from flutterfriction.reference import reference_problems
+
+    bad = {**copy.deepcopy(reference), "bogus": 1}
+    assert sum(k.startswith("_") for k in bad) == 10
+    assert reference_problems(bad) == [
+        "(top level): unknown key(s) ['bogus']; allowed: ['errata', 'quantities'] and keys "
+        "starting with '_' (YAML anchors)"]
+    path = tmp_path / "reference.yaml"
+    path.write_text("quantities: [\n  - id: x\nerrata: []\n")
+    with pytest.raises(ParameterError) as info:
+        load_reference(path)
+    assert str(info.value) == (f"{path}: invalid reference file: line 2, column 3: YAML syntax "
+                               "error: did not find expected node content")
+
+
+def test_a_number_quoted_for_a_word_is_a_failed_row_not_a_value_error():
+    """Outside audit: a numeric `quoted` on a key whose reproduced value is a word (a regime)
+    made run_check die with a bare ValueError at the end of the run."""
+    data = {"sc": {"quantities": {"k": {"value": "flutter", "independent": "flutter",
+                                        "method": "m", "independent_method": "i"}}}}
+    row, = run_check({"quantities": [_one_quantity()], "errata": []}, data)
+    assert (row.status, row.error, row.note) == (
+        "FAIL", None, "the reference quotes a number, the scene's value 'flutter' and "
+                      "independent 'flutter' is not one (key 'k' of scene 'sc')")
+    assert failed([row]) == [row]
+
+
+@pytest.mark.parametrize(("content", "message"), [
+    ('{"paper": {"sc": {"a": NaN}}}', "invalid recorded parameters: paper.sc.a must be a "
+                                      "finite number, got nan"),
+    ('{"paper": {"sc": {"n": [1, Infinity]}}}', "invalid recorded parameters: paper.sc.n[1] "
+                                                "must be a finite number, got inf"),
+    ("[1, 2]", "invalid recorded parameters: must be a non-empty mapping of preset -> scene "
+               "-> parameters, got list"),
+    ('{"paper": {"sc": [1]}}', "invalid recorded parameters: paper.sc must be a mapping of "
+                               "parameters, got list"),
+    ('{"resolution_keys": {"sc": "n_points"}}', "invalid recorded parameters: "
+                                                "resolution_keys.sc must be a list of key names"),
+    ("garbage{", "not valid JSON: line 1, column 1: Expecting value"),
+])
+def test_the_recorded_parameters_are_validated_in_one_line(tmp_path, content, message):
+    """Outside audit: workflow/reference_parameters.json was never validated: NaN and a list
+    were accepted (a list then raised a bare AttributeError in run_check), garbage a bare
+    JSONDecodeError."""
+    from flutterfriction.errors import ParameterError
+    from flutterfriction.reference import load_parameters
+
+    path = tmp_path / "reference_parameters.json"
+    path.write_text(content)
+    with pytest.raises(ParameterError) as info:
+        load_parameters(path)
+    assert str(info.value).startswith(f"{path}: {message}")
+    assert "\n" not in str(info.value)
+    with pytest.raises(ParameterError, match=r"^parameters \(the recorded parameters\): must "
+                                             r"be a non-empty mapping"):
+        run_check({"quantities": [_one_quantity()], "errata": []}, _DATA, parameters=[1, 2])
+    assert set(load_parameters(ROOT / "workflow" / "reference_parameters.json")) == {
+        "paper", "quick", "resolution_keys"}

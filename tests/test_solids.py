@@ -432,3 +432,107 @@ def test_flutter_map_counts_equal_the_eigenvalue_counts():
         assert by_discriminant.tolist() == by_eigenvalues.tolist(), eps
         found.append(int(by_discriminant.sum()))
     assert found[0] == 0 and found[-1] > 0
+
+
+@pytest.mark.parametrize(("P", "n"), [
+    ([1, 1, 1, 0, 0, 0], [1, 1, 1]),  # the audit's case: A = I + (2 - 25/g) n (x) n
+    ([1, -0.5, -0.5, 0, 0, 0.8], 0),  # n: the eigenvector i of P (N - p.q = 0: a double root)
+    ([0.2, -0.7, 0.4, 0.3, 0.1, -0.2], 1),
+    ([0.9, -0.7, 0.7, -0.9, -0.2, -0.1], 2),
+])
+def test_a_symmetric_acoustic_tensor_never_flutters(P, n):
+    """An outside audit: with P = Q the acoustic tensor is symmetric (p is parallel to q), yet
+    isotropic_acoustic (the CLI) answered the interval [12.4999998510, 12.5000001490] and
+    regime flutter with eigenvalues 1 +- 1.49e-8 i for lam = mu = 1, P = Q = I, n = (1,1,1),
+    g = 12.5: the round-off of N - p.q = 4 (pn qn - u.v), exactly 0 there (n is an eigenvector
+    of P), around a double root of the discriminant. Now N - p.q = -4 |n x u|^2 <= 0 exactly,
+    b^2 - 4c is >= 0 (clipped) without an interval, and the brute force returns no interval
+    for a symmetric A instead of a ConvergenceError."""
+    from flutterfriction.analysis.stability import Regime
+
+    E = so.isotropic_elasticity(1.0, 1.0)
+    if isinstance(n, int):
+        n = np.linalg.eigh(so.voigt_to_tensor(P))[1][:, n]
+    unit = np.asarray(n, float) / np.linalg.norm(n)
+    g_loc = ac.isotropic_acoustic(1.0, 1.0, P, P, n).g_localization
+    p_n = float(unit @ so.isotropic_vectors(1.0, 1.0, so.voigt_to_tensor(P),
+                                            so.voigt_to_tensor(P), unit)[0])
+    for g in (0.3, 1.0, 12.5, 40.0, abs(g_loc) * 1.5, p_n**2 / 2):  # the last: the double root
+        r = ac.isotropic_acoustic(1.0, 1.0, P, P, n, g)
+        assert r.flutter_interval is None and r.regime != Regime.FLUTTER
+        assert all(z.imag == 0.0 for z in r.eigenvalues)
+        general = np.sort(np.linalg.eigvals(so.acoustic_tensor(E, so.voigt_to_tensor(P),
+                                                               so.voigt_to_tensor(P), g, unit)))
+        assert np.sort([z.real for z in r.eigenvalues]) == pytest.approx(general.real,
+                                                                         rel=1e-12, abs=1e-12)
+    if P == [1, 1, 1, 0, 0, 0]:  # eigenvalues 1, 1 and 3 - 25/g: a triple 1 at g = 12.5
+        r = ac.isotropic_acoustic(1.0, 1.0, P, P, n, 12.5)
+        assert [z.real for z in r.eigenvalues] == pytest.approx([1.0, 1.0, 1.0], rel=1e-15)
+        assert r.g_localization == pytest.approx(25 / 3, rel=1e-15)
+    assert ac.flutter_interval_bruteforce(E, so.voigt_to_tensor(P), so.voigt_to_tensor(P),
+                                          unit, g_max=100.0) == []
+
+
+def test_a_double_root_of_the_discriminant_is_no_flutter_interval_but_narrow_ones_stay():
+    """A coalescence that does not split (n an eigenvector of P, P != Q: N - p.q = 0 exactly,
+    the discriminant touches 0 at g = N / (lam + mu)) is no interval, and no complex pair at
+    that g (the old formula: an interval 3e-8 wide and 1 +- 1.5e-8 i). A genuine narrow
+    interval (n tilted by 1e-8 from that eigenvector: width 1.7e-4) keeps its ends, now to
+    1e-15 of 50-digit arithmetic (mpmath on the same doubles: 5.279564084948569,
+    5.28043604825143; the former pn qn - u.v lost 4e-12 of them), and so does the shipped
+    case (workflow/config.yaml) and the stress case of flutterfriction.stress."""
+    from flutterfriction.analysis.stability import Regime
+
+    P, Q = [1, 0.5, -0.3, 0, 0, 0], [1, 0.2, 0.1, 0.3, 0.4, 0.9]
+    N = (1.2 + 2 * 1.0) * (1.3 + 2 * 1.0)  # n = e1: (lam trP + 2 pn)(lam trQ + 2 qn)
+    r = ac.isotropic_acoustic(1.0, 1.0, P, Q, [1, 0, 0], N / 2)
+    assert r.flutter_interval is None and r.regime == Regime.STABLE
+    assert all(z.imag == 0.0 for z in r.eigenvalues)
+    narrow = ac.isotropic_acoustic(1.0, 1.0, P, Q, [1, 1e-8, 0])
+    assert narrow.flutter_interval == pytest.approx((5.279564084948569, 5.28043604825143),
+                                                    rel=1e-13)
+    mid = ac.isotropic_acoustic(1.0, 1.0, P, Q, [1, 1e-8, 0],
+                                math.sqrt(narrow.flutter_interval[0] * narrow.flutter_interval[1]))
+    assert mid.regime == Regime.FLUTTER
+    assert abs(mid.eigenvalues[2].imag) == pytest.approx(8.257228e-05, rel=1e-6)
+    shipped = ac.isotropic_acoustic(1.0, 1.0, [1, -0.5, -0.5, 0, 0, 0.8],
+                                    [0.6, -0.3, -0.3, 0, 0, -0.8], [1, 0, 0], 1.0)
+    assert shipped.flutter_interval == pytest.approx((0.0012906584272531951, 4.958709341572748),
+                                                     rel=1e-12)
+    assert shipped.regime == Regime.FLUTTER
+    assert shipped.eigenvalues[2] == pytest.approx(2.08 + 1.9883661634618512j, rel=1e-12)
+    stress = ac.isotropic_acoustic(1.0, 1.0, [-0.6, 0.8, 0.3, -0.5, 0.1, -0.1],
+                                   [0.4, 0.3, 0.0, 0.0, 0.2, 0.1], [0.6, 0.8, 0.0])
+    assert stress.flutter_interval == pytest.approx((0.1642990722, 1.619300928), rel=1e-9)
+
+
+def test_classify_eigenvalues_takes_a_round_off_pair_for_real():
+    """The audit's pair 1 +- 1.49e-8 i (sqrt(eps): a Jordan block's round-off) was flutter
+    under the former threshold 1e-10; a pair above 1e-7 |eta| still is."""
+    from flutterfriction.analysis.stability import Regime
+
+    assert ac.classify_eigenvalues([1.0, 1 - 1.49e-8j, 1 + 1.49e-8j]) == Regime.STABLE
+    assert ac.classify_eigenvalues([1.0, 1 - 1e-6j, 1 + 1e-6j]) == Regime.FLUTTER
+    assert ac.classify_eigenvalues([1.0, -1e-9, 2.0]) == Regime.DIVERGENCE
+
+
+@pytest.mark.parametrize("g", [12.5, 3.0, 1e-3, 1e3])
+def test_the_isotropic_closed_forms_see_no_flutter_for_p_equal_to_q(g):
+    """P = Q makes A = A_el - p (x) p / g symmetric: real eigenvalues at every g. The closed
+    forms of models.solid formed N - p.q directly and gave (an outside audit) an interval
+    (12.4999997, 12.5000003) and eigenvalues 1 +- 1.5e-8 i at the triple root g = 12.5."""
+    from flutterfriction.models.solid import (
+        acoustic_eigenvalues_isotropic,
+        flutter_interval_isotropic,
+    )
+
+    P = np.diag([1.0, 1.0, 1.0])
+    n = np.ones(3) / np.sqrt(3.0)
+    assert flutter_interval_isotropic(1.0, 1.0, P, P, n) is None
+    eta = acoustic_eigenvalues_isotropic(1.0, 1.0, P, P, g, n)
+    assert np.all(eta.imag == 0.0)
+    # against the eigenvalues of the symmetric tensor itself (eigvalsh: real by construction)
+    A = np.eye(3) + (2.0 - 25.0 / g) * np.outer(n, n)  # A_el(n) - p (x) p / g, lam = mu = 1
+    # (to the eigensolver's round-off, ~eps of the largest eigenvalue 25/g; x 100 margin)
+    assert np.sort(eta.real) == pytest.approx(np.linalg.eigvalsh(A),
+                                              abs=1e-14 * max(1.0, 25.0 / g))

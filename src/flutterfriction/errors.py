@@ -76,11 +76,21 @@ def check_finite_array(name: str, value: object, shape: tuple[int, ...],
     shape)."""
     import numpy as np
 
-    a = np.asarray(value, dtype=float)
+    must = f"{name} must be {what or f'a finite array of shape {shape}'}"
+    try:
+        raw = np.asarray(value)
+    except (ValueError, TypeError):  # ragged nesting
+        raise ParameterError(f"{must}, got {str(value)[:80]}") from None
+    # real numbers only: float() would drop an imaginary part and read "1" or True as numbers
+    # (and numpy reads [True, 1] as integers)
+    if raw.dtype.kind not in "iuf" or (not isinstance(value, np.ndarray) and any(
+            isinstance(x, bool | np.bool_) for x in np.asarray(value, dtype=object).flat)):
+        got = f"got {value!r}" if len(repr(value)) <= 80 else f"got dtype {raw.dtype}"
+        raise ParameterError(f"{must} (real numbers), {got}")
+    a = raw.astype(float)
     if a.shape != shape or not np.all(np.isfinite(a)):
         got = f"got {value!r}" if a.size <= 6 else f"got shape {a.shape}"
-        raise ParameterError(f"{name} must be {what or f'a finite array of shape {shape}'}, "
-                             f"{got}")
+        raise ParameterError(f"{must}, {got}")
     return a
 
 

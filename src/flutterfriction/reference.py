@@ -29,6 +29,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 from collections.abc import Mapping
 from dataclasses import asdict, dataclass
 from pathlib import Path
@@ -151,6 +152,12 @@ REFERENCE_SCHEMA = Path(__file__).resolve().parents[2] / "workflow" / "schemas" 
 #: Largest relative tolerance of an entry (the file's largest is 0.05, a quick preset's): a
 #: tolerance of 100 % or more passes any value of the right sign, so it checks nothing.
 MAX_RTOL = 0.5
+#: The same bound on ``atol``, relative to a quoted number: ``atol >= 0.5 |quoted|`` checks
+#: as little as that rtol (the file's largest is 0.08 |quoted|, an onset exponent's). A quoted
+#: 0 has no scale of its own: its ``atol`` may be at most 0.5 (the file's largest: half a unit
+#: of a count of directions; its residuals use 1e-12 to 0.03). An audit: ``atol: 1.0e+300``
+#: passed any value.
+MAX_ATOL_OF_ZERO = 0.5
 
 
 def reference_problems(ref: Any, schema_path: str | Path = REFERENCE_SCHEMA,
@@ -179,8 +186,14 @@ def reference_problems(ref: Any, schema_path: str | Path = REFERENCE_SCHEMA,
     problems = []
     for err in jsonschema.Draft202012Validator(schema).iter_errors(ref):
         if err.validator == "additionalProperties":
-            extra = sorted(set(err.instance) - set(err.schema.get("properties", {})))
-            message = f"unknown key(s) {extra}; allowed: {sorted(err.schema['properties'])}"
+            # keys of a patternProperties (the '_' anchors of shared tolerances) are allowed
+            extra = sorted(k for k in set(err.instance) - set(err.schema.get("properties", {}))
+                           if not any(re.search(p, str(k))
+                                      for p in err.schema.get("patternProperties", {})))
+            anchors = " and keys starting with '_' (YAML anchors)" \
+                if err.schema.get("patternProperties") else ""
+            message = (f"unknown key(s) {extra}; allowed: {sorted(err.schema['properties'])}"
+                       f"{anchors}")
         elif err.validator == "anyOf" and list(err.path)[-1:] == ["quoted"] \
                 and isinstance(err.instance, str):
             message = (f"{err.instance!r} is a number written as a string: write it unquoted "
@@ -205,6 +218,9 @@ def reference_problems(ref: Any, schema_path: str | Path = REFERENCE_SCHEMA,
             if isinstance(quoted, float) and not math.isfinite(quoted):
                 problems.append(f"{name((section, i))}: quoted must be a finite number, "
                                 f"got {quoted}")
+            for field in ("scene", "key"):  # an empty key would name no quantity
+                if isinstance(entry.get(field), str) and not entry[field].strip():
+                    problems.append(f"{name((section, i))}: {field} must be a non-empty string")
             if scenes is not None and isinstance(entry.get("scene"), str) \
                     and entry["scene"] not in scenes:
                 problems.append(f"{name((section, i))}: scene {entry['scene']!r} is not a "
@@ -225,6 +241,18 @@ def reference_problems(ref: Any, schema_path: str | Path = REFERENCE_SCHEMA,
                     problems.append(f"{name((section, i))}: {label}: rtol must be < "
                                     f"{MAX_RTOL:g} (a tolerance that wide checks nothing), "
                                     f"got {values[1]:g}")
+                elif isinstance(quoted, int | float) and not isinstance(quoted, bool) \
+                        and math.isfinite(quoted):
+                    if quoted != 0 and not values[0] < MAX_RTOL * abs(quoted):
+                        problems.append(
+                            f"{name((section, i))}: {label}: atol must be < {MAX_RTOL:g} "
+                            f"|quoted| = {MAX_RTOL * abs(quoted):.6g} (a tolerance that wide "
+                            f"checks nothing), got {values[0]:g}")
+                    elif quoted == 0 and not values[0] <= MAX_ATOL_OF_ZERO:
+                        problems.append(
+                            f"{name((section, i))}: {label}: atol must be <= "
+                            f"{MAX_ATOL_OF_ZERO:g} for a quoted 0 (half a unit of a count), "
+                            f"got {values[0]:g}")
     return problems
 
 
@@ -247,12 +275,23 @@ def load_reference(path: str | Path) -> dict[str, Any]:
     is refused too); raises :class:`ParameterError` listing every problem, one line each."""
     from flutterfriction.config import duplicate_key_problems
 
-    with open(path, encoding="utf-8") as fh:
-        ref = safe_load(fh)
+    try:
+        with open(path, encoding="utf-8") as fh:
+            ref = safe_load(fh)
+    except yaml.YAMLError as exc:  # one line naming the file and the line, not a yaml trace
+        raise ParameterError(f"{path}: invalid reference file: {_yaml_error(exc)}") from None
     problems = duplicate_key_problems(path) + reference_problems(ref)
     if problems:
         raise ParameterError(f"{path}: invalid reference file:\n  " + "\n  ".join(problems))
     return ref
+
+
+def _yaml_error(exc: yaml.YAMLError) -> str:
+    """A YAML error in one line: ``line L, column C: problem``."""
+    mark = getattr(exc, "problem_mark", None)
+    where = f"line {mark.line + 1}, column {mark.column + 1}: " if mark is not None else ""
+    what = getattr(exc, "problem", None) or " ".join(str(exc).split())
+    return f"{where}YAML syntax error: {what}"
 
 
 def _tolerances(entry: dict[str, Any], fidelity: str) -> tuple[dict, dict, str]:
@@ -304,6 +343,12 @@ def _check_quantity(entry: dict[str, Any], data: Mapping[str, Any],
         expected_independent = entry.get("quoted_independent", quoted)
         ok = q["value"] == quoted and q["independent"] == expected_independent
         return CheckRow(**common, error=None, agreement=None, status="pass" if ok else "FAIL")
+    words = [f"{k} {q[k]!r}" for k in ("value", "independent")
+             if isinstance(q[k], bool) or not isinstance(q[k], int | float)]
+    if words:  # a word where a number is quoted: a failed row, not a ValueError after the run
+        return CheckRow(**common, error=None, agreement=None, status="FAIL",
+                        note=f"the reference quotes a number, the scene's {' and '.join(words)} "
+                             f"is not one (key {entry['key']!r} of scene {entry['scene']!r})")
     tol, agr_tol, note = _tolerances(entry, fidelity)
     err = normalised_error(q["value"], quoted, tol)
     agr = normalised_error(q["value"], q["independent"], agr_tol)
@@ -373,6 +418,9 @@ def run_check(reference: dict[str, Any], data: Mapping[str, Any],
     tolerances of ``fidelity`` (an entry's ``quick`` block applies at ``"quick"`` only).
     With ``parameters`` (:func:`record_parameters`' record), an entry whose scene ran with
     other parameters than those recorded for ``fidelity`` is not applicable."""
+    if parameters is not None and (problem := _parameters_problem(parameters)):
+        raise ParameterError(f"parameters (the recorded parameters): {problem}")
+
     def changes(entry: dict[str, Any]) -> list[str]:
         scene = entry["scene"]
         return scene_parameter_changes(parameters, fidelity, scene,
@@ -396,9 +444,54 @@ def not_applicable(rows: list[CheckRow]) -> list[CheckRow]:
 
 
 def load_parameters(path: str | Path = REFERENCE_PARAMETERS) -> dict[str, Any]:
-    """The recorded parameters (:data:`REFERENCE_PARAMETERS`)."""
-    with open(path, encoding="utf-8") as fh:
-        return json.load(fh)
+    """The recorded parameters (:data:`REFERENCE_PARAMETERS`), checked: a mapping of preset ->
+    {scene name -> mapping of parameters} with finite numbers, and ``resolution_keys``: scene
+    -> list of key names; else one :class:`ParameterError` line naming the file and the place
+    (an audit: NaN and a list were accepted, then an AttributeError in :func:`run_check`;
+    garbage gave a bare JSONDecodeError)."""
+    try:
+        with open(path, encoding="utf-8") as fh:
+            recorded = json.load(fh)
+    except json.JSONDecodeError as exc:
+        raise ParameterError(f"{path}: not valid JSON: line {exc.lineno}, column {exc.colno}: "
+                             f"{exc.msg}") from None
+    problem = _parameters_problem(recorded)
+    if problem:
+        raise ParameterError(f"{path}: invalid recorded parameters: {problem} (re-record them "
+                             f"with python -m flutterfriction.reference)")
+    return recorded
+
+
+def _parameters_problem(recorded: Any) -> str:
+    """The first problem of a parameter record (:func:`record_parameters`), or ``""``."""
+    if not isinstance(recorded, dict) or not recorded:
+        return f"must be a non-empty mapping of preset -> scene -> parameters, got " \
+               f"{type(recorded).__name__}"
+    for preset, scenes in recorded.items():
+        if not isinstance(scenes, dict):
+            return f"{preset} must be a mapping of scene names, got {type(scenes).__name__}"
+        for scene, params in scenes.items():
+            if preset == "resolution_keys":
+                if not (isinstance(params, list) and all(isinstance(k, str) for k in params)):
+                    return f"resolution_keys.{scene} must be a list of key names, got {params!r}"
+            elif not isinstance(params, dict):
+                return f"{preset}.{scene} must be a mapping of parameters, got " \
+                       f"{type(params).__name__}"
+            elif (bad := _non_finite(params, f"{preset}.{scene}")):
+                return bad
+    return ""
+
+
+def _non_finite(value: Any, where: str) -> str:
+    """Where ``value`` (nested lists and mappings) holds a NaN or infinity, or ``""``."""
+    if isinstance(value, float) and not math.isfinite(value):
+        return f"{where} must be a finite number, got {value}"
+    items = value.items() if isinstance(value, dict) else enumerate(value) \
+        if isinstance(value, list) else ()
+    for k, v in items:
+        if (bad := _non_finite(v, f"{where}.{k}" if isinstance(value, dict) else f"{where}[{k}]")):
+            return bad
+    return ""
 
 
 def _fmt(x: Any) -> str:

@@ -295,7 +295,8 @@ _ENTRIES = [
         "acoustic_eigenvalues": _fig(
             "solids:plot_acoustic_eigenvalues",
             "Eigenvalues of the acoustic tensor against the plastic modulus g for a "
-            "nonassociative case: the complex (flutter) pair between g1 and g2.")}),
+            "nonassociative case: the complex (flutter) pair between g1 and g2.")},
+          check=solids.check_acoustic_eigenvalues),
     Scene("localization_directions", solids.localization_directions, "solids", {
         "localization_directions": _fig(
             "solids:plot_localization_directions",

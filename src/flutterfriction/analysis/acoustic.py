@@ -5,6 +5,7 @@ force (the independent twins of the isotropic closed forms in :mod:`..models.sol
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -12,7 +13,13 @@ from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq, minimize
 
 from flutterfriction.analysis.stability import Regime
-from flutterfriction.errors import ConvergenceError, ParameterError, check_real
+from flutterfriction.errors import (
+    ConvergenceError,
+    ParameterError,
+    check_finite_array,
+    check_integer,
+    check_real,
+)
 from flutterfriction.models.solid import (
     acoustic_vectors,
     elastic_acoustic_tensor,
@@ -64,16 +71,44 @@ def flutters_somewhere(E: NDArray, P: ArrayLike, Q: ArrayLike, directions: NDArr
         for i in range(0, len(n), 256)]) if len(n) else np.zeros(0, dtype=bool)
 
 
+def _shape(value: object) -> tuple[int, ...]:
+    """The shape of ``value`` (any), for :func:`check_finite_array` to check the entries; a
+    ragged nesting has none and is refused there."""
+    try:
+        return np.shape(value)
+    except ValueError:
+        return (-1,)
+
+
+def _stack_inputs(E: NDArray, P: ArrayLike, Q: ArrayLike, directions: NDArray
+                  ) -> tuple[NDArray, NDArray, NDArray, NDArray]:
+    """``E``, ``P``, ``Q`` and the directions (m, 3) of the vectorised functions, checked: finite,
+    of their shapes, no zero direction (an audit: NaN in, NaN out; a LinAlgError for n = 0)."""
+    E = check_finite_array("E", E, (3, 3, 3, 3))
+    P, Q = (check_finite_array(k, v, (3, 3)) for k, v in (("P", P), ("Q", Q)))
+    n = check_finite_array("directions", directions, _shape(directions), "finite numbers")
+    if n.ndim != 2 or n.shape[1] != 3:
+        raise ParameterError(f"directions must be an array of shape (m, 3), got shape {n.shape}")
+    if np.any(np.all(n == 0.0, axis=1)):
+        raise ParameterError("directions must be non-zero vectors (propagation directions)")
+    return E, P, Q, n
+
+
 def acoustic_tensors(E: NDArray, P: ArrayLike, Q: ArrayLike, directions: NDArray,
                      g_values: NDArray) -> NDArray:
     """The acoustic tensors ``A(n; g)`` of eq. (163) (rho = 1) for every direction and every
-    ``g``, shape (directions, g values, 3, 3), vectorised."""
-    n = np.asarray(directions, dtype=float)
+    ``g``, shape (directions, g values, 3, 3), vectorised. ``g_values``: a 1-d array of finite,
+    non-zero moduli."""
+    E, P, Q, n = _stack_inputs(E, P, Q, directions)
+    g = check_finite_array("g_values", g_values, _shape(g_values), "finite numbers")
+    if g.ndim != 1 or np.any(g == 0.0):
+        raise ParameterError(f"g_values must be a 1-d array of non-zero moduli (A has "
+                             f"p (x) q / g), got shape {g.shape}"
+                             + (", a zero" if np.any(g == 0.0) else ""))
     Ael = np.einsum("ijkl,mj,ml->mik", E, n, n)
-    p = np.einsum("ij,mj->mi", np.einsum("ijkl,kl->ij", E, np.asarray(P, float)), n)
-    q = np.einsum("kl,ml->mk", np.einsum("ijkl,ij->kl", E, np.asarray(Q, float)), n)
-    return Ael[:, None] - np.einsum("mi,mk->mik", p, q)[:, None] / np.asarray(g_values)[
-        None, :, None, None]
+    p = np.einsum("ij,mj->mi", np.einsum("ijkl,kl->ij", E, P), n)
+    q = np.einsum("kl,ml->mk", np.einsum("ijkl,ij->kl", E, Q), n)
+    return Ael[:, None] - np.einsum("mi,mk->mik", p, q)[:, None] / g[None, :, None, None]
 
 
 def has_complex_pair(A: NDArray, rtol: float = 1e-12) -> NDArray:
@@ -88,15 +123,24 @@ def has_complex_pair(A: NDArray, rtol: float = 1e-12) -> NDArray:
     return cubic_discriminant(B) < -rtol * scale
 
 
-def classify_acoustic(A: NDArray, rtol: float = 1e-10) -> Regime:
+def classify_acoustic(A: NDArray, rtol: float = 1e-10, imag_rtol: float = 1e-7) -> Regime:
     """§3.3 (Rice 1977): stable when all ``c^2`` are positive, flutter when two are complex
-    conjugate, divergence when one is real and negative."""
-    return classify_eigenvalues(np.linalg.eigvals(np.asarray(A, dtype=float)), rtol)
+    conjugate, divergence when one is real and negative (tolerances: see
+    :func:`classify_eigenvalues`)."""
+    A = check_finite_array("A", A, (3, 3), "a finite 3x3 matrix")
+    return classify_eigenvalues(np.linalg.eigvals(A), rtol, imag_rtol)
+
+
+#: Most directions :func:`fibonacci_sphere` makes: its arrays take ~72 bytes a direction
+#: (72 MB here), and the spacing of 1e6 points on the half sphere, ~2.5e-3 rad, is far finer
+#: than the Nelder-Mead refinement of :func:`max_localization_modulus` needs (default 4000).
+FIBONACCI_MAX = 1_000_000
 
 
 def fibonacci_sphere(n: int) -> NDArray:
     """``n`` nearly uniform unit vectors on the upper half sphere (``n`` and ``-n`` are the
-    same band direction), shape (n, 3)."""
+    same band direction), shape (n, 3); ``n`` in [1, :data:`FIBONACCI_MAX`]."""
+    n = check_integer("n", n, 1, FIBONACCI_MAX)
     k = np.arange(n) + 0.5
     z = k / n  # z in (0, 1]: the half sphere
     phi = np.pi * (1 + 5**0.5) * k
@@ -106,13 +150,17 @@ def fibonacci_sphere(n: int) -> NDArray:
 
 def localization_moduli(E: NDArray, P: ArrayLike, Q: ArrayLike, directions: NDArray) -> NDArray:
     """``g_cr^E(n)`` of eq. (166) for many directions at once (vectorised), rho = 1."""
-    n = np.asarray(directions, dtype=float)
+    E, P, Q, n = _stack_inputs(E, P, Q, directions)
     Ael = np.einsum("ijkl,mj,ml->mik", E, n, n)
-    EP = np.einsum("ijkl,kl->ij", E, np.asarray(P, dtype=float))
-    EQt = np.einsum("ijkl,ij->kl", E, np.asarray(Q, dtype=float))
+    EP = np.einsum("ijkl,kl->ij", E, P)
+    EQt = np.einsum("ijkl,ij->kl", E, Q)
     p = np.einsum("ij,mj->mi", EP, n)
     q = np.einsum("kl,ml->mk", EQt, n)
-    return np.einsum("mi,mi->m", q, np.linalg.solve(Ael, p[..., None])[..., 0])
+    try:
+        return np.einsum("mi,mi->m", q, np.linalg.solve(Ael, p[..., None])[..., 0])
+    except np.linalg.LinAlgError:
+        raise ParameterError("E must give a non-singular elastic acoustic tensor A_el(n) for "
+                             "every direction (eq. 166 needs its inverse)") from None
 
 
 def _angles_to_n(x: NDArray) -> NDArray:
@@ -124,8 +172,8 @@ def max_localization_modulus(E: NDArray, P: ArrayLike, Q: ArrayLike,
                              n_search: int = 4000) -> tuple[float, NDArray]:
     """``max_n g_cr^E(n)`` and the maximising direction: a global search on a Fibonacci grid,
     then Nelder–Mead refinement from the best few grid points (the modulus often has several
-    symmetric maxima)."""
-    grid = fibonacci_sphere(n_search)
+    symmetric maxima). ``n_search`` in [1, :data:`FIBONACCI_MAX`]."""
+    grid = fibonacci_sphere(check_integer("n_search", n_search, 1, FIBONACCI_MAX))
     vals = localization_moduli(E, P, Q, grid)
     best_val, best_n = -np.inf, grid[0]
     for i in np.argsort(vals)[-5:]:
@@ -242,6 +290,23 @@ def _coalescence_points(a: NDArray, s: NDArray, n_samples: int = 4001) -> list[f
     return points
 
 
+#: The largest ``g`` of :func:`flutter_interval_bruteforce`, in units of the scale
+#: ``|p| |q| / ||A_el||`` of the rank-one part ``p (x) q / g``. The isotropic ``A_el`` has the
+#: double eigenvalue mu, so the quartic's two lowest coefficients vanish up to their round-off
+#: (eps of their terms): its roots below ``x = 1/g ~ sqrt(eps)`` of the scale, ``g ~ 7e7``
+#: times it, are noise. Measured (96 random isotropic solids with an interval, nu from -0.9 to
+#: 0.4999): refusals (ConvergenceError) rise from 1 % at g_max = 1e2 times the scale through
+#: 6 % at 1e4 to 30 % at 1e6 and 52 % from 1e8; none wrong. Every flutter interval ends below
+#: :data:`G2_OVER_SCALE_MAX` times the scale, the workflow asks for 10 g2: 1e4 leaves a factor
+#: of 40 above that.
+G_MAX_OVER_SCALE = 1e4
+#: Bound of ``g2 / (|p| |q| / ||A_el||)`` for isotropic elasticity: ``g2 = (sqrt N +
+#: sqrt(N - p.q))^2 / (lam + mu) <= (1 + sqrt 2)^2 |p| |q| / (lam + mu)`` and ``||A_el|| /
+#: (lam + mu) <= 4`` for ``lam > -2 mu / 3`` (Frobenius norm: up to sqrt 3 more); measured
+#: largest 5.6.
+G2_OVER_SCALE_MAX = 41.0
+
+
 def flutter_interval_bruteforce(E: NDArray, P: ArrayLike, Q: ArrayLike, n: ArrayLike,
                                 g_max: float, decades: float = 8.0) -> list[tuple[float, float]]:
     """Intervals of ``g`` in ``[g_max 10^-decades, g_max]`` where the acoustic tensor (eq. 161)
@@ -257,7 +322,14 @@ def flutter_interval_bruteforce(E: NDArray, P: ArrayLike, Q: ArrayLike, n: Array
     range is cut there. Measured on ~1000 random isotropic flutter cases (nu from -0.9 to
     0.49999, n also on the axes): none wrong, ends within 2e-11 of the closed form, ~6 %
     refused; 150 anisotropic cases agree with an eigenvalue scan (and 50-digit eigenvalues
-    where the scan's threshold hesitated)."""
+    where the scan's threshold hesitated).
+
+    ``g_max`` is at most :data:`G_MAX_OVER_SCALE` ``|p| |q| / ||A_el||`` (see there; an audit:
+    g_max = 1e10 to 1e150 on the shipped case ended in a ConvergenceError, 1e200 in a
+    ZeroDivisionError). A symmetric ``A`` (``A_el`` symmetric and ``p`` parallel to ``q``, e.g.
+    ``P = Q`` with isotropic elasticity) has real eigenvalues: no interval (an audit: P = Q gave
+    a ConvergenceError, and the closed forms a spurious interval 3e-8 wide, at a double root
+    of the discriminant)."""
     g_max, decades = float(g_max), float(decades)
     if not (np.isfinite(g_max) and g_max > 0):
         raise ParameterError(f"g_max must be finite and > 0, got {g_max}")
@@ -267,6 +339,19 @@ def flutter_interval_bruteforce(E: NDArray, P: ArrayLike, Q: ArrayLike, n: Array
     if not (lo <= 1e300 and hi <= 1e300):  # 1/g beyond the floats (an audit: a LinAlgError)
         raise ParameterError(f"g_max 10^-decades = {g_max:.3g} x 1e-{decades:g} must be >= "
                              "1e-300 (the range of 1/g)")
+    Ael = elastic_acoustic_tensor(E, np.asarray(n, dtype=float))
+    p, q = acoustic_vectors(E, P, Q, np.asarray(n, dtype=float))
+    eps = float(np.finfo(float).eps)
+    pq_norm, ael_norm = float(np.linalg.norm(p) * np.linalg.norm(q)), float(np.linalg.norm(Ael))
+    if float(np.linalg.norm(np.cross(p, q))) <= 8 * eps * pq_norm \
+            and float(np.max(np.abs(Ael - Ael.T))) <= 8 * eps * ael_norm:
+        return []  # A symmetric for every g (p (x) q symmetric, or zero): real eigenvalues
+    g_top = G_MAX_OVER_SCALE * pq_norm / ael_norm
+    if not g_max <= g_top:
+        raise ParameterError(
+            f"g_max must be <= {G_MAX_OVER_SCALE:g} |p| |q| / ||A_el|| = {g_top:.6g} here (beyond, "
+            f"the discriminant's round-off decides; flutter intervals end below "
+            f"{G2_OVER_SCALE_MAX:g} |p| |q| / ||A_el||), got {g_max!r}")
     disc = discriminant_polynomial(E, P, Q, n)
     ddisc = disc.deriv()
 
@@ -299,8 +384,6 @@ def flutter_interval_bruteforce(E: NDArray, P: ArrayLike, Q: ArrayLike, n: Array
         elif fa * fb < 0:
             roots.append(brentq(lambda x: float(disc(x)), a, b, xtol=1e-300, rtol=1e-15,
                                 maxiter=500))
-    Ael = elastic_acoustic_tensor(E, np.asarray(n, dtype=float))
-    p, q = acoustic_vectors(E, P, Q, np.asarray(n, dtype=float))
     # Each end polished on the secular equation, well conditioned where the quartic's
     # coefficients are not (nu = 0.4999 moved ends by 1e-4 in an outside audit): an end is
     # where two eigenvalues of A = A_el - x p (x) q coalesce, with A_el = V diag(a) V^T and
@@ -320,7 +403,7 @@ def flutter_interval_bruteforce(E: NDArray, P: ArrayLike, Q: ArrayLike, n: Array
     for a, b in zip(cands[:-1], cands[1:], strict=True):
         if not b > a:
             continue
-        x = float(np.sqrt(a * b))
+        x = float(np.sqrt(a) * np.sqrt(b))  # not sqrt(a b): that underflows below 1e-308
         negative = float(disc(x)) < 0
         # The eigenvalues of A itself confirm the sign wherever they resolve it (a complex
         # pair above their round-off, or three real ones further apart than it); a
@@ -356,11 +439,26 @@ RANGE_MIN, RANGE_MAX = 1e-300, 1e300
 LAM_OVER_MU_MAX = 1e8
 
 
-def classify_eigenvalues(eta: ArrayLike, rtol: float = 1e-10) -> Regime:
-    """:func:`classify_acoustic` from the eigenvalues themselves (same tolerances)."""
-    eta = np.asarray(eta, dtype=complex)
+def classify_eigenvalues(eta: ArrayLike, rtol: float = 1e-10, imag_rtol: float = 1e-7
+                         ) -> Regime:
+    """:func:`classify_acoustic` from the eigenvalues themselves: flutter for a pair with
+    ``|Im| > imag_rtol max|eta|``, divergence for a real part below ``-rtol max|eta|``.
+
+    ``imag_rtol``: a double eigenvalue at a coalescence is a Jordan block, and round-off of
+    ``eps`` in ``A`` moves it by ``~sqrt(eps) = 1.5e-8`` as a complex pair (an audit: P = Q,
+    where A is symmetric, gave ``1 +- 1.49e-8 i`` from eq. 184 and regime flutter under the
+    former 1e-10); 1e-7 sits above that. ``rtol``: a simple real eigenvalue moves by ``~eps``.
+    Measured (3000 random isotropic solids): a symmetric A (P = Q) gives ``|Im| <= 1.2e-16``,
+    but a strongly non-normal coalescence up to 6e-6, so no threshold decides every case:
+    :func:`isotropic_acoustic` decides the pair from the factored discriminant instead."""
+    eta = np.asarray(eta)
+    if eta.ndim != 1 or eta.size == 0 or eta.dtype.kind not in "iufc" \
+            or not np.all(np.isfinite(eta)):
+        raise ParameterError(f"eta must be a non-empty 1-d array of finite (complex) "
+                             f"eigenvalues, got {eta!r}")
+    eta = eta.astype(complex)
     scale = max(float(np.abs(eta).max()), np.finfo(float).tiny)
-    if np.any(np.abs(eta.imag) > rtol * scale):
+    if np.any(np.abs(eta.imag) > imag_rtol * scale):
         return Regime.FLUTTER
     if np.any(eta.real < -rtol * scale):
         return Regime.DIVERGENCE
@@ -391,14 +489,19 @@ def _as_float(me: tuple[float, int]) -> float:
         return math.copysign(math.inf, m)
 
 
-def _quadratic_roots(b: float, c: float) -> tuple[complex, complex]:
+def _quadratic_roots(b: float, c: float, disc: Callable[[float], float] | None = None,
+                     real: bool = False) -> tuple[complex, complex]:
     """Roots of ``eta^2 - b eta + c`` without overflow (scaled) or cancellation (the smaller
-    real root from the product ``c``), ascending (by imaginary part when complex)."""
+    real root from the product ``c``), ascending (by imaginary part when complex). The
+    discriminant over ``m^2`` from ``disc(m)`` when given (a form without cancellation at a
+    double root), clipped at 0 when ``real`` (known to be >= 0)."""
     m = max(abs(b), math.sqrt(abs(c)))
     if m == 0.0:
         return 0j, 0j
     bs, cs = b / m, c / m / m
-    d = bs * bs - 4.0 * cs
+    d = bs * bs - 4.0 * cs if disc is None else disc(m)
+    if real:
+        d = max(d, 0.0)
     if d < 0:
         re, im = m * bs / 2, m * math.sqrt(-d) / 2
         return complex(re, -im), complex(re, im)
@@ -457,10 +560,9 @@ def isotropic_acoustic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike, n: Arr
             f"lam/mu = {lr:.6g}")
     arrays = {}
     for key, value, size in (("P", P, 6), ("Q", Q, 6), ("n", n, 3)):
-        a = np.asarray(value, dtype=float)
-        if a.shape != (size,) or not np.all(np.isfinite(a)):
-            raise ParameterError(f"{nm[key]} must be {size} finite numbers")
-        arrays[key] = a
+        # real numbers only (an audit: a complex entry raised a bare TypeError, a string or a
+        # bool was read as a number)
+        arrays[key] = check_finite_array(nm[key], value, (size,), f"{size} finite numbers")
     nv = arrays["n"]
     n_max = float(np.abs(nv).max())
     if n_max == 0.0:
@@ -488,7 +590,21 @@ def isotropic_acoustic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike, n: Arr
     p_n, q_n, pq = lr * trP + 2 * pn, lr * trQ + 2 * qn, float(p @ q)
     r, k = lr / (lr + 2), (lr + 1) / (lr + 2)
     gE = r * (lr * trP * trQ + 2 * trP * qn + 2 * trQ * pn) + 4 * (uv - k * pn * qn)
-    D = 4 * (pn * qn - uv)  # N - p.q, with N = (n.p)(n.q)
+    # N - p.q = 4 (pn qn - u.v) with N = (n.p)(n.q), as -4 (n x u).(n x v) (Binet-Cauchy, |n| = 1):
+    # for P = Q it is -4 |n x u|^2 <= 0 exactly, never the round-off of pn qn - u.v, which is
+    # 0 when n is an eigenvector of P and made a spurious interval of width 3e-8 (an audit).
+    cu, cv = np.cross(n_unit, u), np.cross(n_unit, v)
+    D = -4 * float(cu @ cv)
+    # The interval's width grows as sqrt(N D) (roots (sqrt N +- sqrt D)^2 / (lam' + 1)): where N
+    # or D is within its round-off the discriminant has a double root touching 0, and the
+    # "interval" is round-off. Bounds: u, n x u carry <= 7 eps ||P^||_F per entry (the products
+    # and sums of 3 terms), the dot 3 eps more; 16 eps and 8 eps for a factor 2 of margin.
+    eps = float(np.finfo(float).eps)
+    eu, ev = (16 * eps * float(np.linalg.norm(h)) for h in (Ph, Qh))
+    ncu, ncv = float(np.linalg.norm(cu)), float(np.linalg.norm(cv))
+    D_noise = 4 * (eu * ncv + ev * ncu + eu * ev + 8 * eps * ncu * ncv)
+    pn_noise = 8 * eps * (abs(lr * trP) + 2 * float(np.linalg.norm(Ph)))
+    qn_noise = 8 * eps * (abs(lr * trQ) + 2 * float(np.linalg.norm(Qh)))
 
     def physical(x: float, what: str) -> float:
         value = _as_float(_mul(S, x))
@@ -500,7 +616,7 @@ def isotropic_acoustic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike, n: Arr
 
     g_loc = physical(gE, "g_localization")
     interval = None
-    if p_n * q_n > 0 and D > 0:
+    if p_n * q_n > 0 and abs(p_n) > pn_noise and abs(q_n) > qn_noise and D > D_noise:
         root_n = math.sqrt(abs(p_n)) * math.sqrt(abs(q_n))
         w = root_n + math.sqrt(D)
         g1 = (pq / w) ** 2 / (lr + 1)  # (sqrt N - sqrt(N - pq))^2 = (pq / (sqrt N + ...))^2
@@ -525,7 +641,18 @@ def isotropic_acoustic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike, n: Arr
     x = _as_float(_mul(S, divide=(g,)))  # |x| M <= 1e300 / max(mu, 1); underflow to 0 is fine
     b = lr + 3 - x * pq
     c = (lr + 2) * (1 - x * gE)
-    roots = _quadratic_roots(b, c)
+    # b^2 - 4c = (lam' + 1 - x (2N - p.q))^2 - 4 x^2 N D = (lam' + 1)^2 (1 - x g1)(1 - x g2)
+    # (scaled; N = p_n q_n, D = N - p.q): negative exactly between g1 and g2, >= 0 for every
+    # g > 0 without an interval; computed so (a sum of squares when N D <= 0, as for P = Q), a
+    # coalescence is no round-off pair 1 +- 1.5e-8 i (an audit) nor a split 1 +- 3e-8.
+    if interval is None:
+        def disc(m: float) -> float:
+            return ((lr + 1) / m - x / m * (2 * p_n * q_n - pq)) ** 2 \
+                - 4 * (x / m) ** 2 * p_n * q_n * D
+    else:
+        def disc(m: float) -> float:
+            return ((lr + 1) / m * (1 - x * g1)) * ((lr + 1) / m * (1 - x * g2))
+    roots = _quadratic_roots(b, c, disc, real=interval is None)
     eta = (complex(mu), *(complex(z.real * mu, z.imag * mu) for z in roots))
     if not all(math.isfinite(z.real) and math.isfinite(z.imag) for z in eta):
         raise ParameterError(f"{nm['g']}: the eigenvalues leave the float range, |g| must be "

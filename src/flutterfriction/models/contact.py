@@ -116,6 +116,14 @@ def integrate_path(contact: CoulombContact, vertices: ArrayLike,
     if p[0] < 0 or contact.friction_function(p) > contact.cone_tolerance(p):
         raise ParameterError(f"p0 = {p0} is outside the Coulomb cone |p_T| <= mu p_N")
     E = contact.elastic_matrix()
+    # forces of every segment (and their sums along the path) within the double range: an
+    # outside audit's 1e308 m overflowed in E du and was refused only as "no slip"
+    with np.errstate(over="ignore", invalid="ignore"):
+        reach = (float(np.abs(E).max()) * float(np.abs(np.diff(V, axis=0)).sum())
+                 + float(np.abs(p).sum()))
+    if not reach < 1e300:
+        raise ParameterError(f"vertices: the path's forces (stiffness x displacements, "
+                             f"~{reach:.3g} N) leave the double range; rescale the path")
     us, ps, slips, branches = [V[0].copy()], [p.copy()], [0.0], ["start"]
     slip = 0.0
     for u_a, u_b in zip(V[:-1], V[1:], strict=True):

@@ -218,7 +218,22 @@ def acoustic_eigenvalues_isotropic(lam: float, mu: float, P: ArrayLike, Q: Array
     p, q = isotropic_vectors(lam, mu, P, Q, n)
     b = float(lam + 3 * mu - p @ q / g)
     c = float((lam + 2 * mu) * (mu - p @ q / g) + (lam + mu) * (p @ n) * (q @ n) / g)
-    disc = b * b - 4 * c
+    # b^2 - 4c = (lam + mu)^2 (1 - g1/g)(1 - g2/g) with the interval of eq. (188), else
+    # (lam + mu - (2N - p.q)/g)^2 - 4 N D / g^2 with N = (n.p)(n.q), D = N - p.q (a sum of
+    # squares when N D <= 0): formed so, a double eigenvalue is no round-off pair 1 +- 1.5e-8 i
+    # (an outside audit: P = Q, a symmetric A, was called flutter at its coalescence)
+    a, x = lam + mu, 1.0 / g
+    N, D = _flutter_factors(n, p, q)
+    interval = flutter_interval_isotropic(lam, mu, P, Q, n)
+    if interval is None:
+        disc = max((a - x * (2 * N - float(p @ q))) ** 2 - 4 * x * x * N * D, 0.0)
+    else:
+        disc = a * a * (1 - x * interval[0]) * (1 - x * interval[1])
+    if not (math.isfinite(b) and math.isfinite(c) and math.isfinite(disc)):
+        # (an outside audit: g = 1e-200 put an infinity into the scene's data)
+        raise ParameterError(f"g: |p.q|/g = {abs(float(p @ q)) / g:.3g} takes eq. (184) beyond "
+                             f"the double range; analysis.acoustic.isotropic_acoustic computes "
+                             f"it scaled, at any g")
     if disc < 0:
         root = 1j * math.sqrt(-disc)
         return np.array([mu, (b - root) / 2, (b + root) / 2])
@@ -242,11 +257,18 @@ def flutter_interval_isotropic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike
     (Eq. 188 as printed has ``(n.p)(n.p)`` in the second root.) ``None`` when no flutter."""
     n = _nonzero_direction(n)
     p, q = isotropic_vectors(lam, mu, P, Q, n)
-    N, pq = (n @ p) * (n @ q), p @ q
-    if not (N > 0 and N - pq > 0):
+    N, D = _flutter_factors(n, p, q)
+    if not (N > 0 and D > 0):
         return None
-    r1, r2 = math.sqrt(N), math.sqrt(N - pq)
+    r1, r2 = math.sqrt(N), math.sqrt(D)
     return (r1 - r2) ** 2 / (lam + mu), (r1 + r2) ** 2 / (lam + mu)
+
+
+def _flutter_factors(n: NDArray, p: NDArray, q: NDArray) -> tuple[float, float]:
+    """``N = (n.p)(n.q)`` and ``D = N - p.q``, the latter as ``-(n x p).(n x q)`` (Binet-Cauchy,
+    ``|n| = 1``): for ``P = Q`` exactly ``-|n x p|^2 <= 0``, where ``N - p.q`` formed directly
+    left round-off of either sign and a spurious interval 3e-8 wide (an outside audit)."""
+    return float((n @ p) * (n @ q)), -float(np.cross(n, p) @ np.cross(n, q))
 
 
 def flutter_interval_as_printed(lam: float, mu: float, P: ArrayLike, Q: ArrayLike,

@@ -111,14 +111,38 @@ def _nonassociative_case(params: dict[str, Any]):
     return lam, mu, P, Q, n
 
 
+def _acoustic_range(params: dict[str, Any]):
+    """The case and its range of g, refused before the scan: ``g_min >= g_max``, a g at which
+    eq. (184) leaves the double range (an outside audit: g_min = 1e-200 put an infinity into
+    the data), a ``g_max`` beyond the brute-force scan's range (:data:`~flutterfriction.
+    analysis.acoustic.G_MAX_OVER_SCALE`; it failed in the job)."""
+    take(params, {"lam", "mu", "P", "Q", "n", "g_min", "g_max", "n_points"})
+    lam, mu, P, Q, n = _nonassociative_case(params)
+    g_min = check_positive("g_min", params["g_min"], "Pa")
+    g_max = check_positive("g_max", params["g_max"], "Pa")
+    if not g_min < g_max:
+        raise ParameterError(f"g_min must be < g_max = {g_max:g} Pa, got {g_min:g}")
+    for name, value in (("g_min", g_min), ("g_max", g_max)):
+        try:
+            so.acoustic_eigenvalues_isotropic(lam, mu, P, Q, value, n)
+        except ParameterError as exc:
+            raise ParameterError(f"{name}: {str(exc).removeprefix('g: ')}") from None
+    E = so.isotropic_elasticity(lam, mu)
+    ac.flutter_interval_bruteforce(E, P, Q, n, g_max=g_max)  # (its range, naming g_max)
+    return lam, mu, P, Q, n, E, g_min, g_max
+
+
+def check_acoustic_eigenvalues(params: dict[str, Any]) -> None:
+    """The case and its range as :func:`acoustic_eigenvalues` refuses them (the configuration
+    check)."""
+    _acoustic_range(params)
+
+
 def acoustic_eigenvalues(params: dict[str, Any]) -> dict[str, Any]:
     """Eigenvalues of A(n) against g for a nonassociative case: localization, coalescences and
     the complex (flutter) pair between g1 and g2 (eqs. 179–188)."""
-    take(params, {"lam", "mu", "P", "Q", "n", "g_min", "g_max", "n_points"})
-    lam, mu, P, Q, n = _nonassociative_case(params)
-    E = so.isotropic_elasticity(lam, mu)
-    g = np.geomspace(check_positive("g_min", params["g_min"]),
-                     check_positive("g_max", params["g_max"]), n_points(params))
+    lam, mu, P, Q, n, E, g_min, g_max = _acoustic_range(params)
+    g = np.geomspace(g_min, g_max, n_points(params))
     eta = np.array([np.sort_complex(np.linalg.eigvals(so.acoustic_tensor(E, P, Q, gi, n)))
                     for gi in g])
     closed = np.array([so.acoustic_eigenvalues_isotropic(lam, mu, P, Q, gi, n) for gi in g])
