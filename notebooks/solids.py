@@ -91,7 +91,8 @@ display(Markdown(f"$h_{{cr}}$: search {q['value']:.15f}, Rudnicki–Rice {q['ind
 # %%
 e = scene("errata_solids")["errata"]
 display(Markdown("| | printed | corrected | brute force |\n|---|---|---|---|\n" + "\n".join(
-    f"| {k} | {v['printed']:.10g} | {v['corrected']:.10g} | {v['independent']:.10g} |"
+    f"| {k} | {'none' if v['printed'] is None else format(v['printed'], '.10g')} "
+    f"| {v['corrected']:.10g} | {v['independent']:.10g} |"
     for k, v in e.items())))
 show("acoustic_eigenvalues")
 

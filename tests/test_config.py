@@ -453,7 +453,8 @@ _ROD_TAN_3 = {"length": 0.35, "B": 0.0332, "rho": 0.0546, "D": 7.078e-6, "tip_ma
     ("damped_dead_load", "eps_values", [1.0e200], "scenes.damped_dead_load: eps_values: c1:"),
     ("fig11", "P_N", 1.0e200, "scenes.fig11: P_N must be in [-271.02, 271.02] N (p = P l^2/B "
                               "within the rod solver's range +-1000)"),
-    ("fig22", "path", [[0.0, 0.0], [1.0e308, 0.0]], "scenes.fig22: "),
+    ("fig22", "path", [[0.0, 0.0], [1.0e308, 0.0]], "scenes.fig22: path: the path's forces "
+                                                    "(stiffness x displacements"),
     ("beck_branch", "check_loads", [3.5, 5.5, 7.5], "scenes.beck_branch: check_loads: 7.5 N is "
                                                     "outside the branch (2.9645"),
     ("beck_branch", "P_cycle", 7.5, "scenes.beck_branch: P_cycle must be in (2.9"),
@@ -505,3 +506,17 @@ def test_fig04_refuses_more_frames_than_it_can_draw():
     problems = validate_config(raw, SCHEMA_PATH, scenes=SCENES)
     assert problems == ["config (fidelity paper): scenes.fig04.cases.flutter.duration: at most "
                         "1000 frames of dt = 0.04 s, got 2.5e+301"], problems
+
+
+def test_a_check_that_does_not_converge_is_one_problem_line_not_a_traceback():
+    """A scene's check that solves (here the acoustic tensor's interval, brute force) raised
+    its ConvergenceError through the whole configuration check: a traceback, and no scene
+    ran (the review of this session's change)."""
+    raw = yaml.safe_load((ROOT / "workflow" / "config.yaml").read_text())
+    raw["scenes"]["acoustic_eigenvalues"].update(P=[1.0, 0, 0, 0, 0, 1.0],
+                                                 Q=[1.0, 0, 0, 0, 0, -1e-6], n=[1.0, 0, 0],
+                                                 g_min=1e-4, g_max=50.0)
+    problems = validate_config(raw, SCHEMA_PATH, scenes=SCENES)
+    assert len(problems) == 1 and "\n" not in problems[0]
+    assert problems[0].startswith("config (fidelity paper): scenes.acoustic_eigenvalues: the "
+                                  "flutter interval's end near g = 48.98")

@@ -536,3 +536,42 @@ def test_the_isotropic_closed_forms_see_no_flutter_for_p_equal_to_q(g):
     # (to the eigensolver's round-off, ~eps of the largest eigenvalue 25/g; x 100 margin)
     assert np.sort(eta.real) == pytest.approx(np.linalg.eigvalsh(A),
                                               abs=1e-14 * max(1.0, 25.0 / g))
+
+
+@pytest.mark.parametrize(("P", "Q", "g", "ends"), [
+    # exact inputs with a genuine interval a few 1e-8 wide (n along e1): N - p.q = 4e-16 and
+    # 1.8e-14 exactly; a round-off threshold dropped the first, |Im| < 1e-7 called the second's
+    # pair 1 +- 9.4e-8 i stable (the review of this session's change)
+    ([1e-16, 0, 0, 0, 0, 1.0], [1.0, 0, 0, 0, 0, -1.0], 2.0, (1.99999994, 2.00000006)),
+    ([1.0, 0, 0, 0, 0, 1.0], [1.0, 0, 0, 0, 0, -5e-15], 4.5, (4.4999995757, 4.5000004243)),
+])
+def test_a_genuine_narrow_flutter_interval_is_found_and_flutters(P, Q, g, ends):
+    from flutterfriction.analysis.acoustic import isotropic_acoustic
+    from flutterfriction.models.solid import (
+        acoustic_tensor_isotropic,
+        flutter_interval_isotropic,
+        voigt_to_tensor,
+    )
+
+    r = isotropic_acoustic(1.0, 1.0, P, Q, [1.0, 0.0, 0.0], g)
+    closed = flutter_interval_isotropic(1.0, 1.0, voigt_to_tensor(P), voigt_to_tensor(Q),
+                                        [1.0, 0.0, 0.0])
+    assert r.flutter_interval == pytest.approx(ends, rel=1e-10)
+    assert closed == pytest.approx(ends, rel=1e-10)
+    assert r.regime.value == "flutter"
+    # the eigenvalues of A itself: a complex pair (|Im| ~ 1e-8, above their round-off ~1e-16)
+    A = acoustic_tensor_isotropic(1.0, 1.0, voigt_to_tensor(P), voigt_to_tensor(Q), g,
+                                  np.array([1.0, 0.0, 0.0]))
+    assert np.abs(np.linalg.eigvals(A).imag).max() > 1e-9
+
+
+def test_an_erratum_without_a_printed_interval_is_strict_json(tmp_path):
+    """errata_solids wrote NaN when the printed eq. (188) has no interval, and strict JSON
+    then failed the job for one's own parameters (the review of this session's change)."""
+    from flutterfriction.io import read_json, write_json
+    from flutterfriction.scenes.solids import errata_solids
+
+    d = errata_solids({"lam": 1.0, "mu": 1.0, "P": [0.1, 0, 0, 0, 0, 1.0],
+                       "Q": [10 / 3, 0, 0, 0, 0, -0.05], "n": [1.0, 0, 0]})
+    write_json(tmp_path / "e.json", d)
+    assert read_json(tmp_path / "e.json")["errata"]["eq188_g1"]["printed"] is None

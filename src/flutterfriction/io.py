@@ -64,8 +64,11 @@ def write_json(path: str | os.PathLike, data: Any) -> None:
     try:
         text = json.dumps(data, indent=1, sort_keys=True, default=_default, allow_nan=False)
     except ValueError:
+        where = _non_finite_at(data)
+        if where is None:  # another ValueError of json (a circular reference): as it is
+            raise
         raise ValueError(f"{path}: not written: a non-finite number (NaN or inf) at "
-                         f"{_non_finite_at(data) or 'an entry'}") from None
+                         f"{where}") from None
     write_text(path, text + "\n")
 
 

@@ -362,12 +362,16 @@ def _check_erratum(entry: dict[str, Any], data: Mapping[str, Any]) -> CheckRow:
         return missing
     e = data[entry["scene"]]["errata"][entry["key"]]
     tol = entry["agreement"]
-    printed_err = normalised_error(e["printed"], e["independent"], tol)
+    # (None: the printed form has no value here at all, e.g. no interval: as wrong as can be)
+    printed_err = (math.inf if e["printed"] is None
+                   else normalised_error(e["printed"], e["independent"], tol))
     corrected_err = normalised_error(e["corrected"], e["independent"], tol)
     verified = corrected_err <= 1.0 and printed_err > 1.0
     return CheckRow(
         id=entry["id"], kind="erratum", source=entry["source"],
-        quoted=f"printed: {entry['printed']} -> {e['printed']:.10g}", unit=e.get("quantity", ""),
+        quoted=f"printed: {entry['printed']} -> "
+               f"{'none' if e['printed'] is None else format(e['printed'], '.10g')}",
+        unit=e.get("quantity", ""),
         reproduced=e["corrected"], independent=e["independent"],
         method=f"corrected: {entry['corrected']}", independent_method=e["independent_method"],
         error=printed_err, agreement=corrected_err,

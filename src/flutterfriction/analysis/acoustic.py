@@ -7,6 +7,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
+from fractions import Fraction
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -21,8 +22,10 @@ from flutterfriction.errors import (
     check_real,
 )
 from flutterfriction.models.solid import (
+    AMBIGUOUS_RTOL,
     acoustic_vectors,
     elastic_acoustic_tensor,
+    exact_flutter_factors,
     voigt_to_tensor,
 )
 
@@ -455,7 +458,7 @@ def classify_eigenvalues(eta: ArrayLike, rtol: float = 1e-10, imag_rtol: float =
     if eta.ndim != 1 or eta.size == 0 or eta.dtype.kind not in "iufc" \
             or not np.all(np.isfinite(eta)):
         raise ParameterError(f"eta must be a non-empty 1-d array of finite (complex) "
-                             f"eigenvalues, got {eta!r}")
+                             f"eigenvalues, got {' '.join(repr(eta).split())[:80]}")
     eta = eta.astype(complex)
     scale = max(float(np.abs(eta).max()), np.finfo(float).tiny)
     if np.any(np.abs(eta.imag) > imag_rtol * scale):
@@ -595,16 +598,23 @@ def isotropic_acoustic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike, n: Arr
     # 0 when n is an eigenvector of P and made a spurious interval of width 3e-8 (an audit).
     cu, cv = np.cross(n_unit, u), np.cross(n_unit, v)
     D = -4 * float(cu @ cv)
-    # The interval's width grows as sqrt(N D) (roots (sqrt N +- sqrt D)^2 / (lam' + 1)): where N
-    # or D is within its round-off the discriminant has a double root touching 0, and the
-    # "interval" is round-off. Bounds: u, n x u carry <= 7 eps ||P^||_F per entry (the products
-    # and sums of 3 terms), the dot 3 eps more; 16 eps and 8 eps for a factor 2 of margin.
-    eps = float(np.finfo(float).eps)
-    eu, ev = (16 * eps * float(np.linalg.norm(h)) for h in (Ph, Qh))
-    ncu, ncv = float(np.linalg.norm(cu)), float(np.linalg.norm(cv))
-    D_noise = 4 * (eu * ncv + ev * ncu + eu * ev + 8 * eps * ncu * ncv)
-    pn_noise = 8 * eps * (abs(lr * trP) + 2 * float(np.linalg.norm(Ph)))
-    qn_noise = 8 * eps * (abs(lr * trQ) + 2 * float(np.linalg.norm(Qh)))
+    # Where N or D is within its round-off its sign is not the floats' to tell: a double root
+    # of the discriminant touching 0 (no interval) or a genuine interval a few 1e-8 wide. There
+    # they are computed exactly, in rationals of the inputs (models.solid.exact_flutter_factors;
+    # the band: models.solid.AMBIGUOUS_RTOL, against |p|, |q|).
+    band = AMBIGUOUS_RTOL
+    pp, qq = float(np.linalg.norm(p)), float(np.linalg.norm(q))
+    if sP > 0 and sQ > 0 and (abs(p_n) <= band * pp or abs(q_n) <= band * qq
+                              or abs(D) <= band * pp * qq):
+        mp, mq, D_exact = exact_flutter_factors(lam, mu, voigt_to_tensor(arrays["P"]),
+                                                voigt_to_tensor(arrays["Q"]), nv)
+        # in this function's units: n.p over mu max|P|, N - p.q over (mu max|P|)(mu max|Q|)
+        p_n = float(mp / (Fraction(mu) * Fraction(sP)))
+        q_n = float(mq / (Fraction(mu) * Fraction(sQ)))
+        D = float(D_exact / (Fraction(mu) ** 2 * Fraction(sP) * Fraction(sQ)))
+        sign_N, sign_D = (mp * mq > 0) - (mp * mq < 0), (D_exact > 0) - (D_exact < 0)
+    else:
+        sign_N, sign_D = (p_n * q_n > 0) - (p_n * q_n < 0), (D > 0) - (D < 0)
 
     def physical(x: float, what: str) -> float:
         value = _as_float(_mul(S, x))
@@ -616,7 +626,7 @@ def isotropic_acoustic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike, n: Arr
 
     g_loc = physical(gE, "g_localization")
     interval = None
-    if p_n * q_n > 0 and abs(p_n) > pn_noise and abs(q_n) > qn_noise and D > D_noise:
+    if sign_N > 0 and sign_D > 0 and D > 0:
         root_n = math.sqrt(abs(p_n)) * math.sqrt(abs(q_n))
         w = root_n + math.sqrt(D)
         g1 = (pq / w) ** 2 / (lr + 1)  # (sqrt N - sqrt(N - pq))^2 = (pq / (sqrt N + ...))^2
@@ -647,8 +657,10 @@ def isotropic_acoustic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike, n: Arr
     # coalescence is no round-off pair 1 +- 1.5e-8 i (an audit) nor a split 1 +- 3e-8.
     if interval is None:
         def disc(m: float) -> float:
-            return ((lr + 1) / m - x / m * (2 * p_n * q_n - pq)) ** 2 \
-                - 4 * (x / m) ** 2 * p_n * q_n * D
+            # products in this order: (x/m)^2 alone overflows where x/m > 1e154 (mu = 1e154,
+            # lam = 1: a fuzz case) while each factor times its small partner does not
+            t = (lr + 1) / m - x / m * (2 * p_n * q_n - pq)
+            return t * t - 4 * ((x / m) * p_n) * ((x / m) * q_n) * D
     else:
         def disc(m: float) -> float:
             return ((lr + 1) / m * (1 - x * g1)) * ((lr + 1) / m * (1 - x * g2))
@@ -657,7 +669,10 @@ def isotropic_acoustic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike, n: Arr
     if not all(math.isfinite(z.real) and math.isfinite(z.imag) for z in eta):
         raise ParameterError(f"{nm['g']}: the eigenvalues leave the float range, |g| must be "
                              f"larger than {g!r}")
-    regime = classify_eigenvalues([1.0, *roots])
+    # the pair is complex exactly inside the interval (the factored discriminant): any
+    # imaginary part is flutter, however narrow the interval (a threshold on |Im| called a
+    # genuine pair 1 +- 9e-8 i stable; the review of this change)
+    regime = classify_eigenvalues([1.0, *roots], imag_rtol=0.0)
     return IsotropicAcoustic(g_loc, interval, eta, regime, tuple(notes))
 
 

@@ -8,6 +8,7 @@ elasticity tensor; the isotropic closed forms (eqs. 178–194) are their twins.
 from __future__ import annotations
 
 import math
+from fractions import Fraction
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -258,6 +259,13 @@ def flutter_interval_isotropic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike
     n = _nonzero_direction(n)
     p, q = isotropic_vectors(lam, mu, P, Q, n)
     N, D = _flutter_factors(n, p, q)
+    pp, qq = float(np.linalg.norm(p)), float(np.linalg.norm(q))
+    if abs(n @ p) <= AMBIGUOUS_RTOL * pp or abs(n @ q) <= AMBIGUOUS_RTOL * qq \
+            or abs(D) <= AMBIGUOUS_RTOL * pp * qq:
+        mp, mq, D_exact = exact_flutter_factors(lam, mu, *_tensors(P, Q), n)
+        if not (mp * mq > 0 and D_exact > 0):
+            return None
+        N, D = float(mp * mq), float(D_exact)
     if not (N > 0 and D > 0):
         return None
     r1, r2 = math.sqrt(N), math.sqrt(D)
@@ -269,6 +277,39 @@ def _flutter_factors(n: NDArray, p: NDArray, q: NDArray) -> tuple[float, float]:
     ``|n| = 1``): for ``P = Q`` exactly ``-|n x p|^2 <= 0``, where ``N - p.q`` formed directly
     left round-off of either sign and a spurious interval 3e-8 wide (an outside audit)."""
     return float((n @ p) * (n @ q)), -float(np.cross(n, p) @ np.cross(n, q))
+
+
+#: Relative size below which the floating-point ``n.p``, ``n.q`` or ``N - p.q`` (against
+#: ``|p|``, ``|q|``, ``|p||q|``) may carry the wrong sign: their round-off is a few eps
+#: (~1e-15); the band is ~100 times wider. Inside it :func:`exact_flutter_factors` decides.
+AMBIGUOUS_RTOL = 1e-12
+
+
+def exact_flutter_factors(lam: float, mu: float, P: ArrayLike, Q: ArrayLike,
+                          n: ArrayLike) -> tuple[Fraction, Fraction, Fraction]:
+    """``(m.p, m.q, N - p.q)`` of eqs. (180), (187) for the unit direction ``m = n/|n|``,
+    exactly: rational arithmetic on the float inputs (``n`` of any length). Where the floats
+    cannot tell the sign (a direction along an eigenvector of ``P``, a nearly degenerate
+    case), the interval's existence is decided here, not by round-off: ``N - p.q =
+    -4 mu^2 (n x Pn).(n x Qn)/|n|^4`` (``n x p = 2 mu n x Pn``), ``m.p = lam trP + 2 mu
+    n.Pn/|n|^2``."""
+    F = Fraction
+    nn = [F(float(x)) for x in np.asarray(n, dtype=float)]
+    Pm, Qm = ([[F(float(x)) for x in row] for row in np.asarray(T, dtype=float)] for T in (P, Q))
+    Pn, Qn = ([sum(T[i][j] * nn[j] for j in range(3)) for i in range(3)] for T in (Pm, Qm))
+    n2 = sum(x * x for x in nn)
+
+    def cross(a: list, b: list) -> list:
+        return [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+
+    lam_f, mu_f = F(float(lam)), F(float(mu))
+    mp = lam_f * (Pm[0][0] + Pm[1][1] + Pm[2][2]) + 2 * mu_f * sum(
+        a * b for a, b in zip(nn, Pn, strict=True)) / n2
+    mq = lam_f * (Qm[0][0] + Qm[1][1] + Qm[2][2]) + 2 * mu_f * sum(
+        a * b for a, b in zip(nn, Qn, strict=True)) / n2
+    D = -4 * mu_f * mu_f * sum(a * b for a, b in zip(cross(nn, Pn), cross(nn, Qn),
+                                                     strict=True)) / (n2 * n2)
+    return mp, mq, D
 
 
 def flutter_interval_as_printed(lam: float, mu: float, P: ArrayLike, Q: ArrayLike,

@@ -49,7 +49,12 @@ def fig22(params: dict[str, Any]) -> dict[str, Any]:
     """The Coulomb cone, the normal a and the slip direction b, and a computed force path."""
     take(params, {"k_N", "k_T", "mu", "path"})
     c = CoulombContact(params["k_N"], params["k_T"], params["mu"])
-    r = integrate_path(c, params["path"])
+    try:
+        r = integrate_path(c, params["path"])
+    except ParameterError as exc:  # the model's word for the path is "vertices"
+        message = str(exc)
+        raise ParameterError("path" + message.removeprefix("vertices")
+                             if message.startswith("vertices") else message) from None
     if "slip" not in r.branch:
         raise ParameterError("path never reaches the Coulomb cone |p_T| = mu p_N: Fig. 22 needs "
                              "stick, slip and unloading")
@@ -379,8 +384,8 @@ def errata_solids(params: dict[str, Any]) -> dict[str, Any]:
     corrected = so.flutter_interval_isotropic(lam, mu, P, Q, n)
     printed = so.flutter_interval_as_printed(lam, mu, P, Q, n)
     brute = ac.flutter_interval_bruteforce(E, P, Q, n, g_max=10 * corrected[1])
-    if printed is None:
-        printed = (math.nan, math.nan)
+    if printed is None:  # the printed form gives no interval (null: the data is strict JSON)
+        printed = (None, None)
     return {"errata": {
         f"eq188_g{k + 1}": {
             "quantity": f"g{k + 1} of eq. (188) [Pa]", "printed": printed[k],
