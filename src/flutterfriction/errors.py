@@ -77,24 +77,26 @@ def check_finite_array(name: str, value: object, shape: tuple[int, ...],
     import numpy as np
 
     must = f"{name} must be {what or f'a finite array of shape {shape}'}"
-    shown = " ".join(repr(value).split())  # one line, whatever the repr of an array holds
+
+    def shown() -> str:  # one line, whatever the repr of an array holds (on a refusal only:
+        return " ".join(repr(value).split())  # a repr per call cost seconds in the scans)
     try:
         raw = np.asarray(value)
     except (ValueError, TypeError):  # ragged nesting
-        raise ParameterError(f"{must}, got {shown[:80]}") from None
+        raise ParameterError(f"{must}, got {shown()[:80]}") from None
     # real numbers only: float() would drop an imaginary part and read "1" or True as numbers
     # (and numpy reads [True, 1] as integers)
     if raw.dtype.kind not in "iuf" or (not isinstance(value, np.ndarray) and any(
             isinstance(x, bool | np.bool_) for x in np.asarray(value, dtype=object).flat)):
-        got = f"got {shown}" if len(shown) <= 80 else f"got dtype {raw.dtype}"
+        got = f"got {shown()}" if len(shown()) <= 80 else f"got dtype {raw.dtype}"
         raise ParameterError(f"{must} (real numbers), {got}")
     a = raw.astype(float)
     if a.shape != shape:
-        got = f"got {shown}" if a.size <= 6 else f"got shape {a.shape}"
+        got = f"got {shown()}" if a.size <= 6 else f"got shape {a.shape}"
         raise ParameterError(f"{must}, {got}")
     if not np.all(np.isfinite(a)):
         at = tuple(int(i) for i in np.argwhere(~np.isfinite(a))[0])
-        got = f"got {shown}" if a.size <= 6 else f"got {a[at]} at index {at}"
+        got = f"got {shown()}" if a.size <= 6 else f"got {a[at]} at index {at}"
         raise ParameterError(f"{must}, {got}")
     return a
 
