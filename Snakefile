@@ -2,7 +2,6 @@
 # tolerance check of every number the chapter quotes (results/checks/summary.md).
 import os
 import sys
-import threading
 
 import yaml
 
@@ -89,18 +88,10 @@ rule all:
         rules.check.output,
 
 
-# Snakemake's job rate limit (--max-jobs-per-timespan, default 100/1s) starts a 1-s timer
-# thread at each submission, not a daemon: the last one held the finished run for up to a
-# second (measured 0.96 s after the check). Nothing is left to schedule here: stop them.
-def _stop_rate_limit_timers():
-    for thread in threading.enumerate():
-        if isinstance(thread, threading.Timer):
-            thread.cancel()
-
-
+# The finished run does not wait for Snakemake's job-rate timers (common.smk).
 onsuccess:
-    _stop_rate_limit_timers()
+    stop_rate_limit_timers()
 
 
 onerror:
-    _stop_rate_limit_timers()
+    stop_rate_limit_timers()

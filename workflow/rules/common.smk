@@ -235,3 +235,15 @@ def batch_figure_outputs(part):
         out += [f"results/figures/{f}.{ext}" for ext in PDF]
         out += [png, f"results/checks/figures/{f}.json"]
     return out
+
+
+def stop_rate_limit_timers():
+    """Snakemake's job rate limit (--max-jobs-per-timespan, default 100/1s) starts a 1-s timer
+    thread at each submission, not a daemon: the last one held the finished run for up to a
+    second (measured 0.96 s after the check). Called by onsuccess/onerror, when nothing is
+    left to schedule: stop them."""
+    import threading
+
+    for thread in threading.enumerate():
+        if isinstance(thread, threading.Timer):
+            thread.cancel()
