@@ -117,3 +117,24 @@ def test_the_pendulum_sketches_of_ones_own_pendulum_pass_the_figure_check(figure
         y0, y1 = ax.get_ylim()
         assert all(x0 < x < x1 and y0 < y < y1 for line in ax.lines
                    for x, y in line.get_xydata()), pendulum
+
+
+def test_fig19_of_ones_own_pendulum_keeps_its_labels_clear():
+    """An own pendulum puts the inferred viscosity near c_max: its label ran into the panel's
+    title and the §2.9 line's label (an outside audit's run ended red on it)."""
+    import copy
+
+    from flutterfriction.config import load_config, scene_params
+    from flutterfriction.figure_check import check_figure
+    from flutterfriction.registry import figures
+    from flutterfriction.scenes import build_scene
+    from flutterfriction.sources import resolve
+
+    scene, spec = figures()["fig19_theory"]
+    params = copy.deepcopy(scene_params(load_config(ROOT / "workflow" / "config.yaml"),
+                                        scene.name))
+    params.update(pendulum=OWN_PENDULUMS[0], flutter_ratio=0.62)
+    plot = spec.plot if callable(spec.plot) else resolve(spec.plot)
+    fig = plot(build_scene(scene.name, params, scene.compute))
+    fig.set_dpi(200)  # as the paper run saves it
+    assert check_figure(fig) == []

@@ -113,11 +113,18 @@ def draw_pendulum(ax: Axes, points: dict[str, Any], masses: dict[str, float],
                      fontsize=10)
 
 
-def label_at(ax: Axes, text: str, anchor, offset, **kwargs):
+def label_at(ax: Axes, text: str, anchor, offset, points: bool = False, **kwargs):
     """``ax.annotate(text, anchor + offset)``, remembering the anchor: :func:`declutter` may
-    move the label around it."""
+    move the label around it. ``points``: ``offset`` in points from ``anchor`` (in data
+    coordinates), for a label beside a point whatever the axes' scales."""
     anchor = np.asarray(anchor, dtype=float)
-    first = anchor + np.asarray(offset, dtype=float)
+    offset = np.asarray(offset, dtype=float)
+    if points:  # positions in points from the anchor: the origin of the label's coordinates
+        t = ax.annotate(text, tuple(anchor), xytext=tuple(offset), textcoords="offset points",
+                        **kwargs)
+        t.anchor = (np.zeros(2), float(np.linalg.norm(offset)), tuple(offset))
+        return t
+    first = anchor + offset
     t = ax.annotate(text, first, **kwargs)
     t.anchor = (anchor, float(np.linalg.norm(offset)), tuple(first))
     return t

@@ -10,6 +10,7 @@ from matplotlib.colors import Normalize
 from matplotlib.figure import Figure
 
 from flutterfriction.plotting import list47, own_parameters_note
+from flutterfriction.plotting.pendulum import declutter, label_at
 
 COLOURS = ["black", "C0", "C3", "C2", "C1"]
 
@@ -130,9 +131,10 @@ def plot_fig19_theory(data: dict[str, Any]) -> Figure:
                                (data["quoted_ratios"][1], "c_from_divergence_ratio", "C3")):
         ax2.axhline(ratio, color=colour, ls=":", lw=0.8)
         ax2.plot(q[key]["value"], ratio, "o", color=colour, ms=5)
-        ax2.annotate(f"quoted {ratio:.2f}\n→ c = {q[key]['value'] * 1e3:.2f}e-3 N m s",
-                     (q[key]["value"], ratio), xytext=(-118, 8),
-                     textcoords="offset points", fontsize=7, color=colour)
+        # beside its point, moved clear of the others where one's own pendulum puts the
+        # point elsewhere (c near c_max ran into the title; an outside audit's own case)
+        label_at(ax2, f"quoted {ratio:.2f}\n→ c = {q[key]['value'] * 1e3:.2f}e-3 N m s",
+                 (q[key]["value"], ratio), (-118, 8), points=True, fontsize=7, color=colour)
     ax2.axvline(data["c_reference"], color="k", ls="--", lw=0.8)
     ax2.annotate(f"§2.9: {data['c_reference']:g} N m s", (data["c_reference"], 0.97),
                  rotation=90, xycoords=("data", "axes fraction"), ha="right", va="top",
@@ -142,6 +144,7 @@ def plot_fig19_theory(data: dict[str, Any]) -> Figure:
     ax2.set_ylabel("damped / undamped critical load [-]")
     ax2.legend(loc="upper left", fontsize=7)
     ax2.set_title("Ratios against viscosity", fontsize=8)
+    declutter(ax2)
     fig.suptitle("Fig. 19, theory only: the experimental spots of the printed figure are "
                  "measurements, not reproduced; its horizontal theory bars are drawn here as "
                  "columns", fontsize=8)
