@@ -14,15 +14,8 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Circle, FancyArrowPatch, Rectangle
 
 from flutterfriction.plotting import list47, own_parameters_note
-from flutterfriction.plotting.pendulum import (
-    MASS,
-    ROD,
-    SPRING,
-    declutter,
-    draw_ground,
-    draw_pendulum,
-    label_at,
-)
+from flutterfriction.plotting.labels import declutter, label_at
+from flutterfriction.plotting.pendulum import MASS, ROD, SPRING, draw_ground, draw_pendulum
 
 FORCE = {"W": "C0", "R": "C2", "P": "C3", "O": "C4"}
 PLATE = "0.82"

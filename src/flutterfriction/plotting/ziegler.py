@@ -12,7 +12,8 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Arc, Patch
 
 from flutterfriction.plotting import REGIME_COLOURS, list47, pendulum_text
-from flutterfriction.plotting.pendulum import MASS, ROD, declutter, draw_pendulum, label_at
+from flutterfriction.plotting.labels import declutter, label_at
+from flutterfriction.plotting.pendulum import MASS, ROD, draw_pendulum
 
 
 def _shade_regimes(ax, edges: list[float], names: list[str], x_max: float) -> None:

@@ -10,7 +10,7 @@ from matplotlib.colors import Normalize
 from matplotlib.figure import Figure
 
 from flutterfriction.plotting import list47, own_parameters_note
-from flutterfriction.plotting.pendulum import declutter, label_at
+from flutterfriction.plotting.labels import declutter, label_at
 
 COLOURS = ["black", "C0", "C3", "C2", "C1"]
 
