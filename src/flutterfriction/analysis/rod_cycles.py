@@ -31,6 +31,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.integrate import solve_ivp
 
+from flutterfriction.analysis.rod_orbit import integrate_orbit
 from flutterfriction.errors import (
     ConvergenceError,
     ParameterError,
@@ -136,8 +137,7 @@ def variational_flow(model: NonlinearRod, y: NDArray, T: float, P: float,
     5e-6, 4 stages 9e-9; CPU 1.5 s against 2.9 s for DOP853 on the coupled 16 + 16^2 + 16
     equations at rtol 1e-9 (whose every stage needed a Jacobian)."""
     N = y.size
-    sol = solve_ivp(model.rhs_at(P), (0.0, T), y, method="DOP853", rtol=rtol,
-                    atol=rtol * 1e-3, dense_output=True)
+    sol = integrate_orbit(model, y, T, P, rtol, rtol * 1e-3, dense_output=True)
     if not sol.success:
         raise ConvergenceError(f"orbit integration failed at P = {P:g} N: {sol.message}")
     c, A = _RADAU
@@ -283,8 +283,7 @@ class PeriodicOrbitNewton:
         B = flow_jacobian.copy()
         first, previous, R_prev, dz_prev = float("nan"), float("inf"), None, None
         for k in range(max_steps):
-            sol = solve_ivp(model.rhs_at(P), (0.0, T), y, method="DOP853",
-                            rtol=self.rtol, atol=self.rtol * 1e-3)
+            sol = integrate_orbit(model, y, T, P, self.rtol, self.rtol * 1e-3)
             self.orbit_integrations += 1
             if not sol.success:
                 break

@@ -20,6 +20,7 @@ import math
 
 import numpy as np
 from numba import njit
+from scipy.integrate._ivp import dop853_coefficients as _dop853
 
 
 @njit(cache=True)
@@ -362,3 +363,188 @@ def jacobians(Y, P, phi, w, S, wg, K, C, rho, tip_mass, kappa):  # pragma: no co
         if not jacobian_one(y, P, phi, w, S, wg, K, C, rho, tip_mass, kappa, J[k], f_P[k]):
             return J, f_P, False
     return J, f_P, True
+
+
+# ---------------------------------------------------------------------- the orbit's integrator
+# scipy's DOP853 (Hairer's explicit Runge-Kutta of order 8, error estimators of orders 5 and 3,
+# dense output of order 7), step for step as scipy.integrate.solve_ivp(method="DOP853") takes
+# it (rk.py: rk_step, _step_impl, _estimate_error_norm, _dense_output_impl; common.py:
+# select_initial_step), with the rod's kernel called in the compiled loop. Why: on the 4-element
+# rod's 16 states, scipy's per-step Python (the stages' dots, the error norm, the dense output)
+# and the per-call wrappers around the kernel were ~3/4 of an orbit's CPU time (measured in
+# beck_branch: 1.04e6 right-hand sides, 71e3 steps). The same arithmetic in another order of
+# summation: results equal scipy's to round-off (tests/test_rod_nonlinear.py).
+
+#: (A, B, C, E3, E5, D) of DOP853, scipy's tables (dop853_coefficients: Hairer's constants),
+#: so that the compiled method is the one it is compared with.
+DOP853_COEFFICIENTS = tuple(np.ascontiguousarray(getattr(_dop853, k))
+                            for k in ("A", "B", "C", "E3", "E5", "D"))
+_SAFETY = 0.9
+_MIN_FACTOR = 0.2
+_MAX_FACTOR = 10.0
+_ERROR_EXPONENT = -1.0 / 8.0  # -1 / (error estimator order 7 + 1)
+
+
+@njit(cache=True)
+def _rms(x):  # pragma: no cover (compiled)
+    s = 0.0
+    for v in x:
+        s += v * v
+    return math.sqrt(s) / math.sqrt(x.size)
+
+
+@njit(cache=True)
+def _stage(K, s, a, h, y, out):  # pragma: no cover (compiled)
+    """``out = y + h (K[:s].T @ a[:s])``, as scipy's ``y + np.dot(K[:s].T, a[:s]) * h``."""
+    for i in range(y.size):
+        acc = 0.0
+        for j in range(s):
+            acc += K[j, i] * a[j]
+        out[i] = y[i] + acc * h
+
+
+@njit(cache=True)
+def dop853_orbit(y0, t_end, rtol, atol, dense, A, B, Cn, E3, E5, D, P, phi, w, S, wg, K_b,
+                 C_v, rho, tip_mass, kappa):  # pragma: no cover (compiled)
+    """Integrate ``y' = rhs_one(y, P, ...)`` from ``t = 0`` to ``t_end`` > 0 by DOP853.
+
+    ``A`` (16, 16), ``B`` (12,), ``Cn`` (16,), ``E3``, ``E5`` (13,), ``D`` (4, 16): the method's
+    coefficients (scipy's ``dop853_coefficients``); the rest as :func:`rhs_one`. Returns
+    ``(status, ts, ys, F, n_fev)``: status 0 (reached ``t_end``), 1 (step size below
+    10 ulp of t: scipy's "Required step size is less than spacing between numbers"), 2 (the
+    mass matrix was not positive definite); ``ts`` (m + 1,), ``ys`` (m + 1, N) and, with
+    ``dense``, ``F`` (m, 7, N) the dense-output coefficients of each step (scipy's
+    ``Dop853DenseOutput.F``), else an empty array."""
+    n = y0.size
+    n_stages = 12
+    cap = 64
+    ts = np.empty(cap)
+    ys = np.empty((cap, n))
+    F = np.empty((cap if dense else 0, 7, n))
+    Kx = np.empty((16, n))
+    tmp = np.empty(n)
+    y = y0.copy()
+    f, ok = rhs_one(y, P, phi, w, S, wg, K_b, C_v, rho, tip_mass, kappa)
+    n_fev = 1
+    if not ok:
+        return 2, ts[:1], ys[:1], F[:0], n_fev
+    ts[0] = 0.0
+    ys[0] = y
+    m = 0
+    # select_initial_step (order 7)
+    scale = np.empty(n)
+    for i in range(n):
+        scale[i] = atol + abs(y[i]) * rtol
+    d0 = _rms(y / scale)
+    d1 = _rms(f / scale)
+    h0 = 1e-6 if (d0 < 1e-5 or d1 < 1e-5) else 0.01 * d0 / d1
+    h0 = min(h0, t_end)
+    for i in range(n):
+        tmp[i] = y[i] + h0 * f[i]
+    f1, ok = rhs_one(tmp, P, phi, w, S, wg, K_b, C_v, rho, tip_mass, kappa)
+    n_fev += 1
+    if not ok:
+        return 2, ts[:1], ys[:1], F[:0], n_fev
+    d2 = _rms((f1 - f) / scale) / h0
+    if d1 <= 1e-15 and d2 <= 1e-15:
+        h1 = max(1e-6, h0 * 1e-3)
+    else:
+        h1 = (0.01 / max(d1, d2)) ** (1.0 / 8.0)
+    h_abs = min(100 * h0, h1, t_end)
+    t = 0.0
+    y_new = np.empty(n)
+    while t < t_end:
+        min_step = 10 * abs(np.nextafter(t, np.inf) - t)
+        if h_abs < min_step:
+            h_abs = min_step
+        rejected = False
+        while True:
+            if h_abs < min_step:
+                return 1, ts[:m + 1], ys[:m + 1], F[:m], n_fev
+            t_new = t + h_abs
+            if t_new - t_end > 0:
+                t_new = t_end
+            h = t_new - t
+            h_abs = abs(h)
+            # rk_step
+            for i in range(n):
+                Kx[0, i] = f[i]
+            for s in range(1, n_stages):
+                _stage(Kx, s, A[s], h, y, tmp)
+                k, ok = rhs_one(tmp, P, phi, w, S, wg, K_b, C_v, rho, tip_mass, kappa)
+                n_fev += 1
+                if not ok:
+                    return 2, ts[:m + 1], ys[:m + 1], F[:m], n_fev
+                for i in range(n):
+                    Kx[s, i] = k[i]
+            _stage(Kx, n_stages, B, h, y, y_new)
+            f_new, ok = rhs_one(y_new, P, phi, w, S, wg, K_b, C_v, rho, tip_mass, kappa)
+            n_fev += 1
+            if not ok:
+                return 2, ts[:m + 1], ys[:m + 1], F[:m], n_fev
+            for i in range(n):
+                Kx[n_stages, i] = f_new[i]
+            # _estimate_error_norm
+            e5 = 0.0
+            e3 = 0.0
+            for i in range(n):
+                sc = atol + max(abs(y[i]), abs(y_new[i])) * rtol
+                a5 = 0.0
+                a3 = 0.0
+                for j in range(n_stages + 1):
+                    a5 += Kx[j, i] * E5[j]
+                    a3 += Kx[j, i] * E3[j]
+                e5 += (a5 / sc) ** 2
+                e3 += (a3 / sc) ** 2
+            if e5 == 0.0 and e3 == 0.0:
+                error_norm = 0.0
+            else:
+                error_norm = h_abs * e5 / math.sqrt((e5 + 0.01 * e3) * n)
+            if error_norm < 1:
+                if error_norm == 0:
+                    factor = _MAX_FACTOR
+                else:
+                    factor = min(_MAX_FACTOR, _SAFETY * error_norm ** _ERROR_EXPONENT)
+                if rejected:
+                    factor = min(1.0, factor)
+                h_abs *= factor
+                break
+            h_abs *= max(_MIN_FACTOR, _SAFETY * error_norm ** _ERROR_EXPONENT)
+            rejected = True
+        if m + 1 == ts.size:  # grow the outputs
+            ts2 = np.empty(2 * ts.size)
+            ts2[:ts.size] = ts
+            ys2 = np.empty((2 * ts.size, n))
+            ys2[:ts.size] = ys
+            if dense:
+                F2 = np.empty((2 * ts.size, 7, n))
+                F2[:ts.size] = F
+                F = F2
+            ts, ys = ts2, ys2
+        if dense:  # _dense_output_impl: three more stages, then the coefficients
+            for s in range(n_stages + 1, 16):
+                _stage(Kx, s, A[s], h, y, tmp)
+                k, ok = rhs_one(tmp, P, phi, w, S, wg, K_b, C_v, rho, tip_mass, kappa)
+                n_fev += 1
+                if not ok:
+                    return 2, ts[:m + 1], ys[:m + 1], F[:m], n_fev
+                for i in range(n):
+                    Kx[s, i] = k[i]
+            for i in range(n):
+                dy = y_new[i] - y[i]
+                F[m, 0, i] = dy
+                F[m, 1, i] = h * Kx[0, i] - dy
+                F[m, 2, i] = 2 * dy - h * (f_new[i] + Kx[0, i])
+                for r in range(4):
+                    acc = 0.0
+                    for j in range(16):
+                        acc += D[r, j] * Kx[j, i]
+                    F[m, 3 + r, i] = h * acc
+        m += 1
+        t = t_new
+        ts[m] = t
+        for i in range(n):
+            y[i] = y_new[i]
+            ys[m, i] = y_new[i]
+            f[i] = f_new[i]
+    return 0, ts[:m + 1], ys[:m + 1], F[:m], n_fev

@@ -229,14 +229,20 @@ class NonlinearRod:
             raise ParameterError(f"P must be a finite load [N], got {P!r}")
         return np.concatenate([y[n:], self.accelerations(y[:n], y[n:], P)])
 
+    def kernel_args(self, P: float) -> tuple:
+        """The compiled kernels' arguments after the state (:func:`flutterfriction.models.
+        rod_kernel.rhs_one`): the load ``P`` [N] (checked finite), the discretisation and the
+        rod's constants."""
+        r = self.rod
+        return (check_real("P", P), self.phi, self.w, self.S, self.wg, self.K, self.C, r.rho,
+                r.tip_mass, r.kappa)
+
     def rhs_at(self, P: float):
         """``f(t, y)``: :meth:`rhs` for one real state at the load ``P`` [N], for an
         integrator's many calls (the compiled kernel with its arguments bound once)."""
         from flutterfriction.models.rod_kernel import rhs_one  # numba: imported where used
 
-        r = self.rod
-        args = (check_real("P", P), self.phi, self.w, self.S, self.wg, self.K, self.C, r.rho,
-                r.tip_mass, r.kappa)
+        args = self.kernel_args(P)
 
         size = 2 * self.n_dof
 
@@ -331,4 +337,9 @@ def compile_kernels() -> dict[str, float]:
     start = time.perf_counter()
     rod.jacobians(y[:, None], 1.0)
     seconds["jacobians"] = time.perf_counter() - start
+    from flutterfriction.models.rod_kernel import DOP853_COEFFICIENTS, dop853_orbit
+
+    start = time.perf_counter()
+    dop853_orbit(y, 1e-3, 1e-6, 1e-9, True, *DOP853_COEFFICIENTS, *rod.kernel_args(1.0))
+    seconds["dop853_orbit"] = time.perf_counter() - start
     return seconds

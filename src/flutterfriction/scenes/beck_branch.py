@@ -14,8 +14,9 @@ from __future__ import annotations
 from typing import Any
 
 import numpy as np
-from scipy.integrate import cumulative_trapezoid, solve_ivp
+from scipy.integrate import cumulative_trapezoid
 
+from flutterfriction.analysis.rod_orbit import integrate_orbit
 from flutterfriction.errors import ConvergenceError, ParameterError, check_positive
 from flutterfriction.models.rod import Rod
 from flutterfriction.scenes.common import quantity, take
@@ -38,8 +39,7 @@ def cycle_shapes(model, y, T: float, P: float, n_times: int = 12, n_s: int = 41,
                  rtol: float = 1e-9) -> list:
     """The rod's centre line at ``n_times`` instants of one period of the cycle through the
     section state ``y``: ``[[x_0..x_{n_s-1}], [y_0..]]`` per instant [m] (rounded to 10 um)."""
-    sol = solve_ivp(model.rhs_at(P), (0.0, T), y, method="DOP853", rtol=rtol,
-                    atol=rtol * 1e-3, dense_output=True)
+    sol = integrate_orbit(model, y, T, P, rtol, rtol * 1e-3, dense_output=True)
     s = np.linspace(0.0, model.rod.length, 8 * (n_s - 1) + 1)
     out = []
     for t in np.linspace(0.0, T, n_times, endpoint=False):
