@@ -292,48 +292,6 @@ def test_window_narrower_than_the_scan_step():
     assert c.p_div == pytest.approx(48.8154, abs=1e-3) and c.p_div == div[0]["p_from"]
 
 
-@pytest.mark.parametrize(("tan_alpha", "p_max", "lost_without_extra_modes"), [
-    (0.593251, 80.0, True),  # a divergence window 0.048 wide at p = 48.83 (< the step)
-    (0.0013197340148878116, 20.0, True),  # a flutter load at 19.998, just below p_max
-    (0.595, 200.0, False), (10.0, 400.0, False)])
-def test_the_reduced_undamped_scan_finds_what_the_full_twin_finds(tan_alpha, p_max,
-                                                                  lost_without_extra_modes):
-    """The undamped regime scan runs on the modes the load couples plus
-    ``_UNDAMPED_EXTRA_MODES`` (3x faster): every interval equals the full FE twin's result
-    (the same exact Newton on eq. 118 after either scan) to 1e-9. With no extra modes the
-    first two cases lost their window or load (measured)."""
-    g = RodGroups(tan_alpha=tan_alpha)
-    n_el = ar._scan_elements(p_max)
-    full = ar._solve_on(g, g, n_el, p_max, ar.SCAN_STEP, None)
-    reduced = ar.critical_loads(g, p_max=p_max)
-    assert [iv["regime"] for iv in reduced.intervals] == [iv["regime"] for iv in full.intervals]
-    for a, b in zip(reduced.intervals, full.intervals, strict=True):
-        assert a["p_from"] == pytest.approx(b["p_from"], rel=1e-9, abs=1e-12)
-    bare = ar._solve_on(g, g, n_el, p_max, ar.SCAN_STEP, ar._modes_coupled(p_max))
-    # the cases a reduction without the extra modes got wrong (why they are there)
-    assert (len(bare.intervals) < len(full.intervals)) == lost_without_extra_modes
-
-
-def test_a_failed_reduced_scan_falls_back_to_the_full_twin(monkeypatch):
-    """Where the reduced twin's window has no exact double roots (Newton fails), the full twin
-    on the same mesh is tried, then a 3x finer one, as before the reduction."""
-    calls = []
-    solve_on = ar._solve_on
-    reduced = ar.critical_loads(RodGroups(tan_alpha=1.0), p_max=80.0)
-
-    def spy(g, g_scan, n_el, p_max, step, n_modes):
-        calls.append((n_el, n_modes))
-        if n_modes is not None:
-            raise ar.ConvergenceError("reduced twin refused (test)")
-        return solve_on(g, g_scan, n_el, p_max, step, n_modes)
-
-    monkeypatch.setattr(ar, "_solve_on", spy)
-    c = ar.critical_loads(RodGroups(tan_alpha=1.0), p_max=80.0)
-    assert calls == [(12, ar._modes_coupled(80.0) + ar._UNDAMPED_EXTRA_MODES), (12, None)]
-    assert c.p_flu == pytest.approx(reduced.p_flu, rel=1e-12)  # Pflüger's 16.21
-    assert c.p_flu == pytest.approx(16.21, abs=0.005)
-
-
 def test_power_product_matches_the_direct_formulas_and_survives_the_ends():
     """Eq. (106)'s units and groups without overflow or underflow on the way: equal to the
     direct formulas (few ulps) where those are safe, right where they are not."""

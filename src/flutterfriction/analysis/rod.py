@@ -295,8 +295,7 @@ class _FEScan:
         if n_modes is not None and n_modes < A0.shape[0]:
             # Galerkin on the n_modes lowest unloaded modes (M-orthonormal): drops the stiff,
             # strongly damped FE modes that make the first-order eigensolver slow (a 2n x 2n
-            # matrix spanning 1e8 in scale) and play no part in the low modes' regime;
-            # undamped, the high modes whose eigenvalues were most of the scan's cost.
+            # matrix spanning 1e8 in scale) and play no part in the low modes' regime.
             _, V = np.linalg.eigh(0.5 * (A0 + A0.T))
             V = V[:, :n_modes]
             A0, A1, C = (V.T @ X @ V for X in (A0, A1, C))
@@ -554,18 +553,6 @@ def _intervals(boundaries: list, first: Regime, p_max: float) -> list[dict]:
     return out
 
 
-#: Undamped scans reduce to the modes the load couples plus this many more. Measured over 284
-#: tip masses tan(alpha) in [0, 50] (40 log-spaced, 20 random in [0.5, 0.7], the windows near
-#: 0.59325) at p_max 20 ... 400: the reduced twin's boundaries differ from the full twin's by
-#: 1.8e-3 (relative) with 0 more, 5.1e-4 with 4, 3.0e-4 with 8, against the full twin's own
-#: error of 7.6e-4 from eq. (118); with 0 more it missed two windows the full twin finds (a
-#: divergence window 0.048 wide at tan(alpha) = 0.593251, p = 48.83; a flutter load at
-#: 19.998 for p_max 20), with 4 and 8 every interval of 308 cases (also p_max 1000) equals
-#: the full twin's result to 1e-9. Cost: critical_loads 3x faster (161.7 -> 52.8 CPU-s for
-#: the 308 cases; 0.7 -> 0.25 s at p_max 400).
-_UNDAMPED_EXTRA_MODES = 8
-
-
 def _modes_coupled(p_max: float) -> int:
     """Modes the load couples up to ``p_max`` (wavenumber^2 <= 3 p_max + 40; a mode of
     wavenumber k feels the load when k^2 <~ p), plus 4 for the Galerkin reduction's accuracy."""
@@ -796,37 +783,24 @@ def critical_loads(g: RodGroups, p_max: float = 80.0, n_elements: int | None = N
     if g.damped and delta < DAMPING_FLOOR:
         k = DAMPING_FLOOR / delta
         g_scan = RodGroups(tan_alpha=g.tan_alpha, eta=g.eta * k, gamma=g.gamma * k)
-    # The scan on the lowest modes only (see _FEScan), enough of them to hold every mode the
-    # load couples (wavenumber^2 <= 3 p_max + 40, as in _exact_regime) plus 4, undamped 8
-    # more (_UNDAMPED_EXTRA_MODES): its spectra are the scan's cost, and every boundary is
-    # then solved exactly on eq. (118).
-    n_modes = _modes_coupled(p_max) + (0 if g.damped else _UNDAMPED_EXTRA_MODES)
+    # Damped: the scan on the lowest modes only (see _FEScan), enough of them to hold every
+    # mode the load couples (wavenumber^2 <= 3 p_max + 40, as in _exact_regime) plus 4.
+    n_modes = None
     if g.damped:
+        n_modes = _modes_coupled(p_max)
         n_el = max(n_el, n_modes)
-    attempts = [(n_el, n_modes)]
-    if not g.damped:
-        # Undamped, where the reduced twin's window differs from the exact one (a window
-        # opening within ~1e-5 in tan(alpha) of its FE position: no exact double root there),
-        # the full twin on the same mesh, as before the reduction.
-        attempts.append((n_el, None))
-    if n_elements is None:
-        # Then once on a 3x finer twin: a window that opens or closes within the coarse
-        # twin's error (~1e-5 in tan(alpha) at p ~ 50 on 12 elements) has no exact double
-        # roots where the coarse twin puts them.
-        attempts.append((max(40, 3 * n_el), n_modes if g.damped else None))
-    first_error: ConvergenceError | None = None
-    # (a reduction to as many modes as the mesh has degrees of freedom, 2 per node, is the
-    # full twin: not tried twice)
-    attempts = [(mesh, None if modes is None or modes >= 2 * mesh else modes)
-                for mesh, modes in attempts]
-    for mesh, modes in dict.fromkeys(attempts):
+    try:
+        return _solve_on(g, g_scan, n_el, p_max, step, n_modes)
+    except ConvergenceError as first_error:
+        if n_elements is not None:
+            raise
+        # Once on a 3x finer twin: a window that opens or closes within the coarse twin's
+        # error (~1e-5 in tan(alpha) at p ~ 50 on 12 elements) has no exact double roots
+        # where the coarse twin puts them. A second failure is reported as the first.
         try:
-            return _solve_on(g, g_scan, mesh, p_max, step, modes)
-        except ConvergenceError as exc:
-            first_error = first_error or exc
-    # Every attempt failed: reported as the first failure.
-    assert first_error is not None
-    raise first_error
+            return _solve_on(g, g_scan, max(40, 3 * n_el), p_max, step, n_modes)
+        except ConvergenceError:
+            raise first_error from None
 
 
 def _solve_on(g: RodGroups, g_scan: RodGroups, n_el: int, p_max: float, step: float,
