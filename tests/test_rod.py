@@ -292,6 +292,24 @@ def test_window_narrower_than_the_scan_step():
     assert c.p_div == pytest.approx(48.8154, abs=1e-3) and c.p_div == div[0]["p_from"]
 
 
+def test_a_closing_flutter_window_is_kept():
+    """tan a = 0.98226: a flutter window 0.33 wide at p = 69.5-69.8 between two divergence
+    intervals, near where it closes along tan a (the full 12-element twin closes it at
+    0.98229, the exact rod at ~0.98235). A modal reduction of the scan (the modes the load
+    couples + 8; tried for speed) had lost it, silently: the seven regime check points of the
+    divergence interval all fall outside it (an outside audit). The exact roots of eq. (118)
+    confirm it at its middle and deny it beyond its ends."""
+    g = RodGroups(tan_alpha=0.98226)
+    c = ar.critical_loads(g, p_max=80.0)
+    assert [iv["regime"] for iv in c.intervals] == [
+        "stable", "flutter", "divergence", "flutter", "divergence"]
+    window = c.intervals[3]
+    assert window["p_from"] == pytest.approx(69.50348579, abs=1e-6)
+    assert window["p_to"] == pytest.approx(69.83389236, abs=1e-6)
+    assert str(ar._exact_regime(69.67, g)) == "flutter"
+    assert str(ar._exact_regime(69.4, g)) == str(ar._exact_regime(69.9, g)) == "divergence"
+
+
 def test_power_product_matches_the_direct_formulas_and_survives_the_ends():
     """Eq. (106)'s units and groups without overflow or underflow on the way: equal to the
     direct formulas (few ulps) where those are safe, right where they are not."""
