@@ -310,6 +310,23 @@ def test_a_closing_flutter_window_is_kept():
     assert str(ar._exact_regime(69.4, g)) == str(ar._exact_regime(69.9, g)) == "divergence"
 
 
+@pytest.mark.parametrize(("tan_alpha", "p_max", "last"), [
+    (0.0, 20.051659451048003, "flutter"),  # Beck's 20.05095 just below p_max
+    (3.0, 17.086006823311713, "flutter"),
+    (1.0, 287.9733187412765, "flutter"),
+    (0.6, 46.63278695985922, "divergence")])
+def test_a_boundary_just_below_p_max_is_found(tan_alpha, p_max, last):
+    """An exact boundary just below ``p_max`` whose FE-twin boundary lies just beyond it: the
+    scan runs to p_max (1 + SCAN_BEYOND), so the last interval is not lost (an outside audit:
+    each of these ended one interval short; the exact roots of eq. 118 confirm the last
+    interval inside it)."""
+    g = RodGroups(tan_alpha=tan_alpha)
+    c = ar.critical_loads(g, p_max=p_max)
+    iv = c.intervals[-1]
+    assert iv["regime"] == last and iv["p_to"] == p_max and p_max - iv["p_from"] < 0.01 * p_max
+    assert str(ar._exact_regime(0.5 * (iv["p_from"] + p_max), g)) == last
+
+
 def test_power_product_matches_the_direct_formulas_and_survives_the_ends():
     """Eq. (106)'s units and groups without overflow or underflow on the way: equal to the
     direct formulas (few ulps) where those are safe, right where they are not."""
