@@ -123,7 +123,8 @@ def jacobians_along(model: NonlinearRod, Y: NDArray, P: float) -> tuple[NDArray,
 
 def variational_flow(model: NonlinearRod, y: NDArray, T: float, P: float,
                      rtol: float = 1e-10, dense_output: bool = False) -> VariationalFlow:
-    """The orbit over ``T`` (DOP853, ``atol = 1e-3 rtol``, dense output) with the solutions of
+    """The orbit over ``T`` (DOP853 compiled, :func:`~flutterfriction.analysis.rod_orbit.
+    integrate_orbit`, ``atol = 1e-3 rtol``, dense output) with the solutions of
     its variational equations ``Phi' = J Phi``, ``Phi(0) = I`` and ``S' = J S + f_P``,
     ``S(0) = 0``.
 
