@@ -327,6 +327,31 @@ def test_a_boundary_just_below_p_max_is_found(tan_alpha, p_max, last):
     assert str(ar._exact_regime(0.5 * (iv["p_from"] + p_max), g)) == last
 
 
+@pytest.mark.parametrize(("tan_alpha", "boundary"), [(0.0, 1), (1.0, 2), (3.0, 1), (3.0, 2)])
+@pytest.mark.parametrize("offset", [0.0, 1e-15, -1e-15, 1e-9, 3e-7])
+def test_p_max_on_an_exact_boundary_is_answered(tan_alpha, boundary, offset):
+    """``p_max`` at an exact boundary, or within 1e-6 of it (a natural input: p_max = the
+    flutter load): the interval below runs to p_max, no sliver interval whose regime check
+    fails (an outside review: 'Newton did not converge' or 'boundaries not ordered' since the
+    scan runs beyond p_max)."""
+    g = RodGroups(tan_alpha=tan_alpha)
+    full = ar.critical_loads(g, p_max=40.0).intervals
+    p_b = full[boundary]["p_from"]
+    c = ar.critical_loads(g, p_max=p_b * (1 + offset))
+    assert [iv["regime"] for iv in c.intervals] == [iv["regime"] for iv in full[:boundary]]
+    assert c.intervals[-1]["p_to"] == p_b * (1 + offset)
+
+
+@pytest.mark.parametrize("tan_alpha", [0.59325, 0.593248, 0.5932502])
+def test_a_boundary_beyond_p_max_that_newton_cannot_solve_is_not_asked_for(tan_alpha):
+    """The scan runs 1 % beyond p_max; an FE boundary there whose Newton fails (a window
+    opening within the twin's error, p ~ 48.8 on 12 elements) is beyond the asked range, so
+    it does not fail the call (an outside review)."""
+    c = ar.critical_loads(RodGroups(tan_alpha=tan_alpha), p_max=48.5, n_elements=12)
+    assert [iv["regime"] for iv in c.intervals] == ["stable", "flutter"]
+    assert c.p_flu == pytest.approx(16.05351, abs=1e-5)
+
+
 def test_power_product_matches_the_direct_formulas_and_survives_the_ends():
     """Eq. (106)'s units and groups without overflow or underflow on the way: equal to the
     direct formulas (few ulps) where those are safe, right where they are not."""

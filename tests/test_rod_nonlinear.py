@@ -571,7 +571,7 @@ def test_compiled_dop853_is_scipys_dop853(extra, n_elements):
         t = np.concatenate([np.random.default_rng(1).uniform(0, T, 50), own.t])
         assert np.array_equal(own.sol(t), scipy_sol(t))
         assert np.array_equal(own.sol(0.1234), scipy_sol(0.1234))
-        assert np.array_equal(own.sol(own.t), own.y)
+        assert np.abs(own.sol(own.t) - own.y).max() <= 1e-14 * np.abs(own.y).max()
 
 
 def test_compiled_dop853_refuses_what_it_cannot_integrate():
@@ -579,8 +579,8 @@ def test_compiled_dop853_refuses_what_it_cannot_integrate():
 
     m = NonlinearRod(Rod(length=0.35, B=0.0332, rho=0.0546, D=7.078e-6), 2)
     y = np.zeros(2 * m.n_dof)
-    with pytest.raises(ConvergenceError, match="positive definite"):
-        integrate_orbit(m, np.full(2 * m.n_dof, np.nan), 0.1, 5.5, 1e-9, 1e-12)
+    with pytest.raises(ConvergenceError, match="positive definite"):  # a state far out
+        integrate_orbit(m, np.full(2 * m.n_dof, 1e300), 0.1, 5.5, 1e-9, 1e-12)
     for T in (0.0, -1.0, np.inf, np.nan):
         with pytest.raises(ParameterError, match="T must be"):
             integrate_orbit(m, y, T, 5.5, 1e-9, 1e-12)
@@ -588,3 +588,31 @@ def test_compiled_dop853_refuses_what_it_cannot_integrate():
         integrate_orbit(m, y[:-1], 0.1, 5.5, 1e-9, 1e-12)
     with pytest.raises(ParameterError, match="P must"):
         integrate_orbit(m, y, 0.1, np.nan, 1e-9, 1e-12)
+    # below scipy's 100 eps the steps grew without end (rtol 1e-20: > 60 s, 400 MB; an outside
+    # review); a negative rtol integrated silently
+    for rtol in (1e-20, 1e-17, -1e-9, np.nan, 1.0):
+        with pytest.raises(ParameterError, match="rtol must be"):
+            integrate_orbit(m, y, 0.1, 5.5, rtol, 1e-12)
+    for atol in (-1.0, np.nan, np.inf):
+        with pytest.raises(ParameterError, match="atol must be"):
+            integrate_orbit(m, y, 0.1, 5.5, 1e-9, atol)
+    with pytest.raises(ParameterError, match="finite"):
+        integrate_orbit(m, np.full(2 * m.n_dof, np.inf), 0.1, 5.5, 1e-9, 1e-12)
+    sol = integrate_orbit(m, y + 0.01, 0.1, 5.5, 1e-9, 1e-12, dense_output=True)
+    with pytest.raises(ParameterError, match="1-D"):
+        sol.sol(np.zeros((2, 2)))
+
+
+@pytest.mark.parametrize(("scene", "key"), [("beck_branch", "rtol"),
+                                             ("beck_branch", "check_rtol"),
+                                             ("beck_hopf", "rtol")])
+def test_the_rod_cycle_scenes_refuse_an_rtol_the_orbit_integrator_cannot_meet(scene, key):
+    """Below 100 eps the compiled DOP853's steps grow without end (an outside review: rtol
+    1e-20 ran > 60 s and 400 MB); the workflow's schema already stops the config below 1e-12,
+    and the scenes' own checks (their Python entry point) now refuse it before any work."""
+    from flutterfriction.registry import SCENES
+
+    for bad in (1e-20, -1e-9, "x", 0.5):
+        with pytest.raises(ParameterError, match=f"{key} must be"):
+            SCENES[scene].check({"rod": {"length": 0.35, "B": 0.0332, "rho": 0.0546,
+                                         "D": 7.078e-6}, key: bad})

@@ -266,7 +266,7 @@ _ENTRIES = [
         "rod:plot_beck_hopf",
         "Beyond the chapter: the rod's limit cycles from the damped flutter load by "
         "periodic-orbit continuation, and their Floquet multipliers against the normal form: "
-        "a supercritical Hopf bifurcation.")}, slow=True),
+        "a supercritical Hopf bifurcation.")}, slow=True, check=rod.check_beck_hopf),
     Scene("beck_branch", branch.beck_branch, "limit_cycles", {"beck_branch": _fig(
         "beck_branch:plot_beck_branch",
         "Beyond the chapter: the rod's whole branch of limit cycles, from the Hopf point "

@@ -233,6 +233,10 @@ SCAN_STEP = 0.25
 #: p_max <= 400, on the default meshes), so an exact boundary below p_max is bracketed even
 #: when the twin's lies beyond it (x13 margin; a mesh given by hand may need more).
 SCAN_BEYOND = 0.01
+#: A change of regime within ``LAST_INTERVAL_RTOL p_max`` below ``p_max`` is not reported: the
+#: last interval would be narrower than the exact regime check resolves (measured by an
+#: outside review: widths of 1e-8 p_max and below failed the check, 1e-7 passed; x10 margin).
+LAST_INTERVAL_RTOL = 1e-6
 #: Largest load of the scan. Where it comes from: the FE mesh grows like sqrt(p_max)
 #: (:func:`_scan_elements`) and the scan like p_max; at 1000 the scan takes ~2 s (25 x 40
 #: elements) and the modes involved (k ~ sqrt(p) ~ 32) are still resolved to < 1e-3 by the
@@ -750,7 +754,9 @@ def critical_loads(g: RodGroups, p_max: float = 80.0, n_elements: int | None = N
     point (always, if the coalescing pair's gap varies on a scale longer than ``step``;
     measured: the divergence window opening at tan(alpha) = 0.593251 is found from 0.07
     wide, on 12 and on 40 elements). The scan runs to ``p_max (1 + SCAN_BEYOND)``, so a
-    boundary just below ``p_max`` whose FE twin lies just beyond it is kept. Not guaranteed: a
+    boundary just below ``p_max`` whose FE twin lies just beyond it is kept (unless it lies
+    within ``LAST_INTERVAL_RTOL p_max`` of ``p_max``: then the regime below it is reported up
+    to ``p_max``). Not guaranteed: a
     window about to close along tan(alpha) that the FE twin has already closed (at
     tan(alpha) = 0.98229-0.98235 a flutter window near p = 69.7, 12 elements; measured by an
     outside audit). Where the FE twin's window differs from the exact one
@@ -822,8 +828,17 @@ def _solve_on(g: RodGroups, g_scan: RodGroups, n_el: int, p_max: float, step: fl
     _, first, bounds = _fe_scan(g_scan, n_el, p_max * (1 + SCAN_BEYOND), step, n_modes)
     exact: list[_Boundary] = []
     for b in bounds:
-        p, omega = _exact_boundary(g, b)
-        if p > p_max:  # beyond the asked range (the FE boundary may lie on either side)
+        try:
+            p, omega = _exact_boundary(g, b)
+        except ConvergenceError:
+            if b.p > p_max:  # a boundary only the extended scan sees: not asked for
+                break
+            raise
+        # Beyond the asked range (the FE boundary may lie on either side), or so close to
+        # p_max that the last interval would be a sliver narrower than the regime check
+        # resolves (its check points sit on the coalescence; an outside review: p_max = the
+        # exact flutter load failed): the interval below it runs to p_max.
+        if p > p_max * (1 - LAST_INTERVAL_RTOL):
             break
         exact.append(_Boundary(p, omega, b.before, b.after, b.kind, b.guess))
     ps = [0.0, *[b.p for b in exact], p_max]

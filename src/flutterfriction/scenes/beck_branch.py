@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 from scipy.integrate import cumulative_trapezoid
 
-from flutterfriction.analysis.rod_orbit import integrate_orbit
+from flutterfriction.analysis.rod_orbit import check_orbit_rtol, integrate_orbit
 from flutterfriction.errors import ConvergenceError, ParameterError, check_positive
 from flutterfriction.models.rod import Rod
 from flutterfriction.scenes.common import quantity, take
@@ -40,6 +40,8 @@ def cycle_shapes(model, y, T: float, P: float, n_times: int = 12, n_s: int = 41,
     """The rod's centre line at ``n_times`` instants of one period of the cycle through the
     section state ``y``: ``[[x_0..x_{n_s-1}], [y_0..]]`` per instant [m] (rounded to 10 um)."""
     sol = integrate_orbit(model, y, T, P, rtol, rtol * 1e-3, dense_output=True)
+    if not sol.success:
+        raise ConvergenceError(f"the cycle's orbit at P = {P:g} N failed: {sol.message}")
     s = np.linspace(0.0, model.rod.length, 8 * (n_s - 1) + 1)
     out = []
     for t in np.linspace(0.0, T, n_times, endpoint=False):
@@ -65,6 +67,8 @@ def _branch_settings(params: dict[str, Any]) -> tuple[Rod, int, float, float, fl
     P_max = check_positive("P_max", params.get("P_max", 7.0), "N")
     P_cycle = check_positive("P_cycle", params.get("P_cycle", 5.5), "N")
     A_scale = check_positive("A_scale", params.get("A_scale", 0.3), "m")
+    for name, default in (("rtol", 1e-9), ("check_rtol", 1e-10)):
+        check_orbit_rtol(name, params.get(name, default))
     M0, C0, K0, K1 = NonlinearRod(rod, n_el).linear_matrices()
     P_flu = float(flutter_onset(M0, C0, K0, K1, load_max=40 * rod.load_unit, n_scan=64))
     if not P_max > P_flu:

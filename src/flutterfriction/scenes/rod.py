@@ -784,6 +784,20 @@ def beck_linearisation(params: dict[str, Any]) -> dict[str, Any]:
         }}
 
 
+def _hopf_settings(params: dict[str, Any]) -> tuple[Rod, float, float]:
+    from flutterfriction.analysis.rod_orbit import check_orbit_rtol
+
+    take(params, {"rod", "n_elements", "A_max", "rtol", "max_points", "chord"})
+    return (_rod(params), check_positive("A_max", params.get("A_max", 0.09), "m"),
+            check_orbit_rtol("rtol", params.get("rtol", 1e-10)))
+
+
+def check_beck_hopf(params: dict[str, Any]) -> None:
+    """The Hopf scene's parameters as :func:`beck_hopf` refuses them (the configuration
+    check)."""
+    _hopf_settings(params)
+
+
 def beck_hopf(params: dict[str, Any]) -> dict[str, Any]:
     """Beyond the chapter: the nature of the rod's Hopf bifurcation (list 119, Kelvin–Voigt).
     The branch of limit cycles born at the damped flutter load, by periodic-orbit continuation
@@ -794,11 +808,8 @@ def beck_hopf(params: dict[str, Any]) -> dict[str, Any]:
     with sigma the exact linear growth rate."""
     from flutterfriction.analysis.rod_cycles import cycle_branch
 
-    take(params, {"rod", "n_elements", "A_max", "rtol", "max_points", "chord"})
-    rod = _rod(params)
-    b = cycle_branch(rod, n_elements=int(params.get("n_elements", 4)),
-                     A_max=check_positive("A_max", params.get("A_max", 0.09), "m"),
-                     rtol=float(params.get("rtol", 1e-10)),
+    rod, A_max, rtol = _hopf_settings(params)
+    b = cycle_branch(rod, n_elements=int(params.get("n_elements", 4)), A_max=A_max, rtol=rtol,
                      max_points=int(params.get("max_points", 60)),
                      chord=bool(params.get("chord", True)))
     if b.stopped_by != "A_max":
