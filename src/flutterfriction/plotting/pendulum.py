@@ -37,7 +37,7 @@ def _spiral(ax: Axes, at: np.ndarray, size: float, turns: float = 2.2) -> None:
 def draw_pendulum(ax: Axes, points: dict[str, Any], masses: dict[str, float],
                   scale: float, *, springs: bool = True, loads: dict[str, float] | None = None,
                   labels: bool | str = False, ground_angle: float = np.pi, offset=(0.0, 0.0),
-                  transform=None) -> None:
+                  transform=None, arrow_head: float = 10.0, arrow_gap: float = 2.0) -> None:
     """Draw one configuration.
 
     Parameters
@@ -78,8 +78,11 @@ def draw_pendulum(ax: Axes, points: dict[str, Any], masses: dict[str, float],
         t = (C - B) / np.linalg.norm(C - B)
         if loads.get("P"):
             tip = C - 0.05 * scale * t
+            # arrow_head, arrow_gap [points]: in small frames (Fig. 4) a 10-point head and
+            # the 2-point gaps left no shaft, a detached triangle (a figure review)
             ax.add_patch(FancyArrowPatch(tip + loads["P"] * t, tip, arrowstyle="-|>",
-                                         mutation_scale=10, color="#c0392b", lw=1.6, zorder=8))
+                                         mutation_scale=arrow_head, color="#c0392b", lw=1.6,
+                                         zorder=8, shrinkA=arrow_gap, shrinkB=arrow_gap))
             if labels:
                 ax.annotate(r"$\mathbf{P}$", tip + 1.05 * loads["P"] * t, color="#c0392b",
                             ha="center", va="center", fontsize=11)

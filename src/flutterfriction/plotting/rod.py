@@ -183,19 +183,25 @@ def plot_stability_map(data: dict[str, Any]) -> Figure:
                 label=f"divergence, {label}" + (" (the same)" if name != "undamped" else ""))
     ends = data["undamped"].get("p_div_end")
     p_top = 80.0  # the loads searched
+    # The undamped regimes as areas, as in Figs. 11-12: stable below the flutter load, flutter
+    # above it (unshaded, a figure review read the flutter region as stable), divergence over
+    # it where it comes.
+    flu = np.array([np.nan if v is None else v for v in data["undamped"]["p_flu"]], float)
+    ax.fill_between(r, 0.0, np.where(np.isnan(flu), p_top, flu), color=REGIME_COLOURS["stable"],
+                    lw=0, zorder=0, label="stable (damping absent)")
+    ax.fill_between(r, flu, p_top, where=~np.isnan(flu), color=REGIME_COLOURS["flutter"], lw=0,
+                    zorder=0, label="flutter (damping absent)")
     if ends is not None:
         div = np.array([np.nan if v is None else v for v in data["undamped"]["p_div"]], float)
         top = np.array([np.nan if v is None else v for v in ends], float)
         has = ~np.isnan(div)
         inside = ~np.isnan(top)
         ax.fill_between(r, div, np.where(inside, top, p_top), where=has,
-                        color=REGIME_COLOURS["divergence"], lw=0, alpha=0.7,
+                        color=REGIME_COLOURS["divergence"], lw=0, zorder=0.5,
                         label="divergence (damping absent)")
         if inside.any():
-            ax.fill_between(r, top, p_top, where=inside, color=REGIME_COLOURS["flutter"],
-                            lw=0, label="flutter again above the divergence window")
             ax.plot(r[inside], top[inside], "-", lw=1.0, color="C3",
-                    label="end of the divergence window (grid points)")
+                    label="end of the divergence window (grid points): flutter above")
         # Where divergence first appears (below p = 80): between two ratios of the map's grid.
         k = int(np.argmax(has))
         if k > 0:
@@ -204,6 +210,7 @@ def plot_stability_map(data: dict[str, Any]) -> Figure:
                         xytext=(0.12, 0.62), textcoords="axes fraction", fontsize=7,
                         arrowprops={"arrowstyle": "->", "lw": 0.7})
         ax.set_ylim(top=max(65.0, float(np.nanmax(top)) + 3 if inside.any() else 65.0))
+    ax.set_ylim(bottom=0.0)
     ax.set_xscale("symlog", linthresh=0.01)
     ax.set_xlim(0, r[-1])
     ax.set_xlabel(r"tip-mass ratio $M/(\rho l) = \tan\alpha$ [-]")
@@ -236,7 +243,8 @@ def _title(data, fig: str, what: str) -> str:
             f"{100 * max(err.values()):.2f}% of the {data['meshes'][-1]}-element one); on "
             f"{data['meshes'][-2]} elements A = {c['tip_amplitude_m'] * 1000:.1f} mm, "
             f"T = {c['period_s'] * 1000:.2f} ms\n"
-            f"the transient from a {tr['initial_amplitude_m'] * 1000:g} mm flutter mode ends "
+            f"the transient from the flutter mode, tip displacement "
+            f"{tr['initial_amplitude_m'] * 1000:g} mm with the mode's velocity, ends "
             f"{100 * tr['final_distance']:.1f}% from it, at t = {tr['t_end']:.2f} s")
 
 
@@ -246,7 +254,7 @@ def _growth(ax, x, y, t, cx, cy):
     from matplotlib.collections import LineCollection
 
     ax.plot([x[0]], [y[0]], "o", color="C3", ms=5, mec="w", zorder=5,
-            label="start: straight rod + small flutter mode")
+            label="start: straight rod + small flutter mode (its displacement and velocity)")
     pts = np.array([x, y]).T.reshape(-1, 1, 2)
     lc = LineCollection(np.concatenate([pts[:-1], pts[1:]], axis=1), cmap="viridis", lw=0.6,
                         norm=plt.Normalize(t[0], t[-1]))

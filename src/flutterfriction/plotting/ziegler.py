@@ -212,7 +212,7 @@ def plot_fig04(data: dict[str, Any]) -> Figure:
             ax.plot([0, span], [0, 0], color="0.7", lw=0.6, ls="--")
             frame = {key: v[i] for key, v in pts.items()}
             draw_pendulum(ax, frame, data["masses"], scale=0.5 * L, springs=False,
-                          loads={"P": 0.3 * L})
+                          loads={"P": 0.3 * L}, arrow_head=6.0, arrow_gap=0.0)
             if beyond:  # the whole (folded back) pendulum in its frame, at the same scale
                 xy = np.array([np.asarray(v, dtype=float) for v in frame.values()])
                 cx, cy = 0.5 * (xy[:, 0].min() + xy[:, 0].max()), 0.5 * (xy[:, 1].min()
@@ -248,8 +248,8 @@ def plot_fig04(data: dict[str, Any]) -> Figure:
                        label="masses at D, E, C"),
                 Line2D([], [], color=ROD, marker="o", ls="none", mfc="white", mew=1.0, ms=3,
                        label="hinge B"),
-                Line2D([], [], color="#c0392b", marker="<", ls="none", ms=6,
-                       label="follower load P at C"),
+                Line2D([], [], color="#c0392b", marker="<", ls="-", lw=1.6, ms=5,
+                       markevery=[0], label="follower load P at C (along BC)"),
                 Line2D([], [], color="0.7", lw=0.8, ls="--",
                        label="straight: α1 = α2 = 0")]
             if flagged:  # (the note in its frame overflowed it at 100 dpi)
