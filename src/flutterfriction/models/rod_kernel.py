@@ -404,6 +404,22 @@ def _stage(K, s, a, h, y, out):  # pragma: no cover (compiled)
 
 
 @njit(cache=True)
+def _stages(Kx, first, last, A, h, y, tmp, P, phi, w, S, wg, K_b, C_v, rho, tip_mass,
+            kappa):  # pragma: no cover (compiled)
+    """Runge-Kutta stages ``first .. last - 1``: ``Kx[s] = f(y + h sum_j A[s, j] Kx[j])``.
+    Returns ``(ok, evaluations)``; ``ok`` False where the mass matrix was not positive
+    definite."""
+    for s in range(first, last):
+        _stage(Kx, s, A[s], h, y, tmp)
+        k, ok = rhs_one(tmp, P, phi, w, S, wg, K_b, C_v, rho, tip_mass, kappa)
+        if not ok:
+            return False, s - first + 1
+        for i in range(y.size):
+            Kx[s, i] = k[i]
+    return True, last - first
+
+
+@njit(cache=True)
 def dop853_orbit(y0, t_end, rtol, atol, dense, A, B, Cn, E3, E5, D, P, phi, w, S, wg, K_b,
                  C_v, rho, tip_mass, kappa):  # pragma: no cover (compiled)
     """Integrate ``y' = rhs_one(y, P, ...)`` from ``t = 0`` to ``t_end`` > 0 by DOP853.
@@ -469,14 +485,11 @@ def dop853_orbit(y0, t_end, rtol, atol, dense, A, B, Cn, E3, E5, D, P, phi, w, S
             # rk_step
             for i in range(n):
                 Kx[0, i] = f[i]
-            for s in range(1, n_stages):
-                _stage(Kx, s, A[s], h, y, tmp)
-                k, ok = rhs_one(tmp, P, phi, w, S, wg, K_b, C_v, rho, tip_mass, kappa)
-                n_fev += 1
-                if not ok:
-                    return 2, ts[:m + 1], ys[:m + 1], F[:m], n_fev
-                for i in range(n):
-                    Kx[s, i] = k[i]
+            ok, k_fev = _stages(Kx, 1, n_stages, A, h, y, tmp, P, phi, w, S, wg, K_b, C_v,
+                                rho, tip_mass, kappa)
+            n_fev += k_fev
+            if not ok:
+                return 2, ts[:m + 1], ys[:m + 1], F[:m], n_fev
             _stage(Kx, n_stages, B, h, y, y_new)
             f_new, ok = rhs_one(y_new, P, phi, w, S, wg, K_b, C_v, rho, tip_mass, kappa)
             n_fev += 1
@@ -522,14 +535,11 @@ def dop853_orbit(y0, t_end, rtol, atol, dense, A, B, Cn, E3, E5, D, P, phi, w, S
                 F = F2
             ts, ys = ts2, ys2
         if dense:  # _dense_output_impl: three more stages, then the coefficients
-            for s in range(n_stages + 1, 16):
-                _stage(Kx, s, A[s], h, y, tmp)
-                k, ok = rhs_one(tmp, P, phi, w, S, wg, K_b, C_v, rho, tip_mass, kappa)
-                n_fev += 1
-                if not ok:
-                    return 2, ts[:m + 1], ys[:m + 1], F[:m], n_fev
-                for i in range(n):
-                    Kx[s, i] = k[i]
+            ok, k_fev = _stages(Kx, n_stages + 1, 16, A, h, y, tmp, P, phi, w, S, wg, K_b,
+                                C_v, rho, tip_mass, kappa)
+            n_fev += k_fev
+            if not ok:
+                return 2, ts[:m + 1], ys[:m + 1], F[:m], n_fev
             for i in range(n):
                 dy = y_new[i] - y[i]
                 F[m, 0, i] = dy
