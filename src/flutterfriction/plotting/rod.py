@@ -50,7 +50,8 @@ def _zoom_crossing(ax, p: np.ndarray, re: np.ndarray, p_flu: float) -> None:
     ins.tick_params(labelsize=6, pad=1)
     ins.xaxis.set_major_locator(plt.MaxNLocator(4))
     ins.set_xlabel("p [-]", fontsize=6, labelpad=3)
-    ins.set_ylabel(rf"max Re $\tilde\omega$" "\n" rf"$\times 10^{{{exp}}}$ [-]", fontsize=6,
+    # "in 10^exp", not "x 10^exp" (a figure review: multiplied by, or in units of?)
+    ins.set_ylabel(rf"max Re $\tilde\omega$" "\n" rf"in $10^{{{exp}}}$ [-]", fontsize=6,
                    labelpad=2)
     ins.set_facecolor("white")
     # The panel's own p_f line runs under the inset: the inset (zorder 5) covers it, and its

@@ -66,7 +66,7 @@ def plot_fig05(data: dict[str, Any]) -> Figure:
     ax_z.set_xlim(lo, hi)
     ax_z.set_ylim(-0.25 * ztop * zs, 0.25 * ztop * zs)
     ax_z.set_xlabel(r"$\gamma = P L/K$ [-]")
-    ax_z.set_ylabel(rf"largest Re $\tilde\omega$ $\times 10^{{{zexp}}}$ [-]")
+    ax_z.set_ylabel(rf"largest Re $\tilde\omega$ in $10^{{{zexp}}}$ [-]")
     ax_z.set_title(r"zoom: the largest Re $\tilde\omega$ changes sign at the damped flutter "
                    "loads (dots); undamped: 0 until 2", fontsize=8)
     return fig
