@@ -258,3 +258,24 @@ def test_regime_exactly_at_a_critical_load_is_answered():
     assert regime(p, 0.0, 0.5) in (Regime.STABLE, Regime.DIVERGENCE)
     assert regime(p, 0.0, 0.49) == Regime.STABLE
     assert regime(p, 0.0, 0.51) == Regime.DIVERGENCE
+
+
+def test_the_polished_flutter_load_is_the_first_crossing_whatever_the_start():
+    """polish_flutter_onset next to a lightly damped pair (an outside review): a 2-dof
+    follower-load system with C = 0.1 K0 and a third oscillator (damping 1e-12) coupled by
+    1e-3. Starting 1e-9 above the raw onset, the pair nearest the axis was the wrong one and
+    the result 7.5e-7 off, silently; starting 1e-9 below, the largest growth rate is the wrong
+    one. Every start now gives the crossing where no other pair is unstable."""
+    import numpy as np
+
+    from flutterfriction.analysis.damped import flutter_onset, polish_flutter_onset
+
+    M = np.array([[3.0, 1, 0], [1, 1, 0], [0, 0, 1]])
+    K0 = np.array([[2.0, -1, 0], [-1, 1, 0], [0, 0, 0.7]])
+    K1 = np.array([[-1.0, 1, 1e-3], [0, 0, 0], [1e-3, 0, 0]])
+    C = np.zeros((3, 3))
+    C[:2, :2], C[2, 2] = 0.1 * K0[:2, :2], 1e-12
+    raw = flutter_onset(M, C, K0, K1, load_max=3.0)
+    polished = [polish_flutter_onset(M, C, K0, K1, raw * f) for f in (1.0, 1 + 1e-9, 1 - 1e-9)]
+    assert max(polished) - min(polished) <= 1e-13 * raw
+    assert abs(polished[0] - raw) <= 1e-9 * raw

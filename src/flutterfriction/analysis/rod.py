@@ -234,8 +234,10 @@ SCAN_STEP = 0.25
 #: when the twin's lies beyond it (x13 margin; a mesh given by hand may need more).
 SCAN_BEYOND = 0.01
 #: A change of regime within ``LAST_INTERVAL_RTOL p_max`` below ``p_max`` is not reported: the
-#: last interval would be narrower than the exact regime check resolves (measured by an
-#: outside review: widths of 1e-8 p_max and below failed the check, 1e-7 passed; x10 margin).
+#: last interval would be narrower than the exact regime check resolves (its check points sit
+#: on the coalescence, where Newton on eq. (118) meets nearly coincident roots; measured by
+#: outside reviews: widths of 1e-8 p_max and below failed, and the midpoint alone failed up
+#: to 1.5e-5 before the other check points could answer for it).
 LAST_INTERVAL_RTOL = 1e-6
 #: Largest load of the scan. Where it comes from: the FE mesh grows like sqrt(p_max)
 #: (:func:`_scan_elements`) and the scan like p_max; at 1000 the scan takes ~2 s (25 x 40
@@ -805,7 +807,10 @@ def critical_loads(g: RodGroups, p_max: float = 80.0, n_elements: int | None = N
         n_modes = _modes_coupled(p_max)
         n_el = max(n_el, n_modes)
     try:
-        return _solve_on(g, g_scan, n_el, p_max, step, n_modes)
+        # (a failed Newton on a boundary only the extended scan sees: skipped where no finer
+        # retry follows, else the retry decides, as for any failure)
+        return _solve_on(g, g_scan, n_el, p_max, step, n_modes,
+                         skip_failed_beyond=n_elements is not None)
     except ConvergenceError as first_error:
         if n_elements is not None:
             raise
@@ -813,13 +818,14 @@ def critical_loads(g: RodGroups, p_max: float = 80.0, n_elements: int | None = N
         # error (~1e-5 in tan(alpha) at p ~ 50 on 12 elements) has no exact double roots
         # where the coarse twin puts them. A second failure is reported as the first.
         try:
-            return _solve_on(g, g_scan, max(40, 3 * n_el), p_max, step, n_modes)
+            return _solve_on(g, g_scan, max(40, 3 * n_el), p_max, step, n_modes,
+                             skip_failed_beyond=True)
         except ConvergenceError:
             raise first_error from None
 
 
 def _solve_on(g: RodGroups, g_scan: RodGroups, n_el: int, p_max: float, step: float,
-              n_modes: int | None) -> RodCriticalLoads:
+              n_modes: int | None, skip_failed_beyond: bool = True) -> RodCriticalLoads:
     """:func:`critical_loads` with the FE twin on ``n_el`` elements (scan at ``g_scan``)."""
     # The FE twin is scanned a little beyond p_max: an exact boundary just below p_max whose FE
     # boundary falls just beyond it would otherwise be lost, and with it the last interval
@@ -831,7 +837,7 @@ def _solve_on(g: RodGroups, g_scan: RodGroups, n_el: int, p_max: float, step: fl
         try:
             p, omega = _exact_boundary(g, b)
         except ConvergenceError:
-            if b.p > p_max:  # a boundary only the extended scan sees: not asked for
+            if b.p > p_max and skip_failed_beyond:  # only the extended scan sees it
                 break
             raise
         # Beyond the asked range (the FE boundary may lie on either side), or so close to
@@ -850,19 +856,27 @@ def _solve_on(g: RodGroups, g_scan: RodGroups, n_el: int, p_max: float, step: fl
         # Not the midpoint alone: at tan(alpha) = 0 with a small external damping gamma only,
         # the scan missed the flutter from p = 20.05 and a midpoint of [0, 40] (p = 20) found
         # the claimed "stable" true (outside audit). Seven interior points of each interval.
+        # A point next to a coalescence (Newton on nearly coincident roots) gives no verdict;
+        # at least one of the seven must (a narrow interval's midpoint may be that close: an
+        # outside review saw p_max 1e-6 ... 1.5e-5 above a boundary fail on it alone).
+        first_error: ConvergenceError | None = None
+        verdicts = 0
         for frac in REGIME_CHECK_POINTS:
             mid = iv["p_from"] + frac * (iv["p_to"] - iv["p_from"])
             try:
                 r = _exact_regime(mid, g)
-            except ConvergenceError:
-                if frac == REGIME_CHECK_POINTS[0]:
-                    raise
-                continue  # an extra point next to a coalescence: no verdict there
+            except ConvergenceError as exc:
+                first_error = first_error or exc
+                continue
+            verdicts += 1
             if r is not None and r != iv["regime"]:
                 raise ConvergenceError(
                     f"regime check failed at p = {mid:.6g}: the exact roots of eq. (118) give "
                     f"{r}, the FE bracketing {iv['regime']} (a change of regime the scan "
                     "missed)")
+        if not verdicts:
+            assert first_error is not None
+            raise first_error
     out = _loads_from(intervals, {b.p: b.omega for b in exact})
     return RodCriticalLoads(**out, intervals=intervals)
 
