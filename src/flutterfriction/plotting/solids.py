@@ -239,6 +239,16 @@ def plot_acoustic_eigenvalues(data: dict[str, Any]) -> Figure:
     for i, (re, im) in enumerate(zip(data["re"], data["im"], strict=True)):
         ax1.plot(g, re, color=f"C{i}", lw=1.4)
         ax2.plot(g, im, color=f"C{i}", lw=1.4, label=f"eigenvalue {i + 1} of A(n)")
+    # A complex-conjugate pair has one real part: where two eigenvalues do (in the flutter
+    # band), the first curve is drawn again dashed over the second (a figure review saw a
+    # legend entry whose curve was hidden there).
+    re_all, im_all = np.array(data["re"], float), np.array(data["im"], float)
+    for i in range(len(re_all)):
+        for j in range(i + 1, len(re_all)):
+            pair = (np.abs(im_all[i]) > 0) & np.isclose(re_all[i], re_all[j], rtol=1e-9, atol=0)
+            if pair.any():
+                ax1.plot(g, np.where(pair, re_all[i], np.nan), color=f"C{i}", lw=1.4,
+                         ls=(0, (3, 3)), zorder=3)
     ax1.axhline(data["mu"], color="k", ls=":", lw=0.8)
     ax1.annotate(rf"$\mu$ = {data['mu']:g}", (g[0], data["mu"]), xytext=(0, 3),
                  textcoords="offset points", ha="left", va="bottom", fontsize=7)
