@@ -38,8 +38,9 @@ from flutterfriction.errors import ConvergenceError, ParameterError
 Matrix = NDArray[np.float64]
 
 
-def state_spectra(M: Matrix, C: Matrix, K0: Matrix, K1: Matrix, loads: ArrayLike) -> NDArray:
-    """Spectra of the first-order form for many loads in one batched call, shape (m, 2n)."""
+def state_matrices(M: Matrix, C: Matrix, K0: Matrix, K1: Matrix, loads: ArrayLike) -> NDArray:
+    """The first-order form's matrices ``[[0, I], [-M^-1 (K0 + P K1), -M^-1 C]]`` for many
+    loads, shape (m, 2n, 2n)."""
     p = np.atleast_1d(np.asarray(loads, dtype=float))
     n = M.shape[0]
     Minv = np.linalg.inv(M)
@@ -47,7 +48,12 @@ def state_spectra(M: Matrix, C: Matrix, K0: Matrix, K1: Matrix, loads: ArrayLike
     A[:, :n, n:] = np.eye(n)
     A[:, n:, :n] = -(Minv @ K0)[None] - p[:, None, None] * (Minv @ K1)[None]
     A[:, n:, n:] = -Minv @ C
-    return np.linalg.eigvals(A)
+    return A
+
+
+def state_spectra(M: Matrix, C: Matrix, K0: Matrix, K1: Matrix, loads: ArrayLike) -> NDArray:
+    """Spectra of the first-order form for many loads in one batched call, shape (m, 2n)."""
+    return np.linalg.eigvals(state_matrices(M, C, K0, K1, loads))
 
 
 class _System:
@@ -201,10 +207,6 @@ def polish_flutter_onset(M: ArrayLike, C: ArrayLike, K0: ArrayLike, K1: ArrayLik
     M, C, K0, K1 = (np.asarray(X, dtype=float) for X in (M, C, K0, K1))
     n = M.shape[0]
 
-    def state_matrix(P: float) -> NDArray:
-        return np.block([[np.zeros((n, n)), np.eye(n)],
-                         [-np.linalg.solve(M, K0 + P * K1), -np.linalg.solve(M, C)]])
-
     def newton(w: float, x: NDArray) -> float:
         c = x / np.vdot(x, x)  # normalisation c^H x = 1
         P = float(load)
@@ -229,7 +231,7 @@ def polish_flutter_onset(M: ArrayLike, C: ArrayLike, K0: ArrayLike, K1: ArrayLik
                 return step(x, w, P)[2]
         raise ConvergenceError(f"polishing the flutter load {load:g}: Newton did not converge")
 
-    ev, V = np.linalg.eig(state_matrix(load))
+    ev, V = np.linalg.eig(state_matrices(M, C, K0, K1, load)[0])
     upper = np.flatnonzero(ev.imag > 0)
     if not upper.size:
         raise ConvergenceError(f"no oscillating pair at the flutter load {load:g}")
@@ -249,7 +251,7 @@ def polish_flutter_onset(M: ArrayLike, C: ArrayLike, K0: ArrayLike, K1: ArrayLik
                 f"polishing the flutter load {load:g}: no flutter crossing within 1e-6 of it "
                 f"(Newton reached {P:g})")
             continue
-        at = np.linalg.eigvals(state_matrix(P))
+        at = state_spectra(M, C, K0, K1, P)[0]
         if at.real.max() > 1000 * np.finfo(float).eps * np.abs(at).max():
             first_error = first_error or ConvergenceError(
                 f"polishing the flutter load {load:g}: at {P:g} another pair is already "
