@@ -24,6 +24,7 @@ rule work_precision_figure:
         check="results/checks/figures/work_precision.json",
     log:
         "results/logs/work_precision_figure.log",
+    priority: 3  # with the other figures (see animate_pendulum_cycle)
     conda:
         "../envs/flutterfriction.yaml"
     resources:

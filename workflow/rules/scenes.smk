@@ -199,6 +199,9 @@ rule animate_pendulum_cycle:
         "results/figures/pendulum_cycle.gif",
     log:
         "results/logs/animate_pendulum_cycle.log",
+    # with the figures, not after them: a 2.4 s GIF started last ran alone at the end of
+    # the paper run (measured: 2.4 s of one idle core before the report)
+    priority: 3
     conda:
         "../envs/flutterfriction.yaml"
     resources:
@@ -218,6 +221,9 @@ rule animate_rod_cycle:
         "results/figures/beck_cycle.gif",
     log:
         "results/logs/animate_rod_cycle.log",
+    # with the figures, not after them: a 2.4 s GIF started last ran alone at the end of
+    # the paper run (measured: 2.4 s of one idle core before the report)
+    priority: 3
     conda:
         "../envs/flutterfriction.yaml"
     resources:
