@@ -406,8 +406,8 @@ def plot_fig08(data: dict[str, Any]) -> Figure:
     handles += [Line2D([], [], color=Q_COL, lw=1.2, marker=">", ms=5),
                 Line2D([], [], color=F_COL, lw=2.0, marker=">", ms=5),
                 Line2D([], [], color=MOM_COL, lw=1.4, marker=">", ms=5)]
-    labels += [f"q = ({q[0]:g}, {q[1]:g}) N/m per unit length (arrows: {qs / 1e3:.3g} m "
-               "per N/m)",
+    # both scales in mm, as the axes (the load's was in m: two units for one length)
+    labels += [f"q = ({q[0]:g}, {q[1]:g}) N/m (arrows: {qs:.3g} mm per N/m)",
                f"internal force on the part (arrows: {fs:.3g} mm per N)",
                "internal moment on the part (counterclockwise: +e3)"]
     b = part["balances"]

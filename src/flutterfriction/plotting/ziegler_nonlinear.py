@@ -122,7 +122,10 @@ def plot_fig20(data: dict[str, Any]) -> Figure:
         ax.set_xlabel("t [s]")
     for ax in (ax1, ax2):
         ax.set_ylabel(r"transverse acceleration of C [m/s$^2$]")
-    ax1.legend(fontsize=7, loc="upper left", ncol=2)  # lower left, it hid the first peaks
+    # one legend, in the detail's upper left: before the blow-up both curves are small there
+    # (in the 6-s panel, above the cycle's peaks, it covered the linear solution's blow-up;
+    # lower left, it hid the first peaks)
+    ax2.legend(fontsize=7, loc="upper left")
     a0 = data.get("alpha0_deg", 0.5)  # (data from before the key was stored: the default)
     # one's own pendulum in short, its values on a line of their own (in the title's line
     # they widened the figure to the title's length)
