@@ -279,3 +279,29 @@ def test_the_polished_flutter_load_is_the_first_crossing_whatever_the_start():
     polished = [polish_flutter_onset(M, C, K0, K1, raw * f) for f in (1.0, 1 + 1e-9, 1 - 1e-9)]
     assert max(polished) - min(polished) <= 1e-13 * raw
     assert abs(polished[0] - raw) <= 1e-9 * raw
+
+
+def test_the_polished_crossing_gives_the_pulsation_and_checks_its_window():
+    """polish_flutter_crossing: the load and the crossing pair's pulsation (an eigenvalue
+    i w of the first-order form at that load), refused outside its window ``rtol`` and for an
+    ``rtol`` outside (0, 1)."""
+    import numpy as np
+
+    from flutterfriction.analysis.damped import (
+        flutter_onset,
+        polish_flutter_crossing,
+        state_spectra,
+    )
+    from flutterfriction.errors import ConvergenceError, ParameterError
+
+    M, K0 = np.diag([2.0, 1.0]), np.array([[2.0, -1], [-1, 1]])
+    K1, C = np.array([[-1.0, 1], [0, 0]]), 0.05 * np.array([[2.0, -1], [-1, 1]])
+    raw = flutter_onset(M, C, K0, K1, load_max=5.0)
+    P, w = polish_flutter_crossing(M, C, K0, K1, raw)
+    s = state_spectra(M, C, K0, K1, P)[0]
+    assert np.min(np.abs(s - 1j * w)) <= 1e-9 * w
+    with pytest.raises(ConvergenceError, match="within 1e-08"):
+        polish_flutter_crossing(M, C, K0, K1, raw * (1 + 1e-6), rtol=1e-8)
+    for bad in (0.0, 1.0, float("nan")):
+        with pytest.raises(ParameterError, match="rtol must be in"):
+            polish_flutter_crossing(M, C, K0, K1, raw, rtol=bad)

@@ -137,6 +137,26 @@ def test_fe_converges_at_fourth_order():
     assert np.all(rates > 3.5) and np.all(rates < 4.5)
 
 
+def test_damped_fe_flutter_load_converges_past_the_spectrum_round_off():
+    """The damped FE twin's flutter load stalled at the first-order spectrum's round-off (list
+    119's Beck rod: 3.1e-9 on 32 elements, 3.6e-9 on 48, 7.9e-8 on 64; eta = 1e-6: 4.1e-7 on
+    80 elements, 100x its mesh error). Polished on the quadratic eigenproblem it keeps
+    converging: 32 -> 64 elements gains more than 4x (h^4: 16x; the polished round-off is
+    ~1e-10, measured), and at eta = 1e-6 on 80 elements it is within 1e-8 (measured 6.2e-10,
+    the mesh's h^4 error ~2e-9)."""
+    g = RodGroups(eta=ETA_119)
+    exact = ar.critical_loads(g, p_max=20.0)
+    e32, e64 = (abs(ar.fe_critical_loads(g, n, p_max=20.0).p_flu - exact.p_flu) / exact.p_flu
+                for n in (32, 64))
+    assert 1e-9 < e32 < 5e-9  # the mesh's own error (h^4 from 24 elements' 1.0e-8)
+    assert e64 < e32 / 4
+    g = RodGroups(eta=1e-6)
+    exact = ar.critical_loads(g, p_max=40.0)
+    fe = ar.fe_critical_loads(g, 80, p_max=40.0)
+    assert fe.p_flu == pytest.approx(exact.p_flu, rel=1e-8)
+    assert fe.omega_flu == pytest.approx(exact.omega_flu, rel=1e-8)
+
+
 def test_fe_eigenvalues_converge_to_exact_roots():
     g = RodGroups(tan_alpha=0.5, eta=1e-3, gamma=0.1)
     exact = ar.eigenvalues(12.0, g, n_modes=2)

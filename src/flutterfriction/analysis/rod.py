@@ -24,6 +24,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.optimize import brentq, linear_sum_assignment, minimize_scalar
 
+from flutterfriction.analysis.damped import polish_flutter_crossing
 from flutterfriction.analysis.stability import Regime, state_eigenvalues
 from flutterfriction.errors import (
     ConvergenceError,
@@ -313,6 +314,10 @@ class _FEScan:
         if not self.damped:
             self.A0, self.A1 = A0, A1
         else:
+            # the unreduced quadratic eigenproblem M s^2 + C s + K_B + p Q, for polishing a
+            # crossing (better conditioned than the Cholesky-reduced one: measured, Newton
+            # stalled at 2e-10 relative at 48 elements on the reduced, 1e-10 on these)
+            self.quadratic = (fe.M, fe.C, fe.K_B, fe.load_matrix())
             n = A0.shape[0]
             self.B0 = np.zeros((2 * n, 2 * n))
             self.B0[:n, n:] = np.eye(n)
@@ -541,10 +546,27 @@ def _fe_boundary(scan: _FEScan, e: _Event, polish: _FEScan | None = None) -> _Bo
     p = m
     if fa * fb < 0:
         p = float(brentq(fun, a, b, xtol=4 * np.finfo(float).eps * max(1.0, b)))
+    crossing = None
+    if kind == "crossing" and polish is not None:
+        # Brent's root of a growth rate computed from the first-order spectrum stalls at that
+        # spectrum's round-off, eps max|s| (the stiff Kelvin-Voigt modes): 3.6e-9 relative at
+        # 48 elements (list 119's damping), where the mesh's error is 6e-10. Newton on the
+        # quadratic eigenproblem has a floor 30x lower (~1e-10 at 48 elements;
+        # analysis.damped.polish_flutter_crossing). It refuses a start it cannot confirm, and
+        # Brent's load stands then.
+        try:
+            # accepted anywhere in the bracket where the growth rate changes sign (the raw
+            # load's error reaches 2.3e-6 at eta = 1e-6: beyond polishing's default window)
+            crossing = polish_flutter_crossing(*model.quadratic, p,
+                                               rtol=max(b - p, p - a) / max(p, 1e-300))
+            p = crossing[0]
+        except ConvergenceError:
+            pass
     s = model.spectra(np.array([p]))[0]
     if kind == "crossing":
         near = s[np.argmin(np.abs(s - z0))]
-        omega = guess = abs(near.imag)
+        # (Newton's pulsation where polished: the spectrum's carries its round-off too)
+        omega = guess = abs(near.imag) if crossing is None else crossing[1]
     else:
         near = s[np.argsort(np.abs(s - z0))[:2]]
         # The double root as the pair's mean: well conditioned, unlike either root of a
@@ -644,17 +666,19 @@ def fe_critical_loads(g: RodGroups, n_elements: int, p_max: float = 80.0,
     polished on the full model. Parameters as :func:`critical_loads` (``n_elements``
     required); the loads are the FE model's, not eq. (118)'s.
 
-    Accuracy near the damping floor: the damped flutter load is where a growth rate of order
-    ``eta`` crosses zero, computed from a spectrum whose round-off grows with the stiffest
-    element mode, so below ``eta ~ 1e-5`` round-off, not the mesh, sets the error. Measured
-    against the exact load (tan(alpha) 0, 1, 4.59; 20/40/80 elements; p_max 40): at
-    ``eta = 1e-6`` up to 2.3e-6 relative on 80 elements (4e-7 on 20), at 3e-6 up to 9.8e-7, at
-    1e-5 and above within the discretisation error (<= 4.8e-7 on 20 elements, <= 1.4e-7 on 40
-    and 80). The same round-off limits refinement at any damping: at list (119)'s
-    ``eta = 1.36e-3`` (Beck rod, p_max 20) the error is 5.0e-9 on 48 elements, then 2.0e-7 on
-    96 and 1.4e-6 on 128 (an outside audit; re-measured here): beyond ~48 elements a finer
-    mesh is less accurate. For small damping use :func:`critical_loads` (exact at any damping);
-    this function is its independent check."""
+    Accuracy of a damped flutter load: it is where a growth rate of order ``eta`` crosses
+    zero. Located on the first-order spectrum, whose round-off grows with the stiffest element
+    mode, it stalled at that round-off: 2.3e-6 relative at ``eta = 1e-6`` on 80 elements, and
+    at list (119)'s ``eta = 1.36e-3`` (Beck rod) 3e-9 on 48 elements, 1.3e-7 on 96, 1.8e-6 on
+    128 (an outside audit): a finer mesh was less accurate. Each crossing is therefore
+    polished by Newton on the quadratic eigenproblem
+    (:func:`~flutterfriction.analysis.damped.polish_flutter_crossing`), whose own round-off is
+    ~1e-10 at 48 elements and ~1e-9 at 96-128. Measured against the exact load: tan(alpha) 0,
+    1, 4.59, p_max 40, ``eta`` 1e-6 ... 1e-4: 4.8e-7 on 20 elements, 3.0e-8 on 40, <= 1.6e-9
+    on 80 (the mesh's h^4 error); list (119): 7e-10 on 48 elements, <= 3.4e-9 on 64-128.
+    Where Newton cannot confirm the crossing the spectrum's load stands, with its round-off.
+    For small damping use :func:`critical_loads` (exact at any damping); this function is its
+    independent check."""
     p_max = _check_p_max(p_max)
     step = _check_step(step, p_max)
     check_groups(g)
