@@ -562,3 +562,32 @@ def test_a_mesh_or_a_load_list_beyond_the_solvers_range_is_refused_before_any_wo
         critical_loads(RodGroups(), n_elements=10**9)
     with pytest.raises(ParameterError, match=f"p_values must hold at most {MAX_BRANCH_LOADS}"):
         branches(RodGroups(), np.linspace(0.0, 10.0, MAX_BRANCH_LOADS + 1))
+
+
+@pytest.mark.parametrize("tan_alpha, n_points", [(1.0, 401), (1.561, 801)])
+def test_branches_split_from_the_flutter_coalescence_by_one_rule(tan_alpha, n_points):
+    """After a coalescence the two branches have no continuation: which one went right was
+    round-off, and Fig. 12's two columns coloured them oppositely (a figure review). Now the
+    lower-indexed branch takes the root of larger real part, on Fig. 12's own grids: the
+    branch from the 1st mode's +Im root goes right (Re > 0), the 2nd mode's left."""
+    p = np.linspace(0.0, 40.0, n_points)[: (n_points - 1) * 17 // 40 + 1]  # up to p = 17
+    w = ar.branches(RodGroups(tan_alpha=tan_alpha), p, n_modes=2)
+    upper = np.flatnonzero(w[0].imag > 0)
+    first, second = upper[np.argsort(w[0, upper].imag)]
+    after = np.searchsorted(p, ar.critical_loads(RodGroups(tan_alpha=tan_alpha)).p_flu) + 2
+    assert w[after, first].real > 0 > w[after, second].real
+
+
+def test_orient_splits_orders_a_split_and_keeps_a_crossing():
+    """The rule itself: a pair whose predictions coincide (just split from a double root) is
+    ordered by real part whatever the assignment gave; a pair crossing without meeting (each
+    prediction on its own root) is left as continued, even where the rule would order it
+    the other way."""
+    from flutterfriction.analysis.rod import _orient_splits
+
+    split = np.array([-0.5 + 6j, 0.5 + 6j, 3j])
+    _orient_splits(split, np.array([6j + 1e-9, 6j, 3j]))
+    assert split.tolist() == [0.5 + 6j, -0.5 + 6j, 3j]
+    crossing = np.array([1.9j, 2.1j])
+    _orient_splits(crossing, np.array([1.9j, 2.1j]))
+    assert crossing.tolist() == [1.9j, 2.1j]

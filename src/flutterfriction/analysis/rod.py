@@ -970,7 +970,30 @@ def branches(g: RodGroups, p_values: NDArray, n_modes: int = 2,
         cost = np.abs(pred[:, None] - truth[None, :])
         rows, cols = linear_sum_assignment(cost)
         out[i, rows] = truth[cols]
+        _orient_splits(out[i], pred)
     return out
+
+
+def _orient_splits(roots: NDArray, pred: NDArray) -> None:
+    """Where two branches have just split from a double root (their predictions nearly
+    coincide, so that swapping them costs < 10 % of their separation), give the lower-indexed
+    branch the root of larger real part (then larger imaginary part), in place. A split has
+    no continuation to follow; without a rule the colours of Fig. 12's branches after the
+    flutter coalescence were set by round-off and differed between its two columns. (With
+    damping the branches do not quite meet, and continuation sends the lower mode to the
+    right: the rule agrees.) Branches crossing without meeting are not ambiguous (a swap
+    costs twice their separation) and keep their continuation."""
+    n = roots.size
+    for j in range(n):
+        for k in range(j + 1, n):
+            a, b = roots[j], roots[k]
+            gap = abs(a - b)
+            if gap == 0.0:
+                continue
+            kept = abs(pred[j] - a) + abs(pred[k] - b)
+            swapped = abs(pred[j] - b) + abs(pred[k] - a)
+            if swapped - kept < 0.1 * gap and (b.real, b.imag) > (a.real, a.imag):
+                roots[j], roots[k] = b, a
 
 
 def fe_eigenvalues(g: RodGroups, p: float, n_elements: int, follower: bool = True) -> NDArray:
