@@ -490,3 +490,15 @@ def test_the_recorded_parameters_are_validated_in_one_line(tmp_path, content, me
         run_check({"quantities": [_one_quantity()], "errata": []}, _DATA, parameters=[1, 2])
     assert set(load_parameters(ROOT / "workflow" / "reference_parameters.json")) == {
         "paper", "quick", "resolution_keys"}
+
+
+def test_wrap_items_breaks_between_items_only():
+    """A figure title's parameter list on short lines, never "0.1" on one line and "m" on
+    the next; an item longer than the width stands on its own line."""
+    from flutterfriction.plotting import wrap_items
+
+    text = "l1 = l2 = 0.1 m, d = 0.1 m, h = 0 m, m1 = m2 = 0.2 kg, m3 = 0 kg, k1 = k2 = 0.189 N m"
+    lines = wrap_items(text, 40).split("\n")
+    assert len(lines) == 3 and all(len(line) <= 40 for line in lines)
+    assert ", ".join(line.rstrip(",") for line in lines) == text
+    assert wrap_items("a, " + "b" * 50 + ", c", 10).split("\n") == ["a,", "b" * 50 + ",", "c"]

@@ -53,6 +53,19 @@ def pendulum_text(pendulum: dict[str, float] | None) -> str:
     return ", ".join(parts)
 
 
+def wrap_items(text: str, width: int, sep: str = ", ") -> str:
+    """``text``, a list of items joined by ``sep``, on lines of at most ``width`` characters
+    broken between items only (never between a value and its unit); an item longer than
+    ``width`` gets a line of its own."""
+    lines: list[str] = []
+    for item in text.split(sep):
+        if lines and len(lines[-1]) + len(sep) + len(item) <= width:
+            lines[-1] += sep + item
+        else:
+            lines.append(item)
+    return (sep.rstrip() + "\n").join(lines)
+
+
 def own_parameters_note(data: dict[str, Any], key: str, name: str, width: int = 150) -> str:
     """``""`` when the data's parameters ``key`` are the chapter's list ``name``, else
     "your own pendulum: l1 = ..." wrapped to lines of ``width`` characters: the values, once,

@@ -9,7 +9,12 @@ import numpy as np
 from matplotlib.collections import LineCollection
 from matplotlib.figure import Figure
 
-from flutterfriction.plotting import list47_viscous, own_parameters_note, pendulum_text
+from flutterfriction.plotting import (
+    list47_viscous,
+    own_parameters_note,
+    pendulum_text,
+    wrap_items,
+)
 
 
 def time_coloured(ax, x, y, t, lw=0.8):
@@ -51,7 +56,9 @@ def _transient_and_cycle(ax, x, y, t, k: int, t_end: float, cycle_label: bool):
 def _section29_text(data: dict[str, Any]) -> str:
     """The pendulum and the start of Figs. 13-14 (the §2.9 list and imperfection)."""
     params = data.get("params", {})
-    text = pendulum_text(params.get("pendulum"))
+    # on lines of ~70 characters, so that the title can be read at 8 points in a figure
+    # 4.8 in wide (one 120-character line needed 6 points: a figure review)
+    text = wrap_items(pendulum_text(params.get("pendulum")), 70)
     if "alpha0_deg" in params:
         text += f";\nfrom rest at α1 = α2 = {params['alpha0_deg']:g}°"
     return text
@@ -79,7 +86,7 @@ def plot_fig13(data: dict[str, Any]) -> Figure:
     ax.legend(loc="upper left", fontsize=7, title="transient: until the α1 peaks\nare within "
               f"{100 * TRANSIENT_TOL:g} % of the cycle's", title_fontsize=6.5)
     ax.set_title(f"Fig. 13: {_load_text(data)}; limit cycle, "
-                 f"period {T:.4f} s\n{_section29_text(data)}", fontsize=7)
+                 f"period {T:.4f} s\n{_section29_text(data)}", fontsize=8)
     return fig
 
 
@@ -102,7 +109,7 @@ def plot_fig14(data: dict[str, Any]) -> Figure:
     axes[0].set_title(f"Fig. 14: {_load_text(data)}; amplitudes "
                       f"{np.degrees(lcd['alpha1_amplitude_rad']):.2f}°, "
                       f"{np.degrees(lcd['alpha2_amplitude_rad']):.2f}°\n"
-                      f"{_section29_text(data)}", fontsize=7)
+                      f"{_section29_text(data)}", fontsize=8)
     return fig
 
 
