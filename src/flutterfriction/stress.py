@@ -279,9 +279,10 @@ def rod_regime_cases(p_max: float = 400.0, n_alpha: int = 12) -> list[StressResu
     dense = np.arange(0.0, p_max, 0.1)[1:]
     bad: list[str] = []
     n_intervals = 0
+    solved = {}
     for ta in alphas:
         try:
-            c = ar.critical_loads(RodGroups(tan_alpha=ta), p_max=p_max)
+            c = solved[ta] = ar.critical_loads(RodGroups(tan_alpha=ta), p_max=p_max)
         except (ParameterError, ConvergenceError) as exc:
             bad.append(f"tan a = {ta:.4g}: refused ({exc})")
             continue
@@ -300,7 +301,9 @@ def rod_regime_cases(p_max: float = 400.0, n_alpha: int = 12) -> list[StressResu
             bad.append(f"tan a = {ta:.4g}: p = {dense[i]:.2f} is {claimed[i]}, the dense "
                        f"scan says {fe[i]}")
     bad += _damped_regime_disagreements()
-    firsts = {pm: ar.critical_loads(RodGroups(tan_alpha=0.595), p_max=pm).p_div
+    # (the scan above already solved p_max: not twice)
+    firsts = {pm: (solved[0.595] if pm == p_max and 0.595 in solved else
+                   ar.critical_loads(RodGroups(tan_alpha=0.595), p_max=pm)).p_div
               for pm in (50.0, 80.0, 200.0, 400.0)}
     out = [StressResult(
         "rod: regimes along p", f"{len(alphas)} tip masses tan a in [0, 10], p <= {p_max:g}; "
