@@ -556,10 +556,14 @@ def _fe_boundary(scan: _FEScan, e: _Event, polish: _FEScan | None = None) -> _Bo
         # Brent's load stands then.
         try:
             # accepted anywhere in the bracket where the growth rate changes sign (the raw
-            # load's error reaches 2.3e-6 at eta = 1e-6: beyond polishing's default window)
-            crossing = polish_flutter_crossing(*model.quadratic, p,
-                                               rtol=max(b - p, p - a) / max(p, 1e-300))
-            p = crossing[0]
+            # load's error reaches 2.3e-6 at eta = 1e-6: beyond polishing's default window;
+            # the bracket may reach down to p = 0, a window of 100 %: capped, then checked)
+            crossing = polish_flutter_crossing(
+                *model.quadratic, p, rtol=min(0.5, max(b - p, p - a) / max(p, 1e-300)))
+            if a <= crossing[0] <= b:
+                p = crossing[0]
+            else:
+                crossing = None
         except ConvergenceError:
             pass
     s = model.spectra(np.array([p]))[0]
