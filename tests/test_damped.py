@@ -305,3 +305,21 @@ def test_the_polished_crossing_gives_the_pulsation_and_checks_its_window():
     for bad in (0.0, 1.0, float("nan")):
         with pytest.raises(ParameterError, match="rtol must be in"):
             polish_flutter_crossing(M, C, K0, K1, raw, rtol=bad)
+
+
+def test_the_polished_crossing_refuses_a_divergence():
+    """Started just below a real root's passage through zero (where the two roots nearest zero
+    still form a slow complex pair), polishing returned that load as a flutter crossing with
+    w = 6e-32 (an outside audit). A crossing without pulsation is refused."""
+    from flutterfriction.analysis.damped import flutter_onset, polish_flutter_crossing
+    from flutterfriction.errors import ConvergenceError
+
+    M = [[5.113596480417357, -2.589953796401842], [-2.589953796401842, 2.406609069193707]]
+    K0 = [[3.0048640314147006, 1.8184552963713698], [1.8184552963713698, 4.129467706720549]]
+    K1 = [[-0.33923286174036543, 0.23738564914552485],
+          [0.35122945098423114, -1.5643943534799674]]
+    C = [[3.1539046972747514e-05, -1.5974016478378164e-05],
+         [-1.5974016478378164e-05, 1.4843204145851099e-05]]
+    onset = flutter_onset(M, C, K0, K1, load_max=10.0)
+    with pytest.raises(ConvergenceError):
+        polish_flutter_crossing(M, C, K0, K1, onset * (1 - 3e-7))

@@ -677,12 +677,14 @@ def fe_critical_loads(g: RodGroups, n_elements: int, p_max: float = 80.0,
     128 (an outside audit): a finer mesh was less accurate. Each crossing is therefore
     polished by Newton on the quadratic eigenproblem
     (:func:`~flutterfriction.analysis.damped.polish_flutter_crossing`), whose own round-off is
-    ~1e-10 at 48 elements and ~1e-9 at 96-128. Measured against the exact load: tan(alpha) 0,
-    1, 4.59, p_max 40, ``eta`` 1e-6 ... 1e-4: 4.8e-7 on 20 elements, 3.0e-8 on 40, <= 1.6e-9
-    on 80 (the mesh's h^4 error); list (119): 7e-10 on 48 elements, <= 3.4e-9 on 64-128.
-    Where Newton cannot confirm the crossing the spectrum's load stands, with its round-off.
-    For small damping use :func:`critical_loads` (exact at any damping); this function is its
-    independent check."""
+    ~1e-10 at 48 elements and up to ~1e-8 at 96-128 (an outside audit: 3-8e-9). Measured
+    against the exact load: tan(alpha) 0, 1, 4.59, p_max 40, ``eta`` 1e-6 ... 1e-4: 4.8e-7
+    on 20 elements, 3.0e-8 on 40, <= 1.6e-9 on 80 (the mesh's h^4 error); list (119): 7e-10
+    on 48 elements, <= 3.4e-9 on 64-128; the Beck rod with ``gamma = 1e-6`` (a crossing just
+    past a coalescence): h^4 from 1.3e-7 on 48 elements to 8e-9 on 96. Where Newton cannot
+    confirm the crossing the spectrum's load stands, with its round-off. For small damping
+    use :func:`critical_loads` (exact at any damping); this function is its independent
+    check."""
     p_max = _check_p_max(p_max)
     step = _check_step(step, p_max)
     check_groups(g)
