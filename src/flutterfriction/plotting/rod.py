@@ -26,14 +26,22 @@ def _critical_label(ax, value: float, sub: str, p: np.ndarray) -> None:
                 xytext=(0, 2), textcoords="offset points", ha=ha, va="bottom", fontsize=7)
 
 
-def _zoom_crossing(ax, p: np.ndarray, re: np.ndarray, p_flu: float) -> None:
-    """Inset of the largest Re omega~ around the damped flutter load: its sign change, which
-    is invisible at the scale of the panel."""
+def _zoom_window(p: np.ndarray, re: np.ndarray, p_flu: float) -> tuple[np.ndarray, int]:
+    """The loads around the damped flutter load that the inset shows, and the power of ten
+    of the largest |Re omega~| there (the inset's unit)."""
     half = 0.12 * (p[-1] - p[0])
     window = (p >= p_flu - half) & (p <= p_flu + half)
+    return window, int(np.floor(np.log10(np.abs(re.max(axis=0)[window]).max())))
+
+
+def _zoom_crossing(ax, p: np.ndarray, re: np.ndarray, p_flu: float,
+                   exp: int | None = None) -> None:
+    """Inset of the largest Re omega~ around the damped flutter load: its sign change, which
+    is invisible at the scale of the panel; in units of ``10^exp`` (default: its own)."""
+    window, own = _zoom_window(p, re, p_flu)
+    exp = own if exp is None else exp
     top = re.max(axis=0)[window]
     ymax = np.abs(top).max()
-    exp = int(np.floor(np.log10(ymax)))
     scale = 10.0 ** -exp
     # Above the branches (which sit near Re = 0 before the flutter load), axis labels on top.
     ins = ax.inset_axes([0.14, 0.6, 0.3, 0.25])
@@ -63,7 +71,7 @@ def _zoom_crossing(ax, p: np.ndarray, re: np.ndarray, p_flu: float) -> None:
 
 
 def _draw_branch_case(ax_re, ax_im, p: np.ndarray, case: dict[str, Any], title: str,
-                      zoom: bool) -> None:
+                      zoom: bool, zoom_exp: int | None = None) -> None:
     """One damping case: Re and Im of omega~ against p, regimes shaded, critical loads."""
     crit = case["critical"]
     re, im = np.array(case["re"]), np.array(case["im"])
@@ -90,7 +98,7 @@ def _draw_branch_case(ax_re, ax_im, p: np.ndarray, case: dict[str, Any], title: 
         ax.set_xlim(p[0], p[-1])
     ax_re.set_title(title, fontsize=8, loc="left", pad=13)
     if zoom:
-        _zoom_crossing(ax_re, p, re, crit["p_flu"])
+        _zoom_crossing(ax_re, p, re, crit["p_flu"], zoom_exp)
 
 
 def _branch_legend(fig: Figure, n_modes: int, divergence: bool) -> None:
@@ -142,8 +150,9 @@ def plot_branches(data: dict[str, Any], title: str) -> Figure:
 def _rod_case_label(groups: dict[str, float]) -> str:
     """A rod by its groups (eq. 106), not by its name in the config: "Beck rod, η = 0.00136"."""
     ta = groups.get("tan_alpha", 0.0)
-    parts = ["Beck rod" if ta == 0 else f"tan α = {ta:g}"]
-    parts += [f"{sym} = {groups[key]:.3g}" for key, sym in (("eta", "η"), ("gamma", "γ"))
+    parts = ["Beck rod" if ta == 0 else f"Pflüger rod, tan α = {ta:g}"]
+    # (4 digits, as Figs. 11 and 12 print list 119's eta)
+    parts += [f"{sym} = {groups[key]:.4g}" for key, sym in (("eta", "η"), ("gamma", "γ"))
               if groups.get(key)]
     return ", ".join(parts)
 
@@ -467,6 +476,11 @@ def plot_fig12(data: dict[str, Any]) -> Figure:
     titles = _damping_titles(data["eta"])
     p_st = np.array(data["stated"].get("p", data["p"]))
     quoted = data.get("reproduces_quoted", True)
+    # one unit for both columns' insets (each its own, 10^-2 beside 10^-3, read as the same
+    # scale: a figure review)
+    exp = max((_zoom_window(pc, np.array(c["damped"]["re"]), c["damped"]["critical"]["p_flu"])[1]
+               for c, pc in ((stated, p_st), (fitted, p))
+               if c["damped"]["critical"]["p_flu"] is not None), default=None)
     for col, (cases, pc, head) in enumerate((
             (stated, p_st, f"as the caption states: tan α = {t_st:g}" if t_st == 1.0
              else f"tan α = {t_st:g} (the caption states 1)"),
@@ -477,7 +491,8 @@ def plot_fig12(data: dict[str, Any]) -> Figure:
                               fontweight="bold")
         for k, name in enumerate(("undamped", "damped")):
             _draw_branch_case(axes[2 * k, col], axes[2 * k + 1, col], pc, cases[name],
-                              titles[name].split(" (inset")[0], zoom=name == "damped")
+                              titles[name].split(" (inset")[0], zoom=name == "damped",
+                              zoom_exp=exp)
     for ax in axes[-1]:
         ax.set_xlabel(r"$p = P l^2 / B$ [-]")
 

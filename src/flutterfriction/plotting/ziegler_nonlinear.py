@@ -69,7 +69,7 @@ def _load_text(data: dict[str, Any]) -> str:
     star = data["P_star_flu"]
     source = ("eq. 54" if data.get("P_star_is_eq54", True)
               else "the exact damped flutter load; eq. 54 is the symmetric pendulum's")
-    return f"P = {data['P']:.4g} N = {data['P'] / star:.3g} P*_flu ({source})"
+    return f"P = {data['P']:.4g} N = {data['P'] / star:.3g} $P^*_{{flu}}$ ({source})"
 
 
 def plot_fig13(data: dict[str, Any]) -> Figure:
