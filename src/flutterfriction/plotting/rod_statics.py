@@ -414,7 +414,8 @@ def plot_fig08(data: dict[str, Any]) -> Figure:
     box = ("equilibrium of the part, residual / largest term:\n"
              f"eq. (74)1, forces: {b['force']:.0e}\neq. (74)2, moments about O: "
              f"{b['moment']:.0e}\n"
-             f"eq. (87), [N + M²/2B] + ∫q·t ds: {b['eq87']:.0e}")
+             r"eq. (87), $[\mathcal{N} + \mathcal{M}^2/(2B)] + "
+             r"\int \mathbf{q}\cdot\mathbf{t}\,ds$: " f"{b['eq87']:.0e}")
     _layout(ax, np.vstack([x, X2 + fs * a2, X1 - fs * a1, xp[idx] + qs * q]), l,
             x[-1, 1] > 0, box, handles=handles, labels=labels)
     ax.set_xlabel(r"$x_1$ [mm]")

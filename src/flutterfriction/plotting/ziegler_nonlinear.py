@@ -142,7 +142,7 @@ def plot_fig20(data: dict[str, Any]) -> Figure:
                  f"α1 = α2 = {a0:g}° at rest\nsimulations only: the measured acceleration of "
                  "the printed figure is an experiment, not reproduced"
                  + (f"\n{note}" if note else ""), fontsize=8)
-    ax1.set_title(f"the first {t[-1]:g} s", fontsize=8)
+    ax1.set_title(f"the first {t[-1]:g} s (C: the pendulum's loaded end)", fontsize=8)
     ax2.set_title(f"detail: the first {tl[-1]:g} s (the linear solution is cut there)",
                   fontsize=8)
     fig.tight_layout()
