@@ -56,7 +56,7 @@ def _zoom_crossing(ax, p: np.ndarray, re: np.ndarray, p_flu: float,
     ins.set_xlim(p[window][0], p[window][-1])
     ins.set_ylim(-scale * ymax, scale * ymax)
     ins.tick_params(labelsize=6, pad=1)
-    ins.xaxis.set_major_locator(plt.MaxNLocator(4))
+    ins.xaxis.set_major_locator(plt.MaxNLocator(3))  # (4 labels nearly touched at 6 pt)
     ins.set_xlabel("p [-]", fontsize=6, labelpad=3)
     # "in 10^exp", not "x 10^exp" (a figure review: multiplied by, or in units of?)
     ins.set_ylabel(rf"max Re $\tilde\omega$" "\n" rf"in $10^{{{exp}}}$ [-]", fontsize=6,
