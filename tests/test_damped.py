@@ -303,7 +303,7 @@ def test_the_polished_crossing_gives_the_pulsation_and_checks_its_window():
     with pytest.raises(ConvergenceError, match="within 1e-08"):
         polish_flutter_crossing(M, C, K0, K1, raw * (1 + 1e-6), rtol=1e-8)
     for bad in (0.0, 1.0, float("nan")):
-        with pytest.raises(ParameterError, match="rtol must be in"):
+        with pytest.raises(ParameterError, match="rtol must be a number in"):
             polish_flutter_crossing(M, C, K0, K1, raw, rtol=bad)
 
 
@@ -321,5 +321,27 @@ def test_the_polished_crossing_refuses_a_divergence():
     C = [[3.1539046972747514e-05, -1.5974016478378164e-05],
          [-1.5974016478378164e-05, 1.4843204145851099e-05]]
     onset = flutter_onset(M, C, K0, K1, load_max=10.0)
-    with pytest.raises(ConvergenceError):
+    with pytest.raises(ConvergenceError, match="no pulsation"):
         polish_flutter_crossing(M, C, K0, K1, onset * (1 - 3e-7))
+
+
+@pytest.mark.parametrize("change, match", [
+    (dict(C=np.zeros((2, 2))), "C must be non-zero"),
+    (dict(load=float("nan")), "load must be finite"),
+    (dict(K1=np.eye(3)), "K1 must be a finite array of M's shape"),
+    (dict(M=np.ones(2)), "M must be a non-empty square matrix"),
+    (dict(rtol="a"), "rtol must be a number"),
+])
+def test_the_polished_crossing_refuses_bad_input(change, match):
+    """Refused before any work with one line naming the input (a review: C = 0 returned a
+    point of the undamped problem's curve of solutions, a NaN load a LinAlgError)."""
+    from flutterfriction.analysis.damped import polish_flutter_crossing
+    from flutterfriction.errors import ParameterError
+
+    args = dict(M=np.diag([2.0, 1.0]), C=0.05 * np.eye(2), K0=np.array([[2.0, -1], [-1, 1]]),
+                K1=np.array([[-1.0, 1], [0, 0]]), load=1.0)
+    args.update(change)
+    rtol = args.pop("rtol", 1e-6)
+    with pytest.raises(ParameterError, match=match):
+        polish_flutter_crossing(args["M"], args["C"], args["K0"], args["K1"], args["load"],
+                                rtol=rtol)

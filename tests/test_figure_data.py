@@ -59,3 +59,23 @@ def test_fig04_dense_solution_passes_through_the_frames():
     t, a = np.array(c["t_dense"]), np.array(c["alpha_dense"])
     idx = [int(np.argmin(np.abs(t - ti))) for ti in c["times"]]
     np.testing.assert_allclose(a[idx], np.array(c["alpha"]), rtol=1e-9, atol=1e-12)
+
+
+def test_branch_panels_draw_a_rod_without_flutter():
+    """A user's own rod may have no flutter load (or none in the drawn range): the regime
+    shading and the inset crashed on p_flu = None (a review)."""
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    from flutterfriction.plotting.rod import _draw_branch_case
+
+    p = np.linspace(0.0, 10.0, 11)
+    roots = np.array([[-2.0], [-1.0], [1.0], [2.0]]) * np.ones((1, p.size))
+    for crit in ({"p_flu": None, "p_div": None}, {"p_flu": None, "p_div": 5.0},
+                 {"p_flu": 40.0, "p_div": None}):
+        fig, (a, b) = plt.subplots(2)
+        case = {"critical": crit, "re": np.zeros_like(roots).tolist(), "im": roots.tolist()}
+        _draw_branch_case(a, b, p, case, "damped", zoom=True)
+        shaded = [patch for patch in a.patches]
+        assert len(shaded) == 1 + (crit["p_div"] is not None)
+        plt.close(fig)

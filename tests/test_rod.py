@@ -576,6 +576,10 @@ def test_branches_split_from_the_flutter_coalescence_by_one_rule(tan_alpha, n_po
     first, second = upper[np.argsort(w[0, upper].imag)]
     after = np.searchsorted(p, ar.critical_loads(RodGroups(tan_alpha=tan_alpha)).p_flu) + 2
     assert w[after, first].real > 0 > w[after, second].real
+    # each mode's two branches stay conjugate (columns j and size - 1 - j; the rule applied
+    # in the lower half-plane too had sent the other mode right there: a review)
+    head = w[: after + 1]
+    assert np.max(np.abs(head[:, ::-1] - np.conj(head))) <= 1e-9 * np.max(np.abs(head))
 
 
 def test_orient_splits_orders_a_split_and_keeps_a_crossing():
@@ -588,9 +592,13 @@ def test_orient_splits_orders_a_split_and_keeps_a_crossing():
     split = np.array([-0.5 + 6j, 0.5 + 6j, 3j])
     _orient_splits(split, np.array([6j + 1e-9, 6j, 3j]))
     assert split.tolist() == [0.5 + 6j, -0.5 + 6j, 3j]
-    crossing = np.array([1.9j, 2.1j])
-    _orient_splits(crossing, np.array([1.9j, 2.1j]))
+    crossing = np.array([1.9j, 2.1j])  # the rule alone would put 2.1j first
+    _orient_splits(crossing, np.array([1.95j, 2.05j]))
     assert crossing.tolist() == [1.9j, 2.1j]
+    # a split along the imaginary axis: real parts equal but for round-off, ordered by Im
+    along = np.array([1e-34 - 18.6j, 1.2e-34 + 18.6j])
+    _orient_splits(along, np.array([18.66 + 0j, 18.66 + 1e-12j]))
+    assert along.tolist() == [1.2e-34 + 18.6j, 1e-34 - 18.6j]
 
 
 def test_damped_fe_flutter_load_just_past_a_coalescence_is_polished():

@@ -33,7 +33,12 @@ from flutterfriction.analysis.polynomial import (
 )
 from flutterfriction.analysis.routh import routh_hurwitz
 from flutterfriction.analysis.stability import Regime, classify, discriminant
-from flutterfriction.errors import ConvergenceError, ParameterError
+from flutterfriction.errors import (
+    ConvergenceError,
+    ParameterError,
+    check_finite_array,
+    check_real,
+)
 
 Matrix = NDArray[np.float64]
 
@@ -223,9 +228,19 @@ def polish_flutter_crossing(M: ArrayLike, C: ArrayLike, K0: ArrayLike, K1: Array
     caller holding a bracket of the crossing may pass its width), or another pair is unstable
     at the result beyond round-off (1000 eps max|s|), or the crossing has no pulsation
     (``w <= 1e-10 max|s|``: a real root through zero, divergence)."""
-    if not 0 < rtol < 1:
-        raise ParameterError(f"rtol must be in (0, 1), got {rtol!r}")
-    M, C, K0, K1 = (np.asarray(X, dtype=float) for X in (M, C, K0, K1))
+    # bad input refused before any work (a review: C = 0 returned a point of the undamped
+    # problem's curve of solutions, a NaN load a LinAlgError)
+    if isinstance(rtol, bool) or not isinstance(rtol, int | float) or not 0 < rtol < 1:
+        raise ParameterError(f"rtol must be a number in (0, 1), got {rtol!r}")
+    load = check_real("load", load)
+    shape = np.shape(M)
+    if len(shape) != 2 or shape[0] != shape[1] or shape[0] == 0:
+        raise ParameterError(f"M must be a non-empty square matrix, got shape {shape}")
+    M, C, K0, K1 = (check_finite_array(name, X, shape, f"a finite array of M's shape {shape}")
+                    for name, X in (("M", M), ("C", C), ("K0", K0), ("K1", K1)))
+    if not np.any(C):
+        raise ParameterError("C must be non-zero: an undamped system has no crossing to "
+                             "polish (its flutter is a coalescence)")
     n = M.shape[0]
 
     def newton(w: float, x: NDArray) -> tuple[float, float]:
@@ -269,15 +284,17 @@ def polish_flutter_crossing(M: ArrayLike, C: ArrayLike, K0: ArrayLike, K1: Array
     # the largest above the crossing, but just below it a lightly damped pair may lie nearer
     # the axis: an outside review), each polished and accepted only if it is a crossing
     # within ``rtol`` of ``load`` where no other pair is unstable beyond round-off.
-    first_error: ConvergenceError | None = None
+    # every candidate's reason, so that a refusal names the one that applies (a review: the
+    # first candidate's "no crossing within rtol" hid the divergence's "no pulsation")
+    reasons: list[str] = []
     for k in upper[np.argsort(-ev[upper].real)][:3]:
         try:
             P, w = newton(float(ev[k].imag), V[:n, k])
         except (ConvergenceError, np.linalg.LinAlgError) as exc:
-            first_error = first_error or ConvergenceError(str(exc))
+            reasons.append(str(exc))
             continue
         if not abs(P - load) <= rtol * abs(load):
-            first_error = first_error or ConvergenceError(
+            reasons.append(
                 f"polishing the flutter load {load:g}: no flutter crossing within {rtol:g} of it "
                 f"(Newton reached {P:g})")
             continue
@@ -286,7 +303,7 @@ def polish_flutter_crossing(M: ArrayLike, C: ArrayLike, K0: ArrayLike, K1: Array
         if abs(w) <= 1e-10 * scale:
             # a real root through 0 (divergence): the pair that met there is no oscillation
             # (an outside audit: a start just below a divergence returned w = 6e-32)
-            first_error = first_error or ConvergenceError(
+            reasons.append(
                 f"polishing the flutter load {load:g}: the crossing at {P:g} has no pulsation "
                 f"(w = {abs(w):.3g}): a divergence, not flutter")
             continue
@@ -296,13 +313,12 @@ def polish_flutter_crossing(M: ArrayLike, C: ArrayLike, K0: ArrayLike, K1: Array
         others = np.ones(at.size, dtype=bool)
         others[[np.argmin(np.abs(at - 1j * w)), np.argmin(np.abs(at + 1j * w))]] = False
         if at[others].real.max(initial=-np.inf) > 1000 * np.finfo(float).eps * scale:
-            first_error = first_error or ConvergenceError(
+            reasons.append(
                 f"polishing the flutter load {load:g}: at {P:g} another pair is already "
                 f"unstable (Re s = {at[others].real.max():.3g})")
             continue
         return P, abs(w)
-    assert first_error is not None
-    raise first_error
+    raise ConvergenceError("; ".join(dict.fromkeys(reasons)))
 
 
 def confirm_onset(M: ArrayLike, C: ArrayLike, K0: ArrayLike, K1: ArrayLike, load: float,

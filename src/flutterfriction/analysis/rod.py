@@ -982,24 +982,40 @@ def branches(g: RodGroups, p_values: NDArray, n_modes: int = 2,
 
 def _orient_splits(roots: NDArray, pred: NDArray) -> None:
     """Where two branches have just split from a double root (their predictions nearly
-    coincide, so that swapping them costs < 10 % of their separation), give the lower-indexed
-    branch the root of larger real part (then larger imaginary part), in place. A split has
-    no continuation to follow; without a rule the colours of Fig. 12's branches after the
-    flutter coalescence were set by round-off and differed between its two columns. (With
-    damping the branches do not quite meet, and continuation sends the lower mode to the
-    right: the rule agrees.) Branches crossing without meeting are not ambiguous (a swap
-    costs twice their separation) and keep their continuation."""
+    coincide, so that swapping them costs < 10 % of their separation), order them by one rule,
+    in place. A split has no continuation to follow; without a rule the colours of Fig. 12's
+    branches after the flutter coalescence were set by round-off and differed between its two
+    columns. In the upper half-plane and on the real axis the lower-indexed branch takes the
+    root of larger real part (of larger imaginary part where the real parts agree to 1e-9 of
+    the separation: a split along the imaginary axis). In the lower half-plane each branch
+    takes the conjugate of its partner's root (the branches are ordered by imaginary part at
+    p = 0, so the partner of column j is column ``size - 1 - j``), which keeps every mode's
+    two branches conjugate (the rule itself, applied there, sent the other mode right: a
+    review). Branches crossing without meeting are not ambiguous (a swap costs twice their
+    separation) and keep their continuation."""
     n = roots.size
+    pairs = []
     for j in range(n):
         for k in range(j + 1, n):
             a, b = roots[j], roots[k]
             gap = abs(a - b)
-            if gap == 0.0:
-                continue
             kept = abs(pred[j] - a) + abs(pred[k] - b)
             swapped = abs(pred[j] - b) + abs(pred[k] - a)
-            if swapped - kept < 0.1 * gap and (b.real, b.imag) > (a.real, a.imag):
-                roots[j], roots[k] = b, a
+            if gap > 0.0 and swapped - kept < 0.1 * gap:
+                pairs.append((j, k))
+    lower = [(j, k) for j, k in pairs if roots[j].imag < 0 and roots[k].imag < 0
+             and min(abs(roots[j].imag), abs(roots[k].imag)) > 1e-9 * abs(roots[j] - roots[k])]
+    for j, k in pairs:
+        if (j, k) in lower:
+            continue
+        a, b = roots[j], roots[k]
+        by_real = abs(b.real - a.real) > 1e-9 * abs(a - b)
+        if (b.real > a.real) if by_real else (b.imag > a.imag):
+            roots[j], roots[k] = b, a
+    for j, k in lower:
+        cj, ck = np.conj(roots[n - 1 - j]), np.conj(roots[n - 1 - k])
+        if abs(roots[k] - cj) + abs(roots[j] - ck) < abs(roots[j] - cj) + abs(roots[k] - ck):
+            roots[j], roots[k] = roots[k], roots[j]
 
 
 def fe_eigenvalues(g: RodGroups, p: float, n_elements: int, follower: bool = True) -> NDArray:

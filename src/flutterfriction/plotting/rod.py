@@ -26,19 +26,29 @@ def _critical_label(ax, value: float, sub: str, p: np.ndarray) -> None:
                 xytext=(0, 2), textcoords="offset points", ha=ha, va="bottom", fontsize=7)
 
 
-def _zoom_window(p: np.ndarray, re: np.ndarray, p_flu: float) -> tuple[np.ndarray, int]:
+def _zoom_window(p: np.ndarray, re: np.ndarray, p_flu: float | None
+                 ) -> tuple[np.ndarray, int] | None:
     """The loads around the damped flutter load that the inset shows, and the power of ten
-    of the largest |Re omega~| there (the inset's unit)."""
+    of the largest |Re omega~| there (the inset's unit); None without a flutter load in the
+    drawn range (a user's own rod)."""
+    if p_flu is None:
+        return None
     half = 0.12 * (p[-1] - p[0])
     window = (p >= p_flu - half) & (p <= p_flu + half)
-    return window, int(np.floor(np.log10(np.abs(re.max(axis=0)[window]).max())))
+    top = np.abs(re.max(axis=0)[window])
+    if not p[0] <= p_flu <= p[-1] or not np.any(top > 0):
+        return None
+    return window, int(np.floor(np.log10(top.max())))
 
 
 def _zoom_crossing(ax, p: np.ndarray, re: np.ndarray, p_flu: float,
                    exp: int | None = None) -> None:
     """Inset of the largest Re omega~ around the damped flutter load: its sign change, which
     is invisible at the scale of the panel; in units of ``10^exp`` (default: its own)."""
-    window, own = _zoom_window(p, re, p_flu)
+    zoom = _zoom_window(p, re, p_flu)
+    if zoom is None:
+        return
+    window, own = zoom
     exp = own if exp is None else exp
     top = re.max(axis=0)[window]
     ymax = np.abs(top).max()
@@ -76,9 +86,12 @@ def _draw_branch_case(ax_re, ax_im, p: np.ndarray, case: dict[str, Any], title: 
     crit = case["critical"]
     re, im = np.array(case["re"]), np.array(case["im"])
     mode = _mode_of_branch(im)
-    edges = [crit["p_flu"]] + ([crit["p_div"]] if crit["p_div"] else [])
-    names = ["stable", "flutter", "divergence"][: len(edges) + 1]
-    bounds = [p[0], *[e for e in edges if e < p[-1]], p[-1]]
+    # the regimes in load order, from the loads that exist (a user's own rod may have no
+    # flutter load, or none in the drawn range)
+    marks = sorted((e, r) for e, r in ((crit["p_flu"], "flutter"), (crit["p_div"], "divergence"))
+                   if e is not None and e < p[-1])
+    names = ["stable", *[r for _, r in marks]]
+    bounds = [p[0], *[e for e, _ in marks], p[-1]]
     for ax, values, ylabel in ((ax_re, re, r"Re $\tilde\omega$ [-]"),
                                (ax_im, im, r"Im $\tilde\omega$ [-]")):
         for lo, hi, reg in zip(bounds[:-1], bounds[1:], names, strict=False):
@@ -478,9 +491,9 @@ def plot_fig12(data: dict[str, Any]) -> Figure:
     quoted = data.get("reproduces_quoted", True)
     # one unit for both columns' insets (each its own, 10^-2 beside 10^-3, read as the same
     # scale: a figure review)
-    exp = max((_zoom_window(pc, np.array(c["damped"]["re"]), c["damped"]["critical"]["p_flu"])[1]
-               for c, pc in ((stated, p_st), (fitted, p))
-               if c["damped"]["critical"]["p_flu"] is not None), default=None)
+    zooms = [_zoom_window(pc, np.array(c["damped"]["re"]), c["damped"]["critical"]["p_flu"])
+             for c, pc in ((stated, p_st), (fitted, p))]
+    exp = max((z[1] for z in zooms if z is not None), default=None)
     for col, (cases, pc, head) in enumerate((
             (stated, p_st, f"as the caption states: tan α = {t_st:g}" if t_st == 1.0
              else f"tan α = {t_st:g} (the caption states 1)"),
