@@ -190,21 +190,20 @@ def plot_fe_convergence(data: dict[str, Any]) -> Figure:
     ax1.minorticks_off()
     ax1.set_xlabel("number of Hermite elements [-]")
     ax1.set_ylabel("relative error vs exact eq. (118) [-]")
-    fit = n[n >= 4]
     # (the quick preset's few meshes: run times within a decade)
     tidy_log_axis(ax2.xaxis, [t for c in data["cases"].values() for t in c["time_s"]])
     ax2.set_xlabel("run time per critical-load solve [s] (median of ≤ 3 runs)")
     ax2.set_ylabel(r"relative error of $p_{flu}$ [-]")
     fig.suptitle("Finite elements (scikit-fem) against the exact characteristic function",
                  fontsize=9)
-    # one legend for both panels, below them (inside, it covered curves that fill the panel's
-    # diagonal); the right panel's curves are the solid p_flu ones
-    # a column per case (its p_flu above its pulsation), then h^4; the layout engine makes
-    # room for it (a fixed margin fitted the paper run, not the quick preset's tick labels)
+    # One legend for both panels, below them (inside, it covered curves that fill the panel's
+    # diagonal; the right panel's curves are the solid p_flu ones): a column per case, its
+    # p_flu above its pulsation, then h^4. The layout engine makes room for it (a fixed
+    # margin fitted the paper run, not the quick preset's tick labels).
     fig.legend(*ax1.get_legend_handles_labels(), loc="outside lower center", fontsize=7,
                ncol=len(data["cases"]) + 1,
                title=f"rate: least-squares slope of the $p_{{flu}}$ error over "
-                     f"{fit[0]:.0f}–{fit[-1]:.0f} elements", title_fontsize=7)
+                     f"{ref[0]:.0f}–{ref[-1]:.0f} elements", title_fontsize=7)
     return fig
 
 
