@@ -432,7 +432,11 @@ def dop853_orbit(y0, t_end, rtol, atol, dense, A, B, Cn, E3, E5, D, P, phi, w, S
     ``dense``, ``F`` (m, 7, N) the dense-output coefficients of each step (scipy's
     ``Dop853DenseOutput.F``), else an empty array."""
     n = y0.size
-    n_stages = 12
+    # Stage counts as run-time integers (np.int64), not literals: numba compiles a callee once
+    # per literal value it is called with (_stage, _stages were compiled twice each).
+    n_stages = np.int64(12)
+    first = np.int64(1)
+    n_all = np.int64(16)
     cap = 64
     ts = np.empty(cap)
     ys = np.empty((cap, n))
@@ -485,7 +489,7 @@ def dop853_orbit(y0, t_end, rtol, atol, dense, A, B, Cn, E3, E5, D, P, phi, w, S
             # rk_step
             for i in range(n):
                 Kx[0, i] = f[i]
-            ok, k_fev = _stages(Kx, 1, n_stages, A, h, y, tmp, P, phi, w, S, wg, K_b, C_v,
+            ok, k_fev = _stages(Kx, first, n_stages, A, h, y, tmp, P, phi, w, S, wg, K_b, C_v,
                                 rho, tip_mass, kappa)
             n_fev += k_fev
             if not ok:
@@ -535,7 +539,7 @@ def dop853_orbit(y0, t_end, rtol, atol, dense, A, B, Cn, E3, E5, D, P, phi, w, S
                 F = F2
             ts, ys = ts2, ys2
         if dense:  # _dense_output_impl: three more stages, then the coefficients
-            ok, k_fev = _stages(Kx, n_stages + 1, 16, A, h, y, tmp, P, phi, w, S, wg, K_b,
+            ok, k_fev = _stages(Kx, n_stages + first, n_all, A, h, y, tmp, P, phi, w, S, wg, K_b,
                                 C_v, rho, tip_mass, kappa)
             n_fev += k_fev
             if not ok:
