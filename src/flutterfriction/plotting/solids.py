@@ -267,7 +267,12 @@ def plot_acoustic_eigenvalues(data: dict[str, Any]) -> Figure:
     ax2.set_ylabel(r"Im $\eta$ [Pa]")
     ax2.set_xlabel("plastic modulus g [Pa]")
     # In the empty Re < 0 band (no eigenvalue goes there for g > 0).
-    ax1.legend(*ax2.get_legend_handles_labels(), fontsize=7, loc="lower right", ncol=2)
+    # Outside the band all three eigenvalues are real: their Im = 0 lines coincide and only
+    # the last drawn shows, which the legend says (a figure review).
+    handles, labels = ax2.get_legend_handles_labels()
+    handles.append(Line2D([], [], ls="none"))
+    labels.append(r"outside (g1, g2): all real, Im $\eta$ = 0")
+    ax1.legend(handles, labels, fontsize=7, loc="lower right", ncol=2)
     text = _case_text(data.get("params", {}))
     printed = data.get("flutter_interval_as_printed")
     if printed is not None:
