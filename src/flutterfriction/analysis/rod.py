@@ -264,13 +264,6 @@ _COMPLEX_RTOL = 1e-6
 #: Bisection width of the FE brackets, relative to p: Brent then polishes the boundary to
 #: machine precision in a few steps (a smooth function with one simple zero in the bracket).
 _BRACKET_RTOL = 1e-7
-#: Modes beyond :func:`_modes_coupled` in the undamped scan's Galerkin basis (see
-#: :class:`_FEScan`): with none, the reduced twin missed the 0.25-wide flutter window at
-#: p = 69.55-69.79, tan(alpha) = 0.9823, p_max = 400, which the whole twin finds; with 6 it
-#: found every interval the whole twin finds on 338 rods (tan(alpha) 0 ... 100, dense near the
-#: windows opening at 0.5932 and closing at 0.9823; p_max 80, 400, 1000) at 1.3x (p_max 80)
-#: to 4x (p_max 1000) less CPU (measured).
-_UNDAMPED_EXTRA_MODES = 6
 #: Loads per batched eigenvalue call of the scan (memory: ~26 MB at 40 elements).
 _SCAN_BLOCK = 500
 #: Most scan points (p_max / step): ~1.2 ms each at p_max = 1000 (40 elements), so at most
@@ -312,10 +305,9 @@ class _FEScan:
         A1 = Linv @ fe.load_matrix() @ Linv.T
         C = Linv @ fe.C @ Linv.T
         if n_modes is not None and n_modes < A0.shape[0]:
-            # Galerkin on the n_modes lowest unloaded modes (M-orthonormal): drops the stiff
-            # (damped: strongly damped) FE modes that play no part in the low modes' regime
-            # and make every eigenvalue call of the scan cost O(n^3) in the whole mesh (damped:
-            # a 2n x 2n matrix spanning 1e8 in scale).
+            # Galerkin on the n_modes lowest unloaded modes (M-orthonormal): drops the stiff,
+            # strongly damped FE modes that make the first-order eigensolver slow (a 2n x 2n
+            # matrix spanning 1e8 in scale) and play no part in the low modes' regime.
             _, V = np.linalg.eigh(0.5 * (A0 + A0.T))
             V = V[:, :n_modes]
             A0, A1, C = (V.T @ X @ V for X in (A0, A1, C))
@@ -799,11 +791,9 @@ def critical_loads(g: RodGroups, p_max: float = 80.0, n_elements: int | None = N
     to ``p_max``). Not guaranteed: a
     window about to close along tan(alpha) that the FE twin has already closed (at
     tan(alpha) = 0.98229-0.98235 a flutter window near p = 69.7, 12 elements; measured by an
-    outside audit). The twin is reduced to its lowest unloaded modes (see
-    :data:`_UNDAMPED_EXTRA_MODES`) unless ``n_elements`` is given. Where the FE twin's window
-    differs from the exact one (within ~1e-5 in tan(alpha) of its opening) Newton finds no
-    double root: the scan is redone on the whole twin (undamped), then once on a 3x finer
-    twin, and a last failure is refused.
+    outside audit). Where the FE twin's window differs from the exact one
+    (within ~1e-5 in tan(alpha) of its opening) Newton finds no double root: the scan is
+    redone once on a 3x finer twin, and a second failure is refused.
 
     Parameters
     ----------
@@ -840,13 +830,12 @@ def critical_loads(g: RodGroups, p_max: float = 80.0, n_elements: int | None = N
     if g.damped and delta < DAMPING_FLOOR:
         k = DAMPING_FLOOR / delta
         g_scan = RodGroups(tan_alpha=g.tan_alpha, eta=g.eta * k, gamma=g.gamma * k)
-    # The scan on the lowest modes only (see _FEScan), enough of them to hold every mode the
-    # load couples (wavenumber^2 <= 3 p_max + 40, as in _exact_regime) plus 4; undamped, 6
-    # more (see _UNDAMPED_EXTRA_MODES). An explicit mesh keeps the undamped twin whole.
-    n_modes = _modes_coupled(p_max) + (0 if g.damped else _UNDAMPED_EXTRA_MODES)
-    if not g.damped and n_elements is not None:
-        n_modes = None
-    n_el = max(n_el, n_modes or 0)
+    # Damped: the scan on the lowest modes only (see _FEScan), enough of them to hold every
+    # mode the load couples (wavenumber^2 <= 3 p_max + 40, as in _exact_regime) plus 4.
+    n_modes = None
+    if g.damped:
+        n_modes = _modes_coupled(p_max)
+        n_el = max(n_el, n_modes)
     try:
         # (a failed Newton on a boundary only the extended scan sees: skipped where no finer
         # retry follows, else the retry decides, as for any failure)
@@ -855,22 +844,14 @@ def critical_loads(g: RodGroups, p_max: float = 80.0, n_elements: int | None = N
     except ConvergenceError as first_error:
         if n_elements is not None:
             raise
-        # Undamped, first on the whole twin (no modal reduction): near the opening of a window
-        # (tan(alpha) = 0.59325, p ~ 48.85) the reduction's error alone moves the twin's
-        # window off the exact one (measured: Newton fails on the reduced twin, converges on
-        # the whole one). Then once on a 3x finer twin: a window that opens or closes within
-        # the coarse twin's error (~1e-5 in tan(alpha) at p ~ 50 on 12 elements) has no exact
-        # double roots where the coarse twin puts them. A last failure is reported as the
-        # first.
-        retries = [] if g.damped else [(n_el, None)]
-        retries.append((max(40, 3 * n_el), n_modes if g.damped else None))
-        for n_retry, modes_retry in retries:
-            try:
-                return _solve_on(g, g_scan, n_retry, p_max, step, modes_retry,
-                                 skip_failed_beyond=True)
-            except ConvergenceError:
-                continue
-        raise first_error from None
+        # Once on a 3x finer twin: a window that opens or closes within the coarse twin's
+        # error (~1e-5 in tan(alpha) at p ~ 50 on 12 elements) has no exact double roots
+        # where the coarse twin puts them. A second failure is reported as the first.
+        try:
+            return _solve_on(g, g_scan, max(40, 3 * n_el), p_max, step, n_modes,
+                             skip_failed_beyond=True)
+        except ConvergenceError:
+            raise first_error from None
 
 
 def _solve_on(g: RodGroups, g_scan: RodGroups, n_el: int, p_max: float, step: float,
