@@ -413,7 +413,7 @@ class CycleContinuation:
                  rtol: float = 1e-10, newton_tol: float = 1e-8, ds_first: float = 0.02,
                  ds_max: float = 0.08, ds_min: float = 1e-4,
                  max_contraction: float | None = None, dense: bool = False) -> None:
-        from flutterfriction.analysis.damped import flutter_onset
+        from flutterfriction.analysis.rod_dynamics import linearised_flutter_load
         from flutterfriction.analysis.stability import first_order_matrix
 
         if not A_max > 0:
@@ -423,8 +423,7 @@ class CycleContinuation:
         self.ds, self.ds_max, self.ds_min = ds_first, ds_max, ds_min
         model = self.model
         M0, C, K, K1 = model.linear_matrices()
-        self.P_flu = float(flutter_onset(M0, C, K, K1, load_max=40 * rod.load_unit,
-                                         n_scan=64))
+        self.P_flu = linearised_flutter_load(rod, n_elements)  # (polished; one definition)
         ev, V = np.linalg.eig(first_order_matrix(M0, K + self.P_flu * K1, C))
         k = int(np.argmax(ev.real))
         self.omega_flu = float(abs(ev[k].imag))

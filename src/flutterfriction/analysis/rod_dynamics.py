@@ -660,11 +660,12 @@ def linearised_flutter_load(rod: Rod, n_elements: int) -> float:
         raise ParameterError(f"the linearised rod does not flutter below "
                              f"{40 * 2**8 * rod.load_unit:.4g} N, so no cycle is sought") from None
     # The scan's load carries the first-order spectrum's round-off, eps max|s| (the stiff
-    # Kelvin-Voigt modes): list 119 measured 2e-9 relative at 32 elements, 2e-7 at 64, 4e-6 at
-    # 128, against loads that converge at h^4 once polished by Newton on the quadratic
-    # eigenproblem (10.9393513852 N at 32, ...4168 at 64, ...4184 at 96; as the FE twin's,
-    # analysis.rod._fe_boundary). Within 1e-3 of the scan's load (250x the largest floor
-    # measured), else the scan's load stands.
+    # Kelvin-Voigt modes): on list 119's rod its error against eq. (118)'s exact load is 8e-10
+    # at 32 elements, 1.1e-8 at 48, 3.6e-7 at 64 (finer is worse), while polished by Newton
+    # on the quadratic eigenproblem (as the FE twin's boundaries, analysis.rod._fe_boundary)
+    # it converges at h^4: 3.1e-9, 5.8e-10, 1.8e-10. Accepted within 1e-3 of the scan's load
+    # (the scan's error reached 3.9e-5 on rods with D ~ 1e-10 and a tip mass, a review; the
+    # polished load was right there to ~1e-12), else the scan's load stands.
     try:
         return float(polish_flutter_crossing(M, C, K, K1, P, rtol=1e-3)[0])
     except ConvergenceError:

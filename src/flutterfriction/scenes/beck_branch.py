@@ -58,8 +58,7 @@ def _branch_settings(params: dict[str, Any]) -> tuple[Rod, int, float, float, fl
     eigenproblems), refused before the branch is computed: ``P_max`` not above the flutter
     load, a check load or ``P_cycle`` off the branch (an outside audit: ``P_cycle`` beyond
     ``P_max`` was skipped silently, a check load beyond it failed after the branch)."""
-    from flutterfriction.analysis.damped import flutter_onset
-    from flutterfriction.models.rod_nonlinear import NonlinearRod
+    from flutterfriction.analysis.rod_dynamics import linearised_flutter_load
 
     take(params, ALLOWED)
     rod = _rod(params)
@@ -69,8 +68,7 @@ def _branch_settings(params: dict[str, Any]) -> tuple[Rod, int, float, float, fl
     A_scale = check_positive("A_scale", params.get("A_scale", 0.3), "m")
     for name, default in (("rtol", 1e-9), ("check_rtol", 1e-10)):
         check_orbit_rtol(name, params.get(name, default))
-    M0, C0, K0, K1 = NonlinearRod(rod, n_el).linear_matrices()
-    P_flu = float(flutter_onset(M0, C0, K0, K1, load_max=40 * rod.load_unit, n_scan=64))
+    P_flu = linearised_flutter_load(rod, n_el)
     if not P_max > P_flu:
         raise ParameterError(f"P_max = {P_max} N must be above the damped flutter load "
                              f"{P_flu:.4f} N, where the branch starts")
