@@ -339,3 +339,42 @@ def test_save_figure_under_a_users_layout_rc(tmp_path, rc):
             make().savefig(tmp_path / "b.png", bbox_inches="tight", metadata={"Software": None})
             a, b = (plt.imread(tmp_path / f"{n}.png") for n in "ab")
             assert a.shape == b.shape and np.array_equal(a, b)
+
+
+def test_pdf_fonts_are_embedded_without_layout_tables_and_the_default_is_put_back(
+        tmp_path, monkeypatch):
+    """The PDF's TrueType subsets leave out GSUB/GPOS/GDEF (no PDF reader uses them; their
+    subsetting was ~30 % of a PDF's save), keep the glyphs and widths, and fontTools' own
+    default is restored after the save (also when the save fails)."""
+    import io
+    import re
+    import zlib
+
+    from fontTools.subset import Options
+    from fontTools.ttLib import TTFont
+
+    default = list(Options._drop_tables_default)
+    fig, ax = plt.subplots()
+    ax.set_xlabel("load P [N]")
+    ax.set_title(r"fi ffl $\alpha$ AV")  # ligature and kerning candidates
+    save_figure(fig, tmp_path / "a.pdf")
+    assert Options._drop_tables_default == default
+    raw = (tmp_path / "a.pdf").read_bytes()
+    fonts = []
+    for m in re.finditer(rb"/Length1 \d+.*?stream\r?\n", raw, re.S):
+        start = m.end()
+        data = raw[start:raw.index(b"endstream", start)]
+        fonts.append(TTFont(io.BytesIO(zlib.decompress(data))))
+    assert fonts, "no embedded TrueType font found"
+    for font in fonts:
+        assert not {"GSUB", "GPOS", "GDEF"} & set(font.keys())
+        assert {"glyf", "hmtx"} <= set(font.keys()) and len(font.getGlyphOrder()) > 1
+    from matplotlib.backends import backend_pdf
+
+    def fail(*args, **kwargs):
+        raise RuntimeError("font embedding failed")
+
+    monkeypatch.setattr(backend_pdf.PdfFile, "writeFonts", fail)
+    with pytest.raises(RuntimeError, match="font embedding failed"):
+        save_figure(plt.figure(), tmp_path / "b.pdf")
+    assert Options._drop_tables_default == default and not (tmp_path / "b.pdf").exists()
