@@ -20,7 +20,7 @@ if not (isinstance(_sweep_parts, int) and 1 <= _sweep_parts <= 10000):
 
 
 # The nonlinear rod's compiled kernels (models/rod_kernel.py), built once into numba's cache
-# before the jobs that import them (~9 s of compilation; side by side, each would compile).
+# before the jobs that import them (~8 s of compilation; side by side, each would compile).
 rule compile_kernels:
     input:
         job_sources("flutterfriction.models.rod_nonlinear"),

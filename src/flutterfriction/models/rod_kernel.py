@@ -10,17 +10,27 @@ agree to round-off on random states, with and without tip mass and external damp
 
 Deterministic: no parallel loops and no ``fastmath`` (IEEE arithmetic, no reassociation). The
 compiled code is cached next to this file (``__pycache__``), so only the first process pays the
-~10 s of compilation (measured on this 2-core machine; 12 s before the slice assignments
-below were written element by element).
+~8 s of compilation (measured on this 2-core machine; 12 s before the slice assignments
+below were written element by element, 10 s at numba's default optimisation level).
+
+LLVM optimisation level 1 (``NUMBA_OPT``, numba's default 3) unless the user set one: the
+kernels' compilation took 10.0 CPU-s at level 3 and 8.1 at level 1, their run time the same
+(beck_branch 7.5 s either way), and without ``fastmath`` LLVM keeps IEEE semantics at every
+level: the data of beck_branch, beck_limit_cycle, beck_hopf and beck_work_precision came out
+bit for bit the same (measured). Level 0 made beck_branch 10x slower. It applies if numba is
+first imported here (it reads the variable once); otherwise numba's level stays.
 """
 
 from __future__ import annotations
 
 import math
+import os
 
-import numpy as np
-from numba import njit
-from scipy.integrate._ivp import dop853_coefficients as _dop853
+os.environ.setdefault("NUMBA_OPT", "1")  # before numba's import (see above)
+
+import numpy as np  # noqa: E402
+from numba import njit  # noqa: E402
+from scipy.integrate._ivp import dop853_coefficients as _dop853  # noqa: E402
 
 
 @njit(cache=True)
