@@ -165,11 +165,8 @@ def _embedded_fonts_without_layout_tables() -> Iterator[None]:
     """While saving: the TrueType subsets embedded in a PDF leave out the layout tables
     (:data:`_UNREAD_FONT_TABLES`). matplotlib offers no option for it; fontTools' list of tables
     to drop is extended for the save and put back after (a no-op if fontTools renames it)."""
-    try:
-        from fontTools.subset import Options
-    except ImportError:  # matplotlib >= 3.5 needs fontTools: only a guard
-        yield
-        return
+    from fontTools.subset import Options  # a dependency of matplotlib's PDF backend
+
     default = getattr(Options, "_drop_tables_default", None)
     if not isinstance(default, list):
         yield
