@@ -609,3 +609,45 @@ def test_damped_fe_flutter_load_just_past_a_coalescence_is_polished():
     g = RodGroups(tan_alpha=0.0, gamma=1e-6)
     fe = ar.fe_critical_loads(g, 80, p_max=40.0)
     assert fe.p_flu == pytest.approx(ar.critical_loads(g, p_max=40.0).p_flu, rel=1e-7)
+
+
+def _twin_boundaries(g: RodGroups, n_elements: int, p_max: float,
+                     n_modes: int | None) -> np.ndarray:
+    return np.array([b.p for b in ar._fe_scan(g, n_elements, p_max, ar.SCAN_STEP, n_modes)[2]])
+
+
+def test_the_retry_twin_reduced_to_the_coarse_twins_unknowns_keeps_the_finer_twins_boundaries():
+    """The retry's twin (3x finer mesh, 40 elements at p_max 80) reduced to its lowest 24
+    modes (the 12-element twin's unknowns): its boundaries within 2e-5 of the unreduced finer
+    twin's (measured 8.4e-6 here; 1.6e-6 at p_max 400, 5.5e-7 at 1000), where the coarse
+    twin's are 1.5e-4 off (measured): the reduction keeps what the finer mesh buys."""
+    g = RodGroups(tan_alpha=0.595)
+    fine = _twin_boundaries(g, 40, 80.0, None)
+    reduced = _twin_boundaries(g, 40, 80.0, 24)
+    coarse = _twin_boundaries(g, 12, 80.0, None)
+    assert fine.size == reduced.size == coarse.size == 3
+    assert np.max(np.abs(reduced / fine - 1)) < 2e-5
+    assert np.max(np.abs(coarse / fine - 1)) > 5e-5
+
+
+def test_a_window_within_the_coarse_twins_error_is_decided_by_the_reduced_finer_retry(
+        monkeypatch):
+    """tan a = 0.5932502, just below the opening of the first divergence window (mu* ~
+    0.59325021): the 12-element twin has the window near p = 48.8, Newton finds no double root
+    of eq. (118) there, and the retry on 40 elements reduced to 24 modes decides: stable, then
+    flutter from 16.0535 to p_max, no window (as at p_max 200, whose twin is finer). Unreduced,
+    the 40-element twin had kept the window and the call was refused (measured); at p_max =
+    1000 the unreduced retry (120 elements) took 48 s."""
+    calls = []
+    solve_on = ar._solve_on
+    monkeypatch.setattr(ar, "_solve_on", lambda g, g_scan, n_el, p_max, step, n_modes, **kw:
+                        calls.append((n_el, n_modes))
+                        or solve_on(g, g_scan, n_el, p_max, step, n_modes, **kw))
+    g = RodGroups(tan_alpha=0.5932502)
+    c = ar.critical_loads(g, p_max=80.0)
+    assert calls == [(12, None), (40, 24)]
+    assert [iv["regime"] for iv in c.intervals] == ["stable", "flutter"]
+    wide = ar.critical_loads(g, p_max=200.0).intervals
+    assert [iv["regime"] for iv in wide[:2]] == ["stable", "flutter"] and wide[1]["p_to"] > 80
+    assert c.p_flu == pytest.approx(wide[1]["p_from"], rel=1e-12)
+    assert c.p_flu == pytest.approx(16.05351, abs=1e-5)
