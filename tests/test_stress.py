@@ -34,3 +34,25 @@ def test_the_harness_flags_a_wrong_answer_and_a_refusal():
     refused = _judge("a", "b", "c", refuse, lambda: 2.0, lambda g, r: True)
     assert refused.outcome == REFUSED and "no root" in refused.got
     assert "1 silent wrong answers" in stress_markdown([wrong, refused])
+
+
+def test_the_dense_regime_twin_sees_a_window_the_scan_must_report_and_is_within_its_band():
+    """The dense check of the rod's regimes (:func:`_fe_regimes_dense`: 40 elements reduced to
+    24 modes) at tan a = 0.595, p in [45, 52]: the divergence window [47.7155, 49.9916] of eq.
+    (118) is there (so a scan that skipped it would be flagged), and every load outside the
+    bands of :data:`DENSE_BAND` has the exact regime; its ends within 7.3e-5 (measured) of the
+    exact ones, where the unreduced 20-element twin used before was 1.2e-3 off at p <= 400."""
+    import numpy as np
+
+    from flutterfriction.stress import DENSE_BAND, _fe_regimes_dense
+
+    p = np.arange(45.0, 52.0, 1e-3)
+    regimes = np.array(_fe_regimes_dense(0.595, p))
+    div = p[regimes == "divergence"]
+    exact = (47.71549336756, 49.99155605)
+    assert abs(div[0] / exact[0] - 1) < 1e-4 and abs(div[-1] / exact[1] - 1) < 1e-4
+    near = np.zeros(p.size, dtype=bool)
+    for e in exact:
+        near |= np.abs(p - e) <= DENSE_BAND[0] * e + DENSE_BAND[1]
+    claimed = np.where((p > exact[0]) & (p < exact[1]), "divergence", "flutter")
+    assert np.all((regimes == claimed) | near)
