@@ -511,12 +511,18 @@ def test_fig04_refuses_more_frames_than_it_can_draw():
 def test_a_check_that_does_not_converge_is_one_problem_line_not_a_traceback():
     """A scene's check that solves (here the acoustic tensor's interval, brute force) raised
     its ConvergenceError through the whole configuration check: a traceback, and no scene
-    ran (the review of this session's change)."""
+    ran (the review of this session's change). Which end Newton fails to confirm first
+    depends on the CPU's rounding (this input is nearly isotropic: ill-conditioned): g = 48.98
+    on one machine, 4.57737 on another (an AVX-512 host; measured), so the test names neither."""
+    import re
+
     raw = yaml.safe_load((ROOT / "workflow" / "config.yaml").read_text())
     raw["scenes"]["acoustic_eigenvalues"].update(P=[1.0, 0, 0, 0, 0, 1.0],
                                                  Q=[1.0, 0, 0, 0, 0, -1e-6], n=[1.0, 0, 0],
                                                  g_min=1e-4, g_max=50.0)
     problems = validate_config(raw, SCHEMA_PATH, scenes=SCENES)
     assert len(problems) == 1 and "\n" not in problems[0]
-    assert problems[0].startswith("config (fidelity paper): scenes.acoustic_eigenvalues: the "
-                                  "flutter interval's end near g = 48.98")
+    assert re.fullmatch(r"config \(fidelity paper\): scenes\.acoustic_eigenvalues: the flutter "
+                        r"interval's end near g = (48\.98|4\.577)\d* was not resolved \(.*\); "
+                        r"use flutter_interval_isotropic \(isotropic solids\)", problems[0]), \
+        problems[0]
