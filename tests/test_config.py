@@ -522,7 +522,10 @@ def test_a_check_that_does_not_converge_is_one_problem_line_not_a_traceback():
                                                  g_min=1e-4, g_max=50.0)
     problems = validate_config(raw, SCHEMA_PATH, scenes=SCENES)
     assert len(problems) == 1 and "\n" not in problems[0]
-    assert re.fullmatch(r"config \(fidelity paper\): scenes\.acoustic_eigenvalues: the flutter "
-                        r"interval's end near g = (48\.98|4\.577)\d* was not resolved \(.*\); "
+    # (either refusal of the interval's solver: an end Newton does not confirm, or a
+    # discriminant sign the eigenvalues do not confirm; measured here: the first)
+    assert re.fullmatch(r"config \(fidelity paper\): scenes\.acoustic_eigenvalues: the "
+                        r"(flutter interval's end near g = (48\.98|4\.577)\d* was not resolved|"
+                        r"discriminant's sign at g = [0-9.e+-]+ is not confirmed) \(.*\); "
                         r"use flutter_interval_isotropic \(isotropic solids\)", problems[0]), \
         problems[0]

@@ -611,43 +611,30 @@ def test_damped_fe_flutter_load_just_past_a_coalescence_is_polished():
     assert fe.p_flu == pytest.approx(ar.critical_loads(g, p_max=40.0).p_flu, rel=1e-7)
 
 
-def _twin_boundaries(g: RodGroups, n_elements: int, p_max: float,
-                     n_modes: int | None) -> np.ndarray:
-    return np.array([b.p for b in ar._fe_scan(g, n_elements, p_max, ar.SCAN_STEP, n_modes)[2]])
 
-
-def test_the_retry_twin_reduced_to_the_coarse_twins_unknowns_keeps_the_finer_twins_boundaries():
-    """The retry's twin (3x finer mesh, 40 elements at p_max 80) reduced to its lowest 24
-    modes (the 12-element twin's unknowns): its boundaries within 2e-5 of the unreduced finer
-    twin's (measured 8.4e-6 here; 1.6e-6 at p_max 400, 5.5e-7 at 1000), where the coarse
-    twin's are 1.5e-4 off (measured): the reduction keeps what the finer mesh buys."""
-    g = RodGroups(tan_alpha=0.595)
-    fine = _twin_boundaries(g, 40, 80.0, None)
-    reduced = _twin_boundaries(g, 40, 80.0, 24)
-    coarse = _twin_boundaries(g, 12, 80.0, None)
-    assert fine.size == reduced.size == coarse.size == 3
-    assert np.max(np.abs(reduced / fine - 1)) < 2e-5
-    assert np.max(np.abs(coarse / fine - 1)) > 5e-5
-
-
-def test_a_window_within_the_coarse_twins_error_is_decided_by_the_reduced_finer_retry(
-        monkeypatch):
-    """tan a = 0.5932502, just below the opening of the first divergence window (mu* ~
-    0.59325021): the 12-element twin has the window near p = 48.8, Newton finds no double root
-    of eq. (118) there, and the retry on 40 elements reduced to 24 modes decides: stable, then
-    flutter from 16.0535 to p_max, no window (as at p_max 200, whose twin is finer). Unreduced,
-    the 40-element twin had kept the window and the call was refused (measured); at p_max =
-    1000 the unreduced retry (120 elements) took 48 s."""
-    calls = []
+def _record_solves(monkeypatch) -> list[tuple[int, int | None]]:
+    calls: list[tuple[int, int | None]] = []
     solve_on = ar._solve_on
     monkeypatch.setattr(ar, "_solve_on", lambda g, g_scan, n_el, p_max, step, n_modes, **kw:
                         calls.append((n_el, n_modes))
                         or solve_on(g, g_scan, n_el, p_max, step, n_modes, **kw))
-    g = RodGroups(tan_alpha=0.5932502)
-    c = ar.critical_loads(g, p_max=80.0)
-    assert calls == [(12, None), (40, 24)]
-    assert [iv["regime"] for iv in c.intervals] == ["stable", "flutter"]
-    wide = ar.critical_loads(g, p_max=200.0).intervals
-    assert [iv["regime"] for iv in wide[:2]] == ["stable", "flutter"] and wide[1]["p_to"] > 80
-    assert c.p_flu == pytest.approx(wide[1]["p_from"], rel=1e-12)
-    assert c.p_flu == pytest.approx(16.05351, abs=1e-5)
+    return calls
+
+
+@pytest.mark.parametrize(("p_max", "solves"), [(80.0, [(12, None), (40, None)]),
+                                               (200.0, [(18, None), (54, ar.RETRY_MODES)])])
+def test_a_window_just_past_its_opening_is_found_by_the_finer_retry(monkeypatch, p_max, solves):
+    """tan a = 0.59325025, 4e-8 past the opening of the first divergence window (~0.59325021):
+    the coarse twin's window is not eq. (118)'s, Newton fails there, and the 3x finer twin
+    decides: the window [48.84648, 48.85706] (~0.01 wide). At p_max 200 that twin (54
+    elements) is reduced to RETRY_MODES modes; reduced to 36 (the coarse twin's unknowns) it
+    had opened the window late and answered "no window", silently (an outside review; 24 modes
+    at p_max 80 too): the two answers must agree, the unreduced one being the reference."""
+    calls = _record_solves(monkeypatch)
+    c = ar.critical_loads(RodGroups(tan_alpha=0.59325025), p_max=p_max)
+    assert calls == solves
+    assert [iv["regime"] for iv in c.intervals][:4] == [
+        "stable", "flutter", "divergence", "flutter"]
+    window = c.intervals[2]
+    assert window["p_from"] == pytest.approx(48.84648, abs=1e-5)
+    assert window["p_to"] == pytest.approx(48.85706, abs=1e-5)

@@ -258,8 +258,8 @@ def _fe_regimes_dense(tan_alpha: float, p: np.ndarray, n_elements: int = DENSE_E
     """Regime of the undamped FE twin at every load of ``p`` (no adaptivity, no exact solve):
     flutter where a pencil eigenvalue Omega^2 is complex, divergence where one is negative.
     The twin is Galerkin-reduced to its ``n_modes`` lowest unloaded modes (M-orthonormal); the
-    regime scan of :func:`~flutterfriction.analysis.rod.critical_loads` it checks is not
-    reduced and runs on another mesh."""
+    regime scan of :func:`~flutterfriction.analysis.rod.critical_loads` it checks runs on
+    other meshes (unreduced; its rare retry, reduced to ``RETRY_MODES`` = 80 modes)."""
     from flutterfriction.models.rod import RodGroups
     from flutterfriction.models.rod_fe import assemble
 
@@ -346,7 +346,8 @@ def rod_regime_cases(p_max: float = 400.0, n_alpha: int = 12) -> list[StressResu
 def _damped_regime_disagreements(p_max: float = 200.0) -> list[str]:
     """Damped rods (flutter: a pair crossing the imaginary axis; divergence: the unstable pair
     merging on the real axis): the intervals against the full first-order FE spectrum (20
-    elements, no modal reduction) on a grid of step 0.2, same 0.5 % bands."""
+    elements, no modal reduction) on a grid of step 0.2, with bands of 0.5 % + 0.02 (the
+    unreduced 20-element twin's error; the undamped check's are :data:`DENSE_BAND`)."""
     from flutterfriction.analysis import rod as ar
     from flutterfriction.models.rod import RodGroups
     from flutterfriction.models.rod_fe import assemble

@@ -608,6 +608,17 @@ def _fe_scan(g: RodGroups, n_elements: int, p_max: float, step: float,
     return scan, first, bounds
 
 
+#: Modes kept by the undamped retry's twin (3x the scan's elements) where it has more unknowns:
+#: the 40-element retry twin's unknowns (p_max <= 92, unreduced). Measured where the retry
+#: runs, at a window's opening (tan(alpha) ~ 0.59325021, the first divergence window, p ~
+#: 48.8): the twins open it at 0.593250203 (54 elements), 0.593250211 (54 reduced to 80
+#: modes), 0.593250219 (75 to 80), 0.593250220 (120 to 80), i.e. within 1e-8 of the
+#: unreduced twins (40 elements: 0.593250185); fewer modes open it late and lose the narrow
+#: windows just past the opening (40 to 24: 0.593250831; 54 to 36: 0.593250375; an outside
+#: review). At p_max = 1000 the unreduced retry (120 elements) took 48 s, reduced 4 s.
+RETRY_MODES = 80
+
+
 #: The groups' numerical range (eq. 106): ``(smallest positive, largest)``, 0 always allowed.
 # GROUP_RANGES (the solver's numerical range of eq. 106's groups) lives with RodGroups.
 
@@ -793,9 +804,8 @@ def critical_loads(g: RodGroups, p_max: float = 80.0, n_elements: int | None = N
     tan(alpha) = 0.98229-0.98235 a flutter window near p = 69.7, 12 elements; measured by an
     outside audit). Where the FE twin's window differs from the exact one
     (within ~1e-5 in tan(alpha) of its opening) Newton finds no double root: the scan is
-    redone once on a 3x finer twin (undamped: reduced to its lowest modes, as many as the
-    coarse twin has unknowns, which keeps the finer twin's boundaries and the coarse scan's
-    cost), and a second failure is refused.
+    redone once on a 3x finer twin (undamped, beyond p_max = 92: reduced to its lowest
+    :data:`RETRY_MODES` modes), and a second failure is refused.
 
     Parameters
     ----------
@@ -849,14 +859,13 @@ def critical_loads(g: RodGroups, p_max: float = 80.0, n_elements: int | None = N
         # Once on a 3x finer twin: a window that opens or closes within the coarse twin's
         # error (~1e-5 in tan(alpha) at p ~ 50 on 12 elements) has no exact double roots
         # where the coarse twin puts them. A second failure is reported as the first.
-        # Undamped, the finer twin is reduced (Galerkin) to its lowest 2 n_el modes, as many
-        # as the coarse twin has unknowns: its boundaries lie within 8.4e-6 (relative) of the
-        # unreduced finer twin's, against 1.5e-4 ... 4.9e-4 for the coarse twin's (p_max 80,
-        # 400, 1000; measured), at the coarse scan's cost: unreduced, the retry at
-        # p_max = 1000 (120 elements) took 48 s, now 4 s.
+        # Undamped, a finer twin beyond RETRY_MODES unknowns (p_max > 92) is reduced
+        # (Galerkin) to its lowest RETRY_MODES modes, see there.
         try:
-            return _solve_on(g, g_scan, max(40, 3 * n_el), p_max, step,
-                             n_modes if g.damped else 2 * n_el, skip_failed_beyond=True)
+            fine = max(40, 3 * n_el)
+            retry_modes = n_modes if g.damped else (RETRY_MODES if 2 * fine > RETRY_MODES
+                                                    else None)
+            return _solve_on(g, g_scan, fine, p_max, step, retry_modes, skip_failed_beyond=True)
         except ConvergenceError:
             raise first_error from None
 
