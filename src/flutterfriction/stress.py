@@ -259,7 +259,7 @@ def _fe_regimes_dense(tan_alpha: float, p: np.ndarray, n_elements: int = DENSE_E
     flutter where a pencil eigenvalue Omega^2 is complex, divergence where one is negative.
     The twin is Galerkin-reduced to its ``n_modes`` lowest unloaded modes (M-orthonormal); the
     regime scan of :func:`~flutterfriction.analysis.rod.critical_loads` it checks runs on
-    other meshes (unreduced; its rare retry, reduced to ``RETRY_MODES`` = 80 modes)."""
+    other meshes (unreduced; its rare retry beyond p_max ~ 250, reduced to ``RETRY_MODES``)."""
     from flutterfriction.models.rod import RodGroups
     from flutterfriction.models.rod_fe import assemble
 
