@@ -626,12 +626,12 @@ def _record_solves(monkeypatch) -> list[tuple[int, int | None]]:
 def test_a_window_just_past_its_opening_is_found_by_the_finer_retry(monkeypatch, p_max, solves):
     """tan a = 0.59325025, 4e-8 past the opening of the first divergence window
     (0.5932502122): the coarse twin's window is not eq. (118)'s, Newton fails there, and the
-    3x finer twin decides: the window [48.84648, 48.85706] (~0.01 wide). Reduced to the coarse
-    twin's unknowns (24 and 36 modes), that twin had opened the window late and answered "no
-    window", silently (an outside review); up to RETRY_MODES unknowns it is not reduced. At
-    p_max 200 the 54-element twin's window is refused instead (the regime check finds no
-    verdict inside the 0.01-wide window; as before the reduction; measured here), and nearly
-    coincident roots may refuse it elsewhere: a refusal passes, "no window" never does."""
+    3x finer twin decides: the window [48.84648, 48.85706] (~0.01 wide). That twin is not
+    reduced: reduced to the coarse twin's unknowns (24 and 36 modes) it had opened the window
+    late and answered "no window", silently (an outside review). At p_max 200 the
+    54-element twin's window is refused instead (the regime check finds no verdict inside the
+    0.01-wide window; measured here), and nearly coincident roots may refuse it elsewhere: a
+    refusal passes, "no window" never does."""
     from flutterfriction.errors import ConvergenceError
 
     calls = _record_solves(monkeypatch)
@@ -647,17 +647,3 @@ def test_a_window_just_past_its_opening_is_found_by_the_finer_retry(monkeypatch,
     assert window["p_from"] == pytest.approx(48.84648, abs=1e-5)
     assert window["p_to"] == pytest.approx(48.85706, abs=1e-5)
 
-
-@pytest.mark.slow
-def test_the_retry_at_p_max_1000_runs_on_a_reduced_twin_and_keeps_every_interval(monkeypatch):
-    """tan a = 0.59325019 (3e-8 before the window's opening), p_max 1000: the 40-element twin
-    has the window, Newton does not, and the retry runs on 120 elements reduced to RETRY_MODES
-    modes (17 s; unreduced 51 s): 17 intervals, none near p = 48.8, the loads as the
-    unreduced retry found them (measured: 85.293381036, 111.381362088, 972.718338391)."""
-    calls = _record_solves(monkeypatch)
-    c = ar.critical_loads(RodGroups(tan_alpha=0.59325019), p_max=1000.0)
-    assert calls == [(40, None), (120, ar.RETRY_MODES)]
-    assert len(c.intervals) == 17 and c.p_div == pytest.approx(85.293381036, abs=1e-7)
-    assert [iv["regime"] for iv in c.intervals[:3]] == ["stable", "flutter", "divergence"]
-    assert c.intervals[3]["p_from"] == pytest.approx(111.381362088, abs=1e-7)
-    assert c.intervals[-1]["p_from"] == pytest.approx(972.718338391, abs=1e-6)

@@ -258,8 +258,8 @@ def _fe_regimes_dense(tan_alpha: float, p: np.ndarray, n_elements: int = DENSE_E
     """Regime of the undamped FE twin at every load of ``p`` (no adaptivity, no exact solve):
     flutter where a pencil eigenvalue Omega^2 is complex, divergence where one is negative.
     The twin is Galerkin-reduced to its ``n_modes`` lowest unloaded modes (M-orthonormal); the
-    regime scan of :func:`~flutterfriction.analysis.rod.critical_loads` it checks runs on
-    other meshes (unreduced; its rare retry beyond p_max ~ 250, reduced to ``RETRY_MODES``)."""
+    regime scan of :func:`~flutterfriction.analysis.rod.critical_loads` it checks is not
+    reduced and runs on other meshes (25 elements at p_max 400; its retry, 75)."""
     from flutterfriction.models.rod import RodGroups
     from flutterfriction.models.rod_fe import assemble
 

@@ -608,18 +608,6 @@ def _fe_scan(g: RodGroups, n_elements: int, p_max: float, step: float,
     return scan, first, bounds
 
 
-#: Modes kept by the undamped retry's twin (3x the scan's elements) where it has more unknowns
-#: (p_max > ~250; below, unreduced). Measured where the retry runs, at a window's opening: the
-#: first divergence window opens at tan(alpha) = 0.5932502122 (eq. 118: its width squared,
-#: linear in tan(alpha), from the widths at 0.59325025 and 0.5932505); the unreduced twins
-#: open it early (40 elements: -2.7e-8, 54: -9e-9, 75: -5e-9), so the scan sees the window
-#: and Newton decides; reduced to 120 modes too (75 elements: -1e-8, 120: -6e-9). With fewer
-#: modes it opened late, where a narrow window just past the opening is lost silently (75 or
-#: 120 elements to 80 modes: +7e-9; 54 to 36: +1.6e-7; 40 to 24: +6.2e-7, the first choice
-#: here, an outside review). At p_max = 1000 the unreduced retry (120 elements) took 48 s.
-RETRY_MODES = 120
-
-
 #: The groups' numerical range (eq. 106): ``(smallest positive, largest)``, 0 always allowed.
 # GROUP_RANGES (the solver's numerical range of eq. 106's groups) lives with RodGroups.
 
@@ -805,8 +793,7 @@ def critical_loads(g: RodGroups, p_max: float = 80.0, n_elements: int | None = N
     tan(alpha) = 0.98229-0.98235 a flutter window near p = 69.7, 12 elements; measured by an
     outside audit). Where the FE twin's window differs from the exact one
     (within ~1e-5 in tan(alpha) of its opening) Newton finds no double root: the scan is
-    redone once on a 3x finer twin (undamped, beyond :data:`RETRY_MODES` unknowns: reduced
-    to its lowest modes), and a second failure is refused.
+    redone once on a 3x finer twin, and a second failure is refused.
 
     Parameters
     ----------
@@ -860,13 +847,14 @@ def critical_loads(g: RodGroups, p_max: float = 80.0, n_elements: int | None = N
         # Once on a 3x finer twin: a window that opens or closes within the coarse twin's
         # error (~1e-5 in tan(alpha) at p ~ 50 on 12 elements) has no exact double roots
         # where the coarse twin puts them. A second failure is reported as the first.
-        # Undamped, a finer twin beyond RETRY_MODES unknowns is reduced (Galerkin) to its
-        # lowest RETRY_MODES modes, see there.
+        # Unreduced: a Galerkin reduction of the finer twin (tried for speed: p_max 1000 at
+        # tan(alpha) = 0.59325019, 51 s -> 9 s with 80 modes, 17 s with 120) opened windows
+        # late, and a narrow one just past its opening was answered "no window", silently
+        # (outside reviews: 40 elements to 24 modes at 0.59325025, p ~ 48.8; 120 elements to
+        # 120 modes at 0.552785507, p ~ 641.4, where the unreduced twin refuses).
         try:
-            fine = max(40, 3 * n_el)
-            retry_modes = n_modes if g.damped else (RETRY_MODES if 2 * fine > RETRY_MODES
-                                                    else None)
-            return _solve_on(g, g_scan, fine, p_max, step, retry_modes, skip_failed_beyond=True)
+            return _solve_on(g, g_scan, max(40, 3 * n_el), p_max, step, n_modes,
+                             skip_failed_beyond=True)
         except ConvergenceError:
             raise first_error from None
 
