@@ -227,6 +227,7 @@ def test_elastica_api_refuses_arc_lengths_off_the_rod_and_bad_iteration_counts()
     assert sol.theta([0.0, 0.35]).shape == (2,)  # the ends themselves are on the rod
 
 
+@pytest.mark.slow  # 6-9 s on a slower host (2026-11-24): with the slow ones
 def test_a_failed_elastica_scene_names_its_loads():
     """Outside audit: elastica.P1 = 100 N (150 Euler loads) failed with "solve_bvp failed ...
     mesh nodes", naming no parameter; the message now names the loads and the Euler load."""
@@ -295,6 +296,7 @@ def test_a_wandering_newton_ends_in_the_stable_equilibrium_not_a_hang():
     assert np.max(np.abs(sol.position(s) - colloc.position(s))) < 1e-9
 
 
+@pytest.mark.slow  # 6-9 s on a slower host (2026-11-24): with the slow ones
 def test_the_loading_path_is_followed_through_its_turn_to_the_right_side():
     """A second outside audit: with tip and distributed transverse loads of opposite signs
     the stable equilibrium on the wrong side was returned (+3.0423 rad; the auditor's own
@@ -313,6 +315,7 @@ def test_the_loading_path_is_followed_through_its_turn_to_the_right_side():
         assert sol.tip_rotation == pytest.approx(closed.tip_rotation, rel=1e-9)
 
 
+@pytest.mark.slow  # 6-9 s on a slower host (2026-11-24): with the slow ones
 def test_an_end_force_near_the_axis_an_outside_audit_and_its_follow_up():
     """An outside audit and what checking it found:
 
