@@ -611,7 +611,6 @@ def test_damped_fe_flutter_load_just_past_a_coalescence_is_polished():
     assert fe.p_flu == pytest.approx(ar.critical_loads(g, p_max=40.0).p_flu, rel=1e-7)
 
 
-
 def _record_solves(monkeypatch) -> list[tuple[int, int | None]]:
     calls: list[tuple[int, int | None]] = []
     solve_on = ar._solve_on
@@ -646,4 +645,3 @@ def test_a_window_just_past_its_opening_is_found_by_the_finer_retry(monkeypatch,
     window = c.intervals[2]
     assert window["p_from"] == pytest.approx(48.84648, abs=1e-5)
     assert window["p_to"] == pytest.approx(48.85706, abs=1e-5)
-

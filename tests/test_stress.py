@@ -49,7 +49,7 @@ def test_the_dense_regime_twin_sees_a_window_the_scan_must_report_and_is_within_
     p = np.arange(45.0, 52.0, 1e-3)
     regimes = np.array(_fe_regimes_dense(0.595, p))
     div = p[regimes == "divergence"]
-    exact = (47.71549336756, 49.99155605)
+    exact = (47.71549336756, 49.99155605)  # eq. (118): tests/test_rod.py, the CLI test there
     assert abs(div[0] / exact[0] - 1) < 1e-4 and abs(div[-1] / exact[1] - 1) < 1e-4
     near = np.zeros(p.size, dtype=bool)
     for e in exact:
