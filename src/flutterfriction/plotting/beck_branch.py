@@ -22,7 +22,8 @@ def plot_beck_branch(data: dict[str, Any]) -> Figure:
     P_flu = data["P_flu_model"]
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(9.5, 4.0), layout="constrained")
     for ax, Y, scale in ((ax1, A, 1e3), (ax2, T, 1e3)):
-        ax.plot(P, Y * scale, "-", color="0.6", lw=1, zorder=1)
+        ax.plot(P, Y * scale, "-", color="0.6", lw=1, zorder=1,
+                label="the branch (continuation steps joined)")
         ax.plot(P[stable], Y[stable] * scale, "o", ms=3.5, color="C0", zorder=2,
                 label=r"stable cycle (all non-trivial $|\mu| < 1$)")
         if (~stable).any():

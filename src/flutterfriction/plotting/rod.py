@@ -276,7 +276,10 @@ def _title(data, fig: str, what: str) -> str:
     c, tr = data["cycle"], data["transient"]
     n = data["history_mesh"]
     err = data["mesh_error"][str(n)]
+    # the chapter's model is another one: said on the figure (a figure review)
     return (f"{fig}: nonlinear Beck rod, {list119(data)}, P = {data['P']:g} N: {what}\n"
+            "ours: geometrically exact rod, P2 elements (the chapter's: ABAQUS, 20 linear B21 "
+            "elements)\n"
             f"black: the limit cycle on the transient's {n} P2 elements (Newton; within "
             f"{100 * max(err.values()):.2f}% of the {data['meshes'][-1]}-element one); on "
             f"{data['meshes'][-2]} elements A = {c['tip_amplitude_m'] * 1000:.1f} mm, "

@@ -194,8 +194,13 @@ def plot_fig10(data: dict[str, Any]) -> Figure:
         ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.09), fontsize=7.5,
                   frameon=False)
     axes[0].set_ylabel(r"position along the rod, $x/l$ [-]")
+    # the loads differ from those Fig. 12's caption quotes for the same tan(alpha) = 1: said here
+    # too (a figure review), not only on Fig. 12
+    erratum = ("\nthe 16.51 / 30.22 that Fig. 12's caption quotes for tan α = 1 belong to "
+               "another tip mass (see the Fig. 12 erratum)"
+               if data["pfluger_tan_alpha"] == 1.0 else "")
     fig.suptitle("Fig. 10: the Beck and the Pflüger rods under a tangential follower load, "
-                 "with their critical modes", fontsize=10)
+                 "with their critical modes" + erratum, fontsize=10)
     return fig
 
 

@@ -86,6 +86,9 @@ def plot_follower_spectrum(data: dict[str, Any], title: str, in_newtons: bool = 
         for val in (g_flu, g_div):
             ax.axvline(val * unit, color="k", ls="--", lw=0.8)
         ax.set_ylabel(label + r" [-]")
+    # the normalisation of eq. (17), as Fig. eq25 states it (a figure review: with the load in
+    # newtons, omega^2 read as a dimensional quantity)
+    ax1.set_ylabel(r"Re $\omega^2$ [-], $\omega^2 = m_2 l_2^2\,\Omega^2/k_2$")
     fmt = ("{:.3f} N" if in_newtons else "{:.4f} K/L")
     # Threshold values above the frame, clear of the branches (ending / starting at their line).
     for name, val, ha in ((r"$P_{flu}$", g_flu, "right"), (r"$P_{div}$", g_div, "left")):

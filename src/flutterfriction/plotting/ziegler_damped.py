@@ -61,8 +61,11 @@ def plot_fig05(data: dict[str, Any]) -> Figure:
     ax_im.set_xlim(gamma[0], gamma[-1])
     ax_re.tick_params(labelbottom=False)
     ax_re.legend(loc="lower left", fontsize=7)
-    ax_re.set_title(r"Fig. 5: $l_1=l_2=L$, $k_1=k_2=K$, $m_1=m_2$, $d=L$, $c_1=c_2$ (eq. 51); "
-                    "dashed: flutter loads", fontsize=8)
+    # the assumptions of eq. (50) in full (rho2 = 0: no mass at C) and epsilon of eq. (29)
+    ax_re.set_title(r"Fig. 5: $l_1=l_2=L$, $k_1=k_2=K$, $m_1=m_2$, $m_3=0$, $d=L$, $c_1=c_2$ "
+                    "(eq. 51)\n"
+                    r"$\epsilon = c_2/(l_2\sqrt{k_2 m_2})$ (eq. 29); dashed: flutter loads",
+                    fontsize=8)
     ax_z.set_xlim(lo, hi)
     ax_z.set_ylim(-0.25 * ztop * zs, 0.25 * ztop * zs)
     ax_z.set_xlabel(r"$\gamma = P L/K$ [-]")

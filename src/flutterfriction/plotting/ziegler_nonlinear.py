@@ -140,7 +140,8 @@ def plot_fig20(data: dict[str, Any]) -> Figure:
     fig.suptitle(f"Fig. 20: {list47_viscous(data, short=True)}, P = {data['P']:.3f} N (middle "
                  f"of the flutter interval {data['P_flu']:.2f}–{data['P_div']:.2f} N), from "
                  f"α1 = α2 = {a0:g}° at rest\nsimulations only: the measured acceleration of "
-                 "the printed figure is an experiment, not reproduced"
+                 "the printed figure (plate at 75 mm/s) is an experiment, not reproduced; the "
+                 "model's follower force does not depend on the plate's speed"
                  + (f"\n{note}" if note else ""), fontsize=8)
     ax1.set_title(f"the first {t[-1]:g} s (C: the pendulum's loaded end)", fontsize=8)
     ax2.set_title(f"detail: the first {tl[-1]:g} s (the linear solution is cut there)",
@@ -160,8 +161,17 @@ def plot_fig21(data: dict[str, Any]) -> Figure:
     fig.colorbar(lc, ax=ax1, label="time t [s]")
     ax1.set_title("path of the loaded end C in the fixed frame [mm]", fontsize=8)
     ax2.set_facecolor("0.15")
-    ax2.plot(S[:, 0], S[:, 1], color="w", lw=1.4)
+    ax2.plot(S[:, 0], S[:, 1], color="w", lw=1.4, label="scratch: C seen from the plate")
     ax2.set_aspect("equal")
+    # the start (the path's first, dark part stays near the straight pendulum, under the
+    # later loops: a marker says where it is; a figure review)
+    for ax, Q in ((ax1, C), (ax2, S)):
+        ax.plot(*Q[0], "o", ms=6, mfc="none", mec="C3", mew=1.4, zorder=4,
+                label="start, t = 0 (straight pendulum)")
+    # under the panel, on the panel's dark grey (the scratch's white line shows there; inside,
+    # the legend covered a loop)
+    ax2.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2,
+               facecolor="0.15", labelcolor="w", framealpha=1.0)
     ax2.set_title(f"the scratch on the plate (moving at {data['plate_speed'] * 1000:g} mm/s)",
                   fontsize=8)
     w0, T = data.get("omega0", 0.5), data.get("duration", 2.04)  # (older data: the defaults)
@@ -171,8 +181,10 @@ def plot_fig21(data: dict[str, Any]) -> Figure:
                  f"from α1 = α2 = 0 with angular velocities {w0:g} rad/s (computed)\n"
                  "the photo of the scratch and the camera's spots are an experiment, not "
                  "reproduced" + (f"\n{note}" if note else ""), fontsize=8)
+    # the frame of eq. (1): origin at the clamp A, x along the straight pendulum
+    ax1.set_xlabel("x (from the clamp A, along the straight pendulum) [mm]", fontsize=8)
+    ax2.set_xlabel("x on the plate (sliding along −x at the plate's speed) [mm]", fontsize=8)
     for ax in (ax1, ax2):
-        ax.set_xlabel("x [mm]")
         ax.set_ylabel("y [mm]")
     fig.tight_layout()
     return fig
@@ -192,7 +204,8 @@ def plot_limit_cycle_amplitude(data: dict[str, Any]) -> Figure:
     ax1.plot(Pfine, c * np.sqrt(Pfine - Pf), "k:", lw=1.2, zorder=3,
              label=r"$\alpha_1 \propto \sqrt{P - P_{flu}}$ (normal form, through the first cycle)")
     ax1.plot([P[0] * 0.97, Pf], [0, 0], "k-", lw=2, label="stable equilibrium")
-    ax1.axvline(Pf, color="k", ls="--", lw=0.8, label=f"damped flutter load P_flu = {Pf:.4g} N")
+    ax1.axvline(Pf, color="k", ls="--", lw=0.8,
+                label=rf"damped flutter load $P_{{flu}}$ = {Pf:.4g} N")
     ax1.set_xlabel("follower load P [N]")
     ax1.set_ylabel("limit-cycle amplitude [deg]")
     # under the axes: inside, it hid the alpha2 branch (a figure review)
@@ -201,7 +214,7 @@ def plot_limit_cycle_amplitude(data: dict[str, Any]) -> Figure:
     text = pendulum_text(data.get("params", {}).get("pendulum"))
     if text:
         fig.suptitle(f"The pendulum {text}", fontsize=7)
-    ax1.set_title(f"supercritical Hopf at P_flu = {Pf:.4g} N (exponent "
+    ax1.set_title(rf"supercritical Hopf at $P_{{flu}}$ = {Pf:.4g} N (exponent "
                   f"{q['hopf_exponent']['value']:.3f})", fontsize=8)
     ax2.plot(P, data["period"], "o-", ms=4)
     ax2.axhline(2 * np.pi / data["omega_flu"], color="k", ls=":", lw=1,
