@@ -68,16 +68,19 @@ def draw_pendulum(ax: Axes, points: dict[str, Any], masses: dict[str, float],
         _spiral(ax, A, 0.07 * scale)
         _spiral(ax, B, 0.07 * scale)
     mmax = max(masses.values())
+    r_C = 0.0  # the drawn radius of the mass at C: the load's arrowhead ends on it
     for key, where in (("m1", D), ("m2", C), ("m3", E)):
         m = masses.get(key, 0.0)
         if m > 0:
-            r = 0.075 * scale * (m / mmax) ** (1 / 3)
-            ax.add_patch(Circle(where, max(r, 0.03 * scale), fc=MASS, ec="black", lw=0.5,
-                                zorder=7))
+            r = max(0.075 * scale * (m / mmax) ** (1 / 3), 0.03 * scale)
+            ax.add_patch(Circle(where, r, fc=MASS, ec="black", lw=0.5, zorder=7))
+            r_C = r if key == "m2" else r_C
     if loads:
         t = (C - B) / np.linalg.norm(C - B)
         if loads.get("P"):
-            tip = C - 0.05 * scale * t
+            # the head touches the mass at C from outside (ending inside it, the head hid the
+            # mass in Fig. 4's small frames; a figure review)
+            tip = C + r_C * t
             # arrow_head, arrow_gap [points]: in small frames (Fig. 4) a 10-point head and
             # the 2-point gaps left no shaft, a detached triangle (a figure review)
             ax.add_patch(FancyArrowPatch(tip + loads["P"] * t, tip, arrowstyle="-|>",

@@ -243,12 +243,14 @@ def plot_acoustic_eigenvalues(data: dict[str, Any]) -> Figure:
     # band), the first curve is drawn again dashed over the second (a figure review saw a
     # legend entry whose curve was hidden there).
     re_all, im_all = np.array(data["re"], float), np.array(data["im"], float)
+    pair_colours = []
     for i in range(len(re_all)):
         for j in range(i + 1, len(re_all)):
             pair = (np.abs(im_all[i]) > 0) & np.isclose(re_all[i], re_all[j], rtol=1e-9, atol=0)
             if pair.any():
                 ax1.plot(g, np.where(pair, re_all[i], np.nan), color=f"C{i}", lw=1.4,
                          ls=(0, (3, 3)), zorder=3)
+                pair_colours.append(f"C{i}")
     ax1.axhline(data["mu"], color="k", ls=":", lw=0.8)
     ax1.annotate(rf"$\mu$ = {data['mu']:g}", (g[0], data["mu"]), xytext=(0, 3),
                  textcoords="offset points", ha="left", va="bottom", fontsize=7)
@@ -272,6 +274,12 @@ def plot_acoustic_eigenvalues(data: dict[str, Any]) -> Figure:
     handles, labels = ax2.get_legend_handles_labels()
     handles.append(Line2D([], [], ls="none"))
     labels.append(r"outside (g1, g2): all real, Im $\eta$ = 0")
+    # the two other line styles on the Re panel, explained (a figure review)
+    if pair_colours:
+        handles.append(Line2D([], [], color=pair_colours[0], lw=1.4, ls=(0, (3, 3))))
+        labels.append("a complex pair: one Re, dashed")
+    handles.append(Line2D([], [], color="k", ls=":", lw=0.8))
+    labels.append(r"$\eta = \mu$ (shear modulus)")
     ax1.legend(handles, labels, fontsize=7, loc="lower right", ncol=2)
     text = _case_text(data.get("params", {}))
     printed = data.get("flutter_interval_as_printed")

@@ -191,7 +191,8 @@ def plot_fig04(data: dict[str, Any]) -> Figure:
         for i, t in enumerate(times):
             ax = fig.add_subplot(sub[i // ncol, i % ncol])
             ax.set_aspect("equal")
-            ax.set_xlim(-0.25 * span, 1.15 * span)
+            # room for the load's arrow beyond C (at 1.15 span its tail was cut by the frame)
+            ax.set_xlim(-0.25 * span, 1.25 * span)
             ax.set_ylim(-0.45 * span, 0.45 * span)
             ax.set_xticks([])
             ax.set_yticks([])
@@ -214,7 +215,8 @@ def plot_fig04(data: dict[str, Any]) -> Figure:
                     side.set_color("C3")
             ax.plot([0, span], [0, 0], color="0.7", lw=0.6, ls="--")
             frame = {key: v[i] for key, v in pts.items()}
-            draw_pendulum(ax, frame, data["masses"], scale=0.5 * L, springs=False,
+            # (scale 0.5 L drew hinge B and the masses too small to see in these frames)
+            draw_pendulum(ax, frame, data["masses"], scale=0.8 * L, springs=False,
                           loads={"P": 0.3 * L}, arrow_head=6.0, arrow_gap=0.0)
             if beyond:  # the whole (folded back) pendulum in its frame, at the same scale
                 xy = np.array([np.asarray(v, dtype=float) for v in frame.values()])

@@ -169,9 +169,11 @@ def plot_paradox_map(data: dict[str, Any]) -> Figure:
     norm = Normalize(vmin=0.0, vmax=1.0)
     for ax, y, z, free, ylabel in panels:
         im = ax.pcolormesh(lc, y, np.array(z), cmap="viridis", norm=norm, shading="auto")
-        cs = ax.contour(lc, y, np.array(z), levels=[0.25, 0.5, 0.75, 0.9, 0.99], colors="w",
-                        linewidths=0.6)
-        ax.clabel(cs, fontsize=6, fmt="%.2f")
+        # white on the dark (low) levels, black on the light ones: white labels on the yellow
+        # were unreadable (a figure review)
+        cs = ax.contour(lc, y, np.array(z), levels=[0.25, 0.5, 0.75, 0.9, 0.99],
+                        colors=["w", "w", "k", "k", "k"], linewidths=0.6)
+        ax.clabel(cs, fontsize=7, fmt="%.2f")
         pts = [(np.log10(c), yy) for c, yy in zip(free, y, strict=True) if c is not None]
         if pts:
             # Every point, clipped at the frame (the curve runs on beyond it).
