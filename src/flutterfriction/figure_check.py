@@ -16,6 +16,11 @@ an :class:`~flutterfriction.figure_offences.Offence` kind:
 ``covered``
     A text under a legend's opaque frame, or under an opaque axes (an inset, a colorbar, a
     neighbouring panel) drawn after it.
+``small``
+    A text smaller than :data:`MIN_TEXT_PX` when the figure is shown :data:`REPORT_WIDTH_PX`
+    wide (the report's figures fill the window up to 1800 px; 1200 px is a laptop's), or at
+    its PNG's :data:`PNG_DPI` if that is narrower: a wide figure needs larger type (a figure
+    review read 6.5 pt in a 14-inch figure as 8 px, unreadable).
 ``unit``
     An axis showing values (it draws tick labels that are numbers) without a label, or whose
     label has no unit: the repository's convention is a unit in square brackets, ``[N]``,
@@ -61,6 +66,11 @@ OVERLAP_PT2 = 1.0
 #: A text is clipped or covered when it reaches further than this [pt] into what clips or
 #: covers it (a rounding margin: extents are measured at the PNG's dpi, the PDF's are at 72).
 TOLERANCE_PT = 0.5
+
+#: The ``small`` rule: the width [px] a figure is read at (at most; a narrower figure is shown
+#: at its PNG's resolution, :data:`PNG_DPI`), and the least height [px] of its texts' font
+#: there (10 px: 7.5 pt on a printed page at 96 px per inch).
+REPORT_WIDTH_PX, PNG_DPI, MIN_TEXT_PX = 1200.0, 200.0, 10.0
 
 #: The unit convention of the axis labels: a unit in square brackets, or "dimensionless".
 UNIT = re.compile(r"\[[^\[\]]*\S[^\[\]]*\]|dimensionless", re.IGNORECASE)
@@ -283,6 +293,23 @@ def check_figure(fig: Figure, *, tight: bool = True) -> list[Offence]:
             h = min(tbox[3], box[3]) - max(tbox[1], box[1])
             if overlap * pt * pt > OVERLAP_PT2 and min(w, h) > tol:
                 offences.append(Offence("covered", name, what, where(ax)))
+
+    # small: every text legible at the report's width (the saved width from the drawn texts'
+    # and axes' extents: the figure's tight box without a second layout pass)
+    frames = [_box(ax.patch.get_window_extent(renderer)) for _, ax in drawn.axes]
+    extent = np.vstack([boxes, np.array(frames).reshape(-1, 4)])
+    if tight and extent.size:
+        width_in = (extent[:, 2].max() - extent[:, 0].min()) / fig.dpi
+    else:
+        width_in = fig.get_figwidth()
+    px_per_pt = min(PNG_DPI, REPORT_WIDTH_PX / max(width_in, 1e-9)) / 72.0
+    for (_, t, ax, _), name in zip(texts, names, strict=True):
+        px = t.get_fontsize() * px_per_pt
+        if px < MIN_TEXT_PX:
+            offences.append(Offence("small", name, f"{t.get_fontsize():g} pt: {px:.1f} px in "
+                                    f"a {width_in:.1f}-inch figure shown "
+                                    f"{min(REPORT_WIDTH_PX, PNG_DPI * width_in):.0f} px wide",
+                                    where(ax)))
 
     # unit: every axis that draws numbers has a label with a unit
     drawn_ids = {id(t) for _, t, _, _ in texts}

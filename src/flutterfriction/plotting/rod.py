@@ -54,7 +54,10 @@ def _zoom_crossing(ax, p: np.ndarray, re: np.ndarray, p_flu: float,
     ymax = np.abs(top).max()
     scale = 10.0 ** -exp
     # Above the branches (which sit near Re = 0 before the flutter load), axis labels on top.
-    ins = ax.inset_axes([0.14, 0.6, 0.3, 0.25])
+    # (top at 0.8 of the panel: its "p [-]" on top clears the panel's frame and p_f label;
+    # left edge at 0.18: its 7-pt axis label clear of the panel's ticks; right edge at 0.39,
+    # left of where the branches leave Re = 0 in Figs. 11 and 12)
+    ins = ax.inset_axes([0.18, 0.55, 0.21, 0.25])
     ins.xaxis.tick_top()
     ins.xaxis.set_label_position("top")
     ins.plot(p[window], scale * top, color="k", lw=1.0)
@@ -62,14 +65,15 @@ def _zoom_crossing(ax, p: np.ndarray, re: np.ndarray, p_flu: float,
     ins.axvline(p_flu, color="k", ls="--", lw=0.7)
     ins.plot(p_flu, 0.0, "o", color="C3", ms=3.5, zorder=5)
     ins.annotate(f"{p_flu:.2f}", (p_flu, 0.0), xytext=(-3, 3), textcoords="offset points",
-                 ha="right", fontsize=6.5, color="C3")
+                 ha="right", fontsize=7, color="C3")
     ins.set_xlim(p[window][0], p[window][-1])
     ins.set_ylim(-scale * ymax, scale * ymax)
-    ins.tick_params(labelsize=6, pad=1)
+    # 7 pt: at 6 pt the figure check's `small` rule failed (9.8 px with Fig. 12 1200 px wide)
+    ins.tick_params(labelsize=7, pad=1)
     ins.xaxis.set_major_locator(plt.MaxNLocator(3))  # (4 labels nearly touched at 6 pt)
-    ins.set_xlabel("p [-]", fontsize=6, labelpad=3)
+    ins.set_xlabel("p [-]", fontsize=7, labelpad=3)
     # "in 10^exp", not "x 10^exp" (a figure review: multiplied by, or in units of?)
-    ins.set_ylabel(rf"max Re $\tilde\omega$" "\n" rf"in $10^{{{exp}}}$ [-]", fontsize=6,
+    ins.set_ylabel(rf"max Re $\tilde\omega$" "\n" rf"in $10^{{{exp}}}$ [-]", fontsize=7,
                    labelpad=2)
     ins.set_facecolor("white")
     # The panel's own p_f line runs under the inset: the inset (zorder 5) covers it, and its
