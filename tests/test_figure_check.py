@@ -67,6 +67,25 @@ def test_two_overlapping_texts_are_caught_by_name():
     assert "clean" in offences[0].axes  # the axes, by its title
 
 
+def test_small_text_in_a_wide_figure_is_caught_and_the_same_text_in_a_narrow_one_passes():
+    # 6.5 pt in a 14-inch figure: 6.5/72 * 1200/14 = 7.7 px when shown 1200 px wide (a review
+    # read Fig. 22's legends so); in a 4-inch figure shown at 200 dpi, 18 px
+    fig, ax = clean()
+    ax.text(0.6, 0.1, "slip onset", fontsize=6.5)
+    assert check_figure(fig) == []
+    fig.set_size_inches(14.0, 3.0)
+    offences = check_figure(fig)
+    assert "small" in kinds(offences)
+    small = [o for o in offences if o.kind == "small"]
+    assert {o.text for o in small} >= {"slip onset"}
+    assert all(" px in a 1" in o.other and "-inch figure shown 1200 px wide" in o.other
+               for o in small)
+    # 10 pt there is 11.9 px: legible
+    for t in ax.texts:
+        t.set_fontsize(10)
+    assert "slip onset" not in {o.text for o in check_figure(fig) if o.kind == "small"}
+
+
 def test_a_tick_label_under_a_long_title_of_the_next_panel_overlaps():
     fig, (a, b) = plt.subplots(1, 2, figsize=(4.0, 2.0))
     for ax in (a, b):

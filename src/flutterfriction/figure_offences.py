@@ -16,9 +16,10 @@ KINDS = ("overlap", "clipped", "covered", "small", "unit", "unexplained")
 #: What a figure that passes satisfies, in one line (the summary and the report say it).
 RULES = ("no two texts overlap, no text is clipped or covered by a legend or another axes, "
          "every text is at least 10 px tall with the figure 1200 px wide (a laptop's report "
-         "column), every axis that shows values has a label with a unit [..], every colour and line "
-         "style is explained (not checked: text over drawn lines or arrows, text running past "
-         "its axes' frame inside the figure, legends over data; those are looked at by eye)")
+         "column), every axis that shows values has a label with a unit [..], every colour "
+         "and line style is explained (not checked: text over drawn lines or arrows, text "
+         "running past its axes' frame inside the figure, legends over data; those are looked "
+         "at by eye)")
 
 
 @dataclass(frozen=True)
