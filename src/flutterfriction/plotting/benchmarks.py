@@ -36,7 +36,10 @@ def plot_work_precision(runs: list[dict[str, Any]]) -> Figure:
         ax.set_title(family + (f"\nalong each line: {sweep}" if sweep else ""), fontsize=8)
         ax.set_xlabel("wall time [s]")
         ax.set_ylabel("relative error [-]")
-        ax.legend(fontsize=7)
+        if len(ax.get_lines()) > 4:  # under the panel: inside, eight methods covered lines
+            ax.legend(fontsize=7, ncol=2, loc="upper center", bbox_to_anchor=(0.5, -0.2))
+        else:
+            ax.legend(fontsize=7)
     for ax in list(axes.flat)[len(families):]:
         ax.set_visible(False)
     fig.suptitle("Work-precision of every solver family (shared 2-core machine; "
