@@ -303,12 +303,21 @@ def plot_localization_directions(data: dict[str, Any]) -> Figure:
     ax.axhline(data["g_max"], color="C3", ls="--", lw=1.0,
                label=f"max over the sphere = {data['g_max']:.6f} Pa")
     theta_max = np.degrees(data["theta_max_in_plane"])
+    # the other maximum, the mirror band (n1 -> -n1), from the curve itself: both are marked
+    # (a review saw one of two equal peaks marked)
+    g_E = np.array(data["g_E"])
+    other = th > 90.0 if theta_max < 90.0 else th < 90.0
+    theta_other = th[other][np.argmax(g_E[other])] if other.any() else None
     ax.axvline(theta_max, color="k", ls=":", lw=0.8,
-               label=f"direction of the maximum in the plane, {theta_max:.1f}°")
+               label=f"directions of the maxima in the plane, {theta_max:.1f}°"
+               + (f" and {theta_other:.1f}°" if theta_other is not None else ""))
+    if theta_other is not None:
+        ax.axvline(theta_other, color="k", ls=":", lw=0.8)
     q = data["quantities"]["h_cr"]
     pr = data["params"]
-    ax.set_title(f"Localization, Drucker–Prager (G = {pr['G']:g} Pa, ν = {pr['nu']:g}, "
-                 f"μ = {pr['mu_f']:g}, β = {pr['beta']:g}, N = {pr['N']:g}):\n"
+    ax.set_title(f"Localization, Drucker–Prager: G = {pr['G']:g} Pa, ν = {pr['nu']:g}, "
+                 f"μ = {pr['mu_f']:g}, β = {pr['beta']:g}, N = {pr['N']:g}\n(N: intermediate "
+                 "principal deviatoric stress / equivalent shear stress, Rudnicki–Rice)\n"
                  f"$h_{{cr}}$ = max $-$ Q:E[P] = {q['value']:.6f} Pa "
                  f"(Rudnicki–Rice: {q['independent']:.6f} Pa)", fontsize=8)
     ax.set_xlabel(r"angle of n from the $\sigma_1$ axis [deg]")

@@ -124,8 +124,11 @@ def plot_fig03(data: dict[str, Any]) -> Figure:
                       (g_div, r"$\gamma_{div}$")):
         ax.axvline(val, color="k", ls="--" if val != vertex else ":", lw=0.8)
         # Labels on the side of each line away from the parabola's steep flanks.
+        # (2 pt off the line: touching it, the label read as struck through; a review)
+        left = val == g_flu
         ax.annotate(f"{name} = {val:.3f}", (val, 0.98), xycoords=("data", "axes fraction"),
-                    rotation=90, va="top", ha="left" if val == g_flu else "right", fontsize=8)
+                    xytext=(2 if left else -2, 0), textcoords="offset points",
+                    rotation=90, va="top", ha="left" if left else "right", fontsize=8)
     ymin = min(line.min(), parab.min())
     ax.set_ylim(1.35 * ymin, 1.2 * line.max())
     for name, xpos in (("stable", g_flu / 2), ("flutter", (g_flu + vertex) / 2),

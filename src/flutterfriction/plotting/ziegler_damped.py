@@ -140,6 +140,7 @@ def plot_fig19_theory(data: dict[str, Any]) -> Figure:
                  (q[key]["value"], ratio), (-118, 8), points=True, fontsize=7, color=colour)
     ax2.axvline(data["c_reference"], color="k", ls="--", lw=0.8)
     ax2.annotate(f"§2.9: {data['c_reference']:g} N m s", (data["c_reference"], 0.97),
+                 xytext=(-2, 0), textcoords="offset points",  # (2 pt clear of its line)
                  rotation=90, xycoords=("data", "axes fraction"), ha="right", va="top",
                  fontsize=7)
     ax2.axhline(1.0, color="k", lw=0.6, label="ratio 1 (no viscosity effect)")
