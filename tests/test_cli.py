@@ -348,6 +348,31 @@ def test_non_finite_result_is_an_error_not_printed(capsys, monkeypatch):
         cli._print({"x": float("inf")}, as_json=True)
 
 
+@pytest.mark.parametrize("args", [
+    ["rod", "--p", "10", "--mass-ratio", "1"],  # read as --p-max 10, silently (--P: a load)
+    ["rod", "--mass-r", "1"],
+    ["rod", "--mass-ratio", "1", "--js"],
+])
+def test_an_abbreviated_option_is_refused(capsys, args):
+    """Outside audit: argparse took unique prefixes (`rod --p 10` for --p-max 10)."""
+    code, out, err = _run_exit(capsys, args)
+    assert code == 2 and out == "" and "unrecognized arguments" in err
+    assert len(err.strip().splitlines()) == 1
+
+
+def test_an_si_rod_at_the_mass_ratio_bound_is_decided_on_the_ratio_not_its_logarithm(capsys):
+    """Outside audit: log10 M - log10 rho - log10 l = 4.000000000000001 refused a rod whose
+    M/(rho l) is 9999.999999999998 (in [0, 1e4]); one above the bound names its value."""
+    si = ["rod", "--length", "4.435087177140663", "--B", "1", "--rho", "5.008541189680321"]
+    code, out, err = _run(capsys, [*si, "--tip-mass", "222133.16806532035", "--p-max", "20",
+                                   "--json"])
+    assert code == 0 and _strict(out)["groups"]["tan_alpha"] == pytest.approx(1e4, rel=1e-15)
+    code, out, err = _run_exit(capsys, [*si, "--tip-mass", "222133.2", "--p-max", "20"])
+    assert code == 2 and out == ""
+    assert ("--tip-mass (with --length, --B, --rho): tan_alpha = M/(rho l) = 10000.00144 "
+            "must be in [0, 10000]") in err
+
+
 @pytest.mark.parametrize(("args", "name", "text"), [
     (["--D", "0"], "--D", "> 0"), (["--P", "1e6"], "--P", "flutter load"),
     (["--elements", "200"], "--elements", "1..16"), (["--P", "2"], "--P", "stable"),
@@ -448,7 +473,6 @@ def test_rod_si_units_at_the_ends_of_the_range(capsys, si, load_unit, time_scale
 @pytest.mark.parametrize("args", [
     [*_args(), "--k2", "1"],
     ["rod", "--mass-ratio", "1", "--mass-ratio", "2"],
-    ["rod", "--mass-r", "1", "--mass-ratio", "2"],  # an abbreviation counts as its option
     [*ACOUSTIC, "--n", "0", "1", "0"],
 ])
 def test_an_option_given_twice_is_refused(capsys, args):
