@@ -311,3 +311,28 @@ def test_limit_cycle_does_not_depend_on_the_unit_of_time():
         assert got["transient_s"] == pytest.approx(s * ref["transient_s"], rel=1e-12)
         assert got["alpha1_amplitude_rad"] == pytest.approx(ref["alpha1_amplitude_rad"],
                                                             rel=1e-12)
+
+
+def test_a_stiff_pendulums_limit_cycle_stops_on_its_evaluation_budget(monkeypatch):
+    """Outside audit: hinge viscosity 30-100 N m s on unit bars (the fastest rate 180-600x
+    the flutter frequency) integrated for minutes. Each phase of ziegler_limit_cycle now
+    spends at most LIMIT_CYCLE_EVALUATIONS evaluations of eq. (10), counted (no clock); a
+    small budget here shows both phases stop and say why."""
+    monkeypatch.setattr(dy, "LIMIT_CYCLE_EVALUATIONS", 20_000)
+    p = ZieglerPendulum(l1=1, l2=1, d=1, h=0, m1=1, m2=1, m3=0, k1=1, k2=1, c1=10, c2=10)
+    with pytest.raises(ConvergenceError) as err:
+        dy.ziegler_limit_cycle(p, 70.0, 0.01)
+    assert str(err.value).count("20,000 evaluations of eq. (10)") >= 1
+    assert "transient:" in str(err.value) and "continuation:" in str(err.value)
+    # outside a ziegler_limit_cycle call nothing is counted
+    assert dy._budget.get() is None
+
+
+@pytest.mark.parametrize("scale", [1e-150, 1e-170])
+def test_a_limit_cycle_at_a_torque_scale_beyond_the_dynamics_range_is_refused(scale):
+    """Outside audit: k2 = 1e-170 N m (lengths and stiffnesses 1e-170, accepted by the model)
+    ended in a ZeroDivisionError, 1e-160 in minutes of subnormal arithmetic."""
+    p = ZieglerPendulum(l1=scale, l2=scale, d=scale, h=0, m1=1, m2=1, m3=0, k1=scale,
+                        k2=scale, c1=scale**1.5, c2=scale**1.5)
+    with pytest.raises(ParameterError, match=r"^k2 must be in \[1e-140, 1e\+140\] N m"):
+        dy.ziegler_limit_cycle(p, 4.0, 0.01)

@@ -8,8 +8,11 @@ its Jacobian is derived once with sympy from the same equations (analytic, exact
 
 from __future__ import annotations
 
+import contextlib
+import contextvars
 import functools
 import math
+from collections.abc import Callable, Iterator
 from dataclasses import asdict, dataclass, replace
 
 import numpy as np
@@ -73,6 +76,52 @@ def _checked_start(P: float, H: float, state0: ArrayLike) -> tuple[float, float,
 #: so this bounds one call to minutes; the §2.9 scenes stay within 1e4.
 SIMULATE_MAX_TIME_UNITS = 1e5
 
+#: Evaluations of eq. (10) that each phase of :func:`ziegler_limit_cycle` (the transient and
+#: its shooting check; the continuation and its section check) may spend: counted, never
+#: timed, so the answer does not depend on the machine. About 7 s a phase here (5 us an
+#: evaluation with the integrator's work). The workflow's cycles take 0.1-0.5 M (measured);
+#: a stiff pendulum (hinge viscosity 30 N m s on unit bars, 180x the flutter frequency)
+#: integrated for minutes with no bound (an outside audit).
+LIMIT_CYCLE_EVALUATIONS = 1_500_000
+
+#: The torque scale k2 [N m] :func:`ziegler_limit_cycle` accepts (k1 is within 1e6 of it by
+#: the model's range): squares of torques stay normal doubles (1e+-300).
+DYNAMICS_TORQUE_RANGE = (1e-140, 1e140)
+
+_budget: contextvars.ContextVar[list[int] | None] = contextvars.ContextVar(
+    "limit_cycle_budget", default=None)
+
+
+class BudgetExhausted(ConvergenceError):
+    """The evaluations of :data:`LIMIT_CYCLE_EVALUATIONS` are spent."""
+
+
+@contextlib.contextmanager
+def _evaluation_budget(n: int) -> Iterator[None]:
+    """Integrations in this context stop with :class:`BudgetExhausted` after ``n``
+    evaluations of their right-hand side (all of them together)."""
+    token = _budget.set([n])
+    try:
+        yield
+    finally:
+        _budget.reset(token)
+
+
+def _counted(f: Callable[[float, NDArray], NDArray]) -> Callable[[float, NDArray], NDArray]:
+    """``f`` counted against the evaluation budget in force, if any."""
+    box = _budget.get()
+    if box is None:
+        return f
+
+    def g(t: float, x: NDArray) -> NDArray:
+        box[0] -= 1
+        if box[0] < 0:
+            raise BudgetExhausted(f"the integrations spent their {LIMIT_CYCLE_EVALUATIONS:,} "
+                                  "evaluations of eq. (10) (a stiff or slowly settling "
+                                  "pendulum)")
+        return f(t, x)
+    return g
+
 
 def simulate(pendulum: ZieglerPendulum, P: float, state0: ArrayLike, t_end: float,
              t_eval: ArrayLike | None = None, H: float = 0.0, method: str = "DOP853",
@@ -89,7 +138,7 @@ def simulate(pendulum: ZieglerPendulum, P: float, state0: ArrayLike, t_end: floa
                              f"time units l2 sqrt(m2/k2) of this pendulum), got {t_end:g}")
     if method in ("Radau", "BDF", "LSODA"):  # implicit: give them the analytic Jacobian
         kwargs["jac"] = lambda t, x: jacobian(pendulum, x, P, H)
-    sol = solve_ivp(lambda t, x: pendulum.equations_of_motion(x, P, H, check=False),
+    sol = solve_ivp(_counted(lambda t, x: pendulum.equations_of_motion(x, P, H, check=False)),
                     (0.0, t_end), x0, method=method, t_eval=t_eval, rtol=rtol, atol=atol,
                     **kwargs)
     if not sol.success:
@@ -173,7 +222,7 @@ def limit_cycle(pendulum: ZieglerPendulum, P: float, state0: ArrayLike, H: float
     crossings: list[tuple[float, NDArray]] = []
     steps = 0
     while t0 < t_end:
-        sol = solve_ivp(lambda t, y: unit.equations_of_motion(y, P, H, check=False),
+        sol = solve_ivp(_counted(lambda t, y: unit.equations_of_motion(y, P, H, check=False)),
                         (t0, t0 + step), x,
                         method=method, events=(section, runaway), rtol=rtol, atol=atol)
         if not sol.success:
@@ -499,6 +548,15 @@ def ziegler_limit_cycle(pendulum: ZieglerPendulum, P: float, alpha0: float, *,
         raise ParameterError(f"{alpha0_name} must be non-zero and within half a turn "
                              f"(0 < |alpha0| <= 180 deg), got {np.degrees(alpha0):g} deg")
     pendulum.check_numerical_range()
+    # Eq. (10) in the time unit tau multiplies two torques (the mass matrix's determinant is
+    # ~ k2^2 there): k2 = 1e-170 N m underflowed it to 0 (a ZeroDivisionError), 1e-160 to
+    # subnormals that integrated for minutes (an outside audit); the linear analyses, on the
+    # groups of eq. (17), are not limited so.
+    lo, hi = DYNAMICS_TORQUE_RANGE
+    if not math.log10(lo) <= math.log10(pendulum.k2) <= math.log10(hi):
+        raise ParameterError(
+            f"k2 must be in [{lo:g}, {hi:g}] N m for the nonlinear dynamics (eq. 10 forms "
+            f"products of two torques, which leave the doubles beyond), got {pendulum.k2:g}")
     if not is_damped(pendulum):
         raise ParameterError("c1, c2: a limit cycle needs hinge viscosity (c1 or c2 > 0)")
     P_flu = damped_flutter_load(pendulum, "routh")
@@ -510,21 +568,17 @@ def ziegler_limit_cycle(pendulum: ZieglerPendulum, P: float, alpha0: float, *,
     tau = time_unit(pendulum)
     unit = in_time_unit(pendulum)  # every integration below in units of tau
     growth = float(spectrum(unit, P).real.max())
-    estimate = (np.log(1 / abs(alpha0)) + 0.5 * np.log(1 / tol)) / growth
+    # (Re s may round to 0 just above P_flu at tiny viscosity: an infinite estimate, no
+    # RuntimeWarning on stderr; an outside audit)
+    with np.errstate(divide="ignore"):
+        estimate = float(np.float64(np.log(1 / abs(alpha0)) + 0.5 * np.log(1 / tol)) / growth)
     notes = []
     if estimate <= TRANSIENT_BUDGET:
         try:
-            cycle = limit_cycle(pendulum, P, [alpha0, alpha0, 0.0, 0.0], tol=tol)  # in tau
-            out = {"method": "transient on the Poincare section (DOP853)",
-                   "alpha1_amplitude_rad": cycle.alpha1_amplitude_rad,
-                   "alpha2_amplitude_rad": cycle.alpha2_amplitude_rad,
-                   "period_s": cycle.period_s, "transient_s": cycle.transient_s,
-                   "P_flu": P_flu, "P_div": P_div}
-            if check:
-                shot = shoot_periodic_orbit(pendulum, P, cycle)
-                out["shooting_check"] = {"period_s": shot.period_s,
-                                         "alpha1_amplitude_rad": shot.alpha1_amplitude_rad}
-            return out
+            # each phase (transient and its check; continuation and its check) within
+            # LIMIT_CYCLE_EVALUATIONS evaluations of eq. (10): never an unbounded run
+            with _evaluation_budget(LIMIT_CYCLE_EVALUATIONS):
+                return _by_transient(pendulum, P, alpha0, tol, check, P_flu, P_div)
         except ConvergenceError as exc:
             notes.append(f"transient: {exc} (times in units of tau = {tau:.4g} s)")
     else:
@@ -532,7 +586,10 @@ def ziegler_limit_cycle(pendulum: ZieglerPendulum, P: float, alpha0: float, *,
                      f"> {TRANSIENT_BUDGET * tau:.3g} s = {TRANSIENT_BUDGET:g} tau "
                      f"(tau = l2 sqrt(m2/k2) = {tau:.3g} s; Re s = {growth / tau:.3g} 1/s)")
     try:
-        cycle = limit_cycle_by_continuation(unit, P, P_flu)
+        with _evaluation_budget(LIMIT_CYCLE_EVALUATIONS):
+            cycle = limit_cycle_by_continuation(unit, P, P_flu)
+            section = (section_return(unit, P, cycle.section_state, cycle.period_s)
+                       if check else None)
     except ConvergenceError as exc:
         raise ConvergenceError("; ".join([*notes, f"continuation: {exc}"])) from None
     out = {"method": "continuation from the linear flutter mode (amplitude-parametrised "
@@ -541,8 +598,24 @@ def ziegler_limit_cycle(pendulum: ZieglerPendulum, P: float, alpha0: float, *,
            "alpha2_amplitude_rad": cycle.alpha2_amplitude_rad,
            "period_s": cycle.period_s * tau,
            "transient_s": None, "P_flu": P_flu, "P_div": P_div, "notes": notes}
-    if check:
-        t_ret, x_ret = section_return(unit, P, cycle.section_state, cycle.period_s)
+    if section is not None:
+        t_ret, x_ret = section
         out["section_check"] = {"period_s": t_ret * tau, "alpha1_rad": float(x_ret[0]),
                                 "method": "one return to the section (Radau, rtol 1e-10)"}
+    return out
+
+
+def _by_transient(pendulum: ZieglerPendulum, P: float, alpha0: float, tol: float,
+                  check: bool, P_flu: float, P_div: float) -> dict:
+    """:func:`ziegler_limit_cycle` by the transient on the Poincaré section (and shooting)."""
+    cycle = limit_cycle(pendulum, P, [alpha0, alpha0, 0.0, 0.0], tol=tol)  # in tau
+    out = {"method": "transient on the Poincare section (DOP853)",
+           "alpha1_amplitude_rad": cycle.alpha1_amplitude_rad,
+           "alpha2_amplitude_rad": cycle.alpha2_amplitude_rad,
+           "period_s": cycle.period_s, "transient_s": cycle.transient_s,
+           "P_flu": P_flu, "P_div": P_div}
+    if check:
+        shot = shoot_periodic_orbit(pendulum, P, cycle)
+        out["shooting_check"] = {"period_s": shot.period_s,
+                                 "alpha1_amplitude_rad": shot.alpha1_amplitude_rad}
     return out
