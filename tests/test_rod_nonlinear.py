@@ -649,3 +649,17 @@ def test_the_polished_damped_flutter_load_converges_at_h4_and_ignores_the_scan()
     assert 3.8 < math.log2(errors[0] / errors[1]) < 4.6
     with pytest.raises(ConvergenceError, match="no flutter crossing|another pair|did not converge"):
         polish_flutter_onset(M, C, K, K1, 1.2 * polished[0])
+
+
+@pytest.mark.parametrize(("kwargs", "text"), [
+    ({"initial_tip_rotation": 1e6}, r"^initial_tip_rotation must be non-zero and within half "
+                                    r"a turn \(0 < \|rotation\| <= pi rad\), got 1000000\.0"),
+    ({"initial_tip_rotation": 0.0}, r"^initial_tip_rotation must be non-zero"),
+    ({"t_max": 1e9}, r"^t_max must be in \(0, 314\.2\] s \(2000 time scales"),
+])
+def test_beck_limit_cycle_refuses_a_start_or_a_time_the_command_line_refuses(kwargs, text):
+    """Outside audit: the Python API integrated a tip rotation of 1e6 rad until killed, and
+    took any t_max; both are refused before any work, as the command line refuses them."""
+    rod = Rod(length=0.35, B=0.0332, rho=0.0546, D=7.078e-6)
+    with pytest.raises(ParameterError, match=text):
+        rdyn.beck_limit_cycle(rod, 5.5, n_elements=4, method="LSODA", **kwargs)

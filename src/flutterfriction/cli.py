@@ -47,6 +47,8 @@ from flutterfriction.models.rod import (
     CYCLE_ATTRACTION_SCALES,
     CYCLE_GAMMA_MAX,
     CYCLE_LOAD_MAX,
+    CYCLE_T_MAX_DEFAULT_SCALES,
+    CYCLE_T_MAX_SCALES,
     CYCLE_TIP_MASS_RATIO_MAX,
     GROUP_RANGES,
 )
@@ -70,8 +72,8 @@ ZIEGLER_PARAMS = {
 #: integration could run for hours or lose accuracy (absolute tolerances in SI units).
 BECK_ELEMENTS = (1, 16)  # the chapter's meshes go to 16 (beck_limit_cycle scene)
 BECK_LOAD_MAX = CYCLE_LOAD_MAX  # P / P_flu (models.rod)
-BECK_T_MAX_SCALES = 2000.0  # t_max / (l^2 sqrt(rho/B))
-BECK_T_MAX_DEFAULT_SCALES = 200.0
+BECK_T_MAX_SCALES = CYCLE_T_MAX_SCALES  # t_max / (l^2 sqrt(rho/B))
+BECK_T_MAX_DEFAULT_SCALES = CYCLE_T_MAX_DEFAULT_SCALES
 BECK_ETA_MAX = 1.0  # as `rod`
 BECK_GAMMA_MAX, BECK_TIP_MASS_RATIO_MAX = CYCLE_GAMMA_MAX, CYCLE_TIP_MASS_RATIO_MAX
 #: The approach to the cycle is governed by the dissipation: measured on list (119) at 5.5 N

@@ -37,7 +37,12 @@ from flutterfriction.errors import (
     check_positive,
     check_real,
 )
-from flutterfriction.models.rod import CYCLE_LOAD_MAX, Rod
+from flutterfriction.models.rod import (
+    CYCLE_LOAD_MAX,
+    CYCLE_T_MAX_DEFAULT_SCALES,
+    CYCLE_T_MAX_SCALES,
+    Rod,
+)
 from flutterfriction.models.rod_nonlinear import NonlinearRod
 
 
@@ -94,7 +99,7 @@ _METHODS = frozenset({"RK23", "RK45", "DOP853", "Radau", "BDF", "LSODA"})
 #: heights, at eta = 0.1 and 2.9 P_flu).
 MAX_MAXIMA_PER_PERIOD = 4
 #: :func:`beck_limit_cycle`'s default bound on simulated time, in time scales l^2 sqrt(rho/B).
-DEFAULT_T_MAX_SCALES = 200.0
+DEFAULT_T_MAX_SCALES = CYCLE_T_MAX_DEFAULT_SCALES
 
 
 def _repeating_lag(crossings: list) -> int | None:
@@ -180,7 +185,15 @@ def beck_limit_cycle(rod: Rod, P: float, n_elements: int = 8, method: str = "BDF
     for name, value in (("rtol", rtol), ("atol", atol), ("tol", tol), ("t_max", t_max)):
         if not check_real(name, value) > 0:
             raise ParameterError(f"{name} must be > 0, got {value!r}")
-    check_real("initial_tip_rotation", initial_tip_rotation)
+    # as the command line bounds them (an outside audit: a tip rotation of 1e6 rad, or
+    # 1e300, integrated until killed; t_max had no upper bound here)
+    t_limit = CYCLE_T_MAX_SCALES * rod.time_scale
+    if not t_max <= t_limit:
+        raise ParameterError(f"t_max must be in (0, {t_limit:.4g}] s ({CYCLE_T_MAX_SCALES:g} "
+                             f"time scales l^2 sqrt(rho/B)), got {t_max!r}")
+    if not 0 < abs(check_real("initial_tip_rotation", initial_tip_rotation)) <= np.pi:
+        raise ParameterError(f"initial_tip_rotation must be non-zero and within half a turn "
+                             f"(0 < |rotation| <= pi rad), got {initial_tip_rotation!r}")
     check_integer("samples_per_period", samples_per_period, 2)
     model = NonlinearRod(rod, n_elements)
     # The load where a cycle exists and is reached in reasonable time, as the scene and the

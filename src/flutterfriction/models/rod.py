@@ -45,6 +45,9 @@ CYCLE_LOAD_MAX = 3.0
 #: 69.9 s for 2.9e-4), so eta must leave that within the simulated time allowed.
 CYCLE_GAMMA_MAX, CYCLE_TIP_MASS_RATIO_MAX = 100.0, 100.0
 CYCLE_ATTRACTION_SCALES = 0.13
+#: The simulated time the cycle solvers allow, in time scales l^2 sqrt(rho/B): at most 2000,
+#: 200 by default (31.4 s for list 119).
+CYCLE_T_MAX_SCALES, CYCLE_T_MAX_DEFAULT_SCALES = 2000.0, 200.0
 
 #: The rod solver's numerical range of the groups (analysis.rod checks it). Where the
 #: numbers come from (measured with p_max up to 1000, see the stress report):
