@@ -645,3 +645,21 @@ def test_a_window_just_past_its_opening_is_found_by_the_finer_retry(monkeypatch,
     window = c.intervals[2]
     assert window["p_from"] == pytest.approx(48.84648, abs=1e-5)
     assert window["p_to"] == pytest.approx(48.85706, abs=1e-5)
+
+
+@pytest.mark.parametrize("p_max", [80.0, 100.0])
+def test_a_window_the_fe_twin_has_just_closed_is_found_through_its_near_miss(p_max):
+    """Outside audit: at tan(alpha) = 0.98232 eq. (118) has a flutter window [69.574, 69.763]
+    that the 12/13-element FE twin has already closed; p_max 80 and 100 reported divergence on
+    [34.686, p_max] (its 7 check points missed it), p_max 300 (25 elements) the window. The
+    exact regime is now checked where an indicator nearly vanished (the twin's near miss,
+    p ~ 69.67): the disagreement sends the scan to the finer twin, which sees the window."""
+    g = RodGroups(tan_alpha=0.98232)
+    got = ar.critical_loads(g, p_max=p_max).intervals
+    ref = [iv for iv in ar.critical_loads(g, p_max=300.0).intervals if iv["p_from"] < p_max]
+    assert [iv["regime"] for iv in got] == [iv["regime"] for iv in ref]
+    flutter = [iv for iv in got if iv["regime"] == "flutter" and iv["p_from"] > 60]
+    assert len(flutter) == 1
+    # the window's ends: Newton on eq. (118), as at p_max 300
+    assert flutter[0]["p_from"] == pytest.approx(69.57400796, abs=1e-7)
+    assert flutter[0]["p_to"] == pytest.approx(69.76324917, abs=1e-7)

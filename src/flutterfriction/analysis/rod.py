@@ -328,6 +328,10 @@ class _FEScan:
 
     #: Neighbouring pairs searched for hidden windows (undamped), see :func:`_modes_coupled`.
     coupled: int = 10**6
+    #: Loads of the indicators' optimised extrema where the FE signature did not change (a
+    #: near coalescence, or crossing): :func:`_events` fills it; the exact regime is checked
+    #: there (a window the FE twin has just closed opens there on eq. 118).
+    near_misses: tuple[float, ...] = ()
 
     def spectra(self, p: NDArray) -> NDArray:
         p = np.atleast_1d(np.asarray(p, dtype=float))
@@ -420,6 +424,7 @@ def _events(scan: _FEScan, p_max: float, step: float) -> list[_Event]:
         return out
 
     events: list[_Event] = []
+    near: list[float] = []
     for i in range(n):
         if sigs[i] != sigs[i + 1]:
             events += bisect(grid[i], grid[i + 1], sigs[i], sigs[i + 1])
@@ -451,7 +456,10 @@ def _events(scan: _FEScan, p_max: float, step: float) -> list[_Event]:
         if s_min != s_out:
             events += bisect(a, float(res.x), s_out, s_min)
             events += bisect(float(res.x), b, s_min, s_out)
+        else:
+            near.append(float(res.x))
     events.sort(key=lambda e: e.a)
+    scan.near_misses = tuple(sorted(near))
     return events
 
 
@@ -788,10 +796,14 @@ def critical_loads(g: RodGroups, p_max: float = 80.0, n_elements: int | None = N
     wide, on 12 and on 40 elements). The scan runs to ``p_max (1 + SCAN_BEYOND)``, so a
     boundary just below ``p_max`` whose FE twin lies just beyond it is kept (unless it lies
     within ``LAST_INTERVAL_RTOL p_max`` of ``p_max``: then the regime below it is reported up
-    to ``p_max``). Not guaranteed: a
-    window about to close along tan(alpha) that the FE twin has already closed (at
-    tan(alpha) = 0.98229-0.98235 a flutter window near p = 69.7, 12 elements; measured by an
-    outside audit). Where the FE twin's window differs from the exact one
+    to ``p_max``). A window about to close along tan(alpha) that the FE twin has already
+    closed (at tan(alpha) = 0.98229-0.98235 a flutter window near p = 69.7, 12 elements; an
+    outside audit) leaves the twin a near miss, an indicator's extremum without a change of
+    signature: the exact regime is checked there too (:attr:`_FEScan.near_misses`), and a
+    disagreement sends the scan to the finer twin below (measured: p_max 80 and 300 agree at
+    every tan(alpha) in [0.98220, 0.98245] on a 1e-5 grid; 5 of those differed before). Not
+    guaranteed: a window whose exact extent misses the twin's near miss. Where the FE twin's
+    window differs from the exact one
     (within ~1e-5 in tan(alpha) of its opening) Newton finds no double root: the scan is
     redone once on a 3x finer twin, and a second failure is refused.
 
@@ -866,7 +878,7 @@ def _solve_on(g: RodGroups, g_scan: RodGroups, n_el: int, p_max: float, step: fl
     # boundary falls just beyond it would otherwise be lost, and with it the last interval
     # (an outside audit: tan(alpha) = 0 at p_max = 20.05166 ended "stable" although the exact
     # flutter load is 20.05095; the FE twin's 20.0517 lay beyond p_max).
-    _, first, bounds = _fe_scan(g_scan, n_el, p_max * (1 + SCAN_BEYOND), step, n_modes)
+    scan, first, bounds = _fe_scan(g_scan, n_el, p_max * (1 + SCAN_BEYOND), step, n_modes)
     exact: list[_Boundary] = []
     for b in bounds:
         try:
@@ -896,8 +908,14 @@ def _solve_on(g: RodGroups, g_scan: RodGroups, n_el: int, p_max: float, step: fl
         # outside review saw p_max 1e-6 ... 1.5e-5 above a boundary fail on it alone).
         first_error: ConvergenceError | None = None
         verdicts = 0
-        for frac in REGIME_CHECK_POINTS:
-            mid = iv["p_from"] + frac * (iv["p_to"] - iv["p_from"])
+        width = iv["p_to"] - iv["p_from"]
+        # and where the FE twin nearly changed regime: a window it has just closed may be
+        # open on eq. (118) there (an outside audit: tan(alpha) = 0.98232, a flutter window
+        # [69.574, 69.763] reported as divergence at p_max 80, found at p_max 300)
+        near = [p for p in scan.near_misses
+                if iv["p_from"] + 1e-6 * width < p < iv["p_to"] - 1e-6 * width]
+        checks = [iv["p_from"] + frac * width for frac in REGIME_CHECK_POINTS]
+        for mid in checks + near:
             try:
                 r = _exact_regime(mid, g)
             except ConvergenceError as exc:
