@@ -450,8 +450,11 @@ def limit_cycle_by_continuation(pendulum: ZieglerPendulum, P: float, P_flu: floa
                           z_cur[3]])
         history.append((A_new, _amplitude_orbit(pendulum, A_new, guess, rtol, atol, T_max,
                                                         P_max)))
-    raise ConvergenceError(f"continuation from the flutter mode did not reach P = {P:g} N "
-                           f"in {max_steps} steps (last orbit at P = {history[-1][1][3]:g} N)")
+    # (10 digits, and how near P_flu: "did not reach P = 2.61 N ... last orbit at P = 2.61 N"
+    # said nothing, one ulp above P_flu = 2.61; an outside audit)
+    raise ConvergenceError(f"continuation from the flutter mode did not reach P = {P:.10g} N "
+                           f"in {max_steps} steps (last orbit at P = {history[-1][1][3]:.10g} "
+                           f"N; P - P_flu = {P - P_flu:.3g} N)")
 
 
 def section_return(pendulum: ZieglerPendulum, P: float, state: ArrayLike, period: float,
