@@ -41,6 +41,10 @@ def _zoom_window(p: np.ndarray, re: np.ndarray, p_flu: float | None
     return window, int(np.floor(np.log10(top.max())))
 
 
+#: The inset of :func:`_zoom_crossing` in its panel's axes fraction (x0, y0, width, height).
+INSET_BOX = (0.18, 0.55, 0.21, 0.25)
+
+
 def _zoom_crossing(ax, p: np.ndarray, re: np.ndarray, p_flu: float,
                    exp: int | None = None) -> None:
     """Inset of the largest Re omega~ around the damped flutter load: its sign change, which
@@ -57,7 +61,7 @@ def _zoom_crossing(ax, p: np.ndarray, re: np.ndarray, p_flu: float,
     # (top at 0.8 of the panel: its "p [-]" on top clears the panel's frame and p_f label;
     # left edge at 0.18: its 7-pt axis label clear of the panel's ticks; right edge at 0.39,
     # left of where the branches leave Re = 0 in Figs. 11 and 12)
-    ins = ax.inset_axes([0.18, 0.55, 0.21, 0.25])
+    ins = ax.inset_axes(INSET_BOX)
     ins.xaxis.tick_top()
     ins.xaxis.set_label_position("top")
     ins.plot(p[window], scale * top, color="k", lw=1.0)
@@ -106,8 +110,12 @@ def _draw_branch_case(ax_re, ax_im, p: np.ndarray, case: dict[str, Any], title: 
         for e, sub in ((crit["p_flu"], "f"), (crit["p_div"], "d")):
             if e is not None and e < p[-1]:
                 # under the inset (its own p_f line continues it) and not through the inset's
-                # tick labels above it (a figure review saw "13.5" crossed)
-                top = 0.57 if zoom and ax is ax_re and sub == "f" else 1.0
+                # tick labels above it (a figure review saw "13.5" crossed), where the inset
+                # is: elsewhere the whole height (a review saw it end in mid-air, Fig. 11)
+                x = (e - p[0]) / (p[-1] - p[0])
+                under = INSET_BOX[0] - 0.04 <= x <= INSET_BOX[0] + INSET_BOX[2] + 0.02
+                top = (INSET_BOX[1] - 0.02 if zoom and ax is ax_re and sub == "f" and under
+                       else 1.0)
                 ax.axvline(e, ymax=top, color="k", ls="--", lw=0.8)
                 if ax is ax_re:
                     _critical_label(ax, e, sub, p)
@@ -334,11 +342,12 @@ def plot_fig15(data: dict[str, Any]) -> Figure:
     A = data["cycle"]["tip_amplitude_m"] * 1000
     ins.axhline(A, color="k", lw=0.8, ls="--")
     ins.axhline(-A, color="k", lw=0.8, ls="--")
-    ins.set_xlabel("time t [s]", fontsize=6, labelpad=1)
-    ins.set_ylabel(r"$u_2^{tip}$ [mm]", fontsize=6, labelpad=1)
-    ins.tick_params(labelsize=5.5, pad=1)
-    ins.set_title("flutter grows and saturates (dashed: the cycle's amplitude)", fontsize=5.5,
-                  pad=2)
+    # 7 pt (5.5-6 pt read as 9 px with the figure 1200 px wide; a figure review)
+    ins.set_xlabel("time t [s]", fontsize=7, labelpad=1)
+    ins.set_ylabel(r"$u_2^{tip}$ [mm]", fontsize=7, labelpad=1)
+    ins.tick_params(labelsize=7, pad=1)
+    ins.xaxis.set_major_locator(plt.MaxNLocator(4))
+    ins.set_title("growth, saturation (dashed: the cycle's amplitude)", fontsize=7, pad=2)
     _figure_legend(fig, ax)
     fig.suptitle(_title(data, "Fig. 15", "trajectory of the loaded end"), fontsize=8)
     return fig

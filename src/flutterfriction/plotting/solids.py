@@ -47,7 +47,8 @@ def _coulomb_panel(ax: Axes, data: dict[str, Any]) -> None:
     ax.set_xlabel(r"normal force $p_N$ [N]")
     ax.set_ylabel(r"tangential force $p_T$ [N]")
     ax.set_aspect("equal")
-    ax.legend(loc="lower left", fontsize=7)
+    # under the panel (inside, lower left, it covered point 7 and the 6-7 slip; a review)
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), fontsize=7, ncol=2)
     ax.set_title("(right) the Coulomb criterion: a nonassociative 'flow rule'\n"
                  "(b not parallel to a); points numbered along the path", fontsize=8)
 
@@ -280,9 +281,9 @@ def plot_acoustic_eigenvalues(data: dict[str, Any]) -> Figure:
     # the two other line styles on the Re panel, explained (a figure review)
     if pair_colours:
         handles.append(Line2D([], [], color=pair_colours[0], lw=1.4, ls=(0, (3, 3))))
-        labels.append("a complex pair: one Re, dashed")
+        labels.append("complex pair: its common Re (dashed)")
     handles.append(Line2D([], [], color="k", ls=":", lw=0.8))
-    labels.append(r"$\eta = \mu$ (shear modulus)")
+    labels.append(r"$\eta = \mu$ (eigenvalue 1 stays there)")
     ax1.legend(handles, labels, fontsize=7, loc="lower right", ncol=2)
     text = _case_text(data.get("params", {}))
     printed = data.get("flutter_interval_as_printed")
@@ -364,7 +365,7 @@ def plot_flutter_map(data: dict[str, Any]) -> Figure:
         for rr, cc in zip(r, c, strict=True):
             ax2.add_patch(plt.Rectangle((off[cc] - step / 2, off[rr] - step / 2), step, step,
                                         color=colour, lw=0))
-        ax2.plot([], [], "s", color=colour, ms=6, label=f"first flutters at ε = {an['eps'][k]:g}")
+        ax2.plot([], [], "s", color=colour, ms=6, label=f"ε = {an['eps'][k]:g}")
     ax2.plot(0, 0, "k+", ms=10, label=r"coalescence direction $n_C$")
     if shown.any():
         r, c = np.nonzero(shown)
@@ -376,14 +377,18 @@ def plot_flutter_map(data: dict[str, Any]) -> Figure:
     ax2.set_aspect("equal")
     ax2.set_xlabel(r"tilt of n from $n_C$ towards $t_1 = n_C \times e_3$ [deg]")
     ax2.set_ylabel(r"tilt towards $t_2 = n_C \times t_1$ [deg]")
-    ax2.legend(fontsize=7, loc="upper left", title=f"cells: directions on a {step:g}° grid",
+    # (a cell's colour: the smallest ε at which it flutters; it need not at every larger ε,
+    # so the colours do not add up to (c)'s count; a review)
+    ax2.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=2,
+               title=f"cells ({step:g}° grid), by the smallest ε at which they flutter",
                title_fontsize=7)
     seed = data.get("params", {}).get("anisotropy", {}).get("seed")
     # (the zoom on the flutter cells of the ±off[-1] patch that (c) counts: said, as a review
     # read the two as contradicting each other)
     ax2.set_title("(b) Drucker–Prager at coalescence, elastic anisotropy ε\n(random "
                   "perturbation" + (f", seed {seed}" if seed is not None else "")
-                  + f"; zoom on the ±{off[-1]:g}° patch)", fontsize=8)
+                  + f"); zoomed on the flutter cells\nof the ±{off[-1]:g}° patch that (c) counts",
+                  fontsize=8)
     ax3.plot(an["eps"], np.array(an["fraction_flutter"]) * 100, "o-", ms=3.5, color="C3")
     ax3.set_xlabel("elastic anisotropy ε [-]")
     ax3.set_ylabel(f"directions that flutter [%] (of the ±{off[-1]:g}° patch)")

@@ -219,7 +219,7 @@ def plot_fig04(data: dict[str, Any]) -> Figure:
             ax.plot([0, span], [0, 0], color="0.7", lw=0.6, ls="--")
             frame = {key: v[i] for key, v in pts.items()}
             # (scale 0.5 L drew hinge B and the masses too small to see in these frames)
-            draw_pendulum(ax, frame, data["masses"], scale=0.8 * L, springs=False,
+            draw_pendulum(ax, frame, data["masses"], scale=1.2 * L, springs=False,
                           loads={"P": 0.3 * L}, arrow_head=6.0, arrow_gap=0.0)
             if beyond:  # the whole (folded back) pendulum in its frame, at the same scale
                 xy = np.array([np.asarray(v, dtype=float) for v in frame.values()])

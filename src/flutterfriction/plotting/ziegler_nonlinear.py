@@ -214,7 +214,8 @@ def plot_limit_cycle_amplitude(data: dict[str, Any]) -> Figure:
     text = pendulum_text(data.get("params", {}).get("pendulum"))
     if text:
         fig.suptitle(f"The pendulum {text}", fontsize=7)
-    ax1.set_title(rf"supercritical Hopf at $P_{{flu}}$ = {Pf:.4g} N (exponent "
+    ax1.set_title(rf"supercritical Hopf at $P_{{flu}}$ = {Pf:.4g} N (fitted exponent b of "
+                  rf"$\alpha_1 \propto (P - P_{{flu}})^b$: "
                   f"{q['hopf_exponent']['value']:.3f})", fontsize=8)
     ax2.plot(P, data["period"], "o-", ms=4)
     ax2.axhline(2 * np.pi / data["omega_flu"], color="k", ls=":", lw=1,
