@@ -12,6 +12,9 @@ from flutterfriction.benchmarks import FAMILY_SETTINGS
 from flutterfriction.plotting import tidy_log_axis
 
 FLOOR = 1e-17  # errors of exactly 0 (agreement to the last bit) are drawn here
+#: Legend names for the studies' short method names (a review read "routh", "beck_damped")
+READABLE = {"routh": "Routh–Hurwitz", "eigenvalues": "eigenvalues", "FE, beck": "FE, Beck rod",
+            "FE, beck_damped": "FE, damped Beck rod", "FE, pfluger": "FE, Pflüger rod"}
 
 
 def plot_work_precision(runs: list[dict[str, Any]]) -> Figure:
@@ -29,7 +32,7 @@ def plot_work_precision(runs: list[dict[str, Any]]) -> Figure:
                           key=lambda r: (r["setting"] is None, r["setting"] or 0.0,
                                          r["wall_s"]))
             ax.loglog([r["wall_s"] for r in mine], [max(r["error"], FLOOR) for r in mine],
-                      "o-", ms=3.5, lw=1, color=f"C{k % 10}", label=method)
+                      "o-", ms=3.5, lw=1, color=f"C{k % 10}", label=READABLE.get(method, method))
         tidy_log_axis(ax.xaxis, [r["wall_s"] for r in rows])
         tidy_log_axis(ax.yaxis, [max(r["error"], FLOOR) for r in rows])
         sweep = FAMILY_SETTINGS.get(family)
