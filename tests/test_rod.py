@@ -663,3 +663,20 @@ def test_a_window_the_fe_twin_has_just_closed_is_found_through_its_near_miss(p_m
     # the window's ends: Newton on eq. (118), as at p_max 300
     assert flutter[0]["p_from"] == pytest.approx(69.57400796, abs=1e-7)
     assert flutter[0]["p_to"] == pytest.approx(69.76324917, abs=1e-7)
+
+
+@pytest.mark.parametrize("tan_alpha", [0.982343, 0.982346])
+def test_a_window_at_its_closing_is_found_or_refused_never_silently_missed(tan_alpha):
+    """Outside review: at 0.982343 (window [69.6247, 69.7125]) and 0.982346 ([69.6368,
+    69.7003], fine FE) eq. (118) gives no verdict at the twin's near miss (its roots nearly
+    coincide) and the answer was "no window", silently. Unresolved there now means the finer
+    twin, then a refusal: the window, or ConvergenceError."""
+    from flutterfriction.errors import ConvergenceError
+
+    g = RodGroups(tan_alpha=tan_alpha)
+    try:
+        c = ar.critical_loads(g, p_max=80.0)
+    except ConvergenceError:
+        return
+    assert any(iv["regime"] == "flutter" and 69.6 < iv["p_from"] < iv["p_to"] < 69.75
+               for iv in c.intervals)

@@ -256,6 +256,10 @@ DAMPING_FLOOR = 1e-6
 #: Where each interval's claimed regime is checked against the exact roots of eq. (118), as
 #: fractions of the interval (the midpoint first, as before; then both sides).
 REGIME_CHECK_POINTS = (0.5, 0.125, 0.25, 0.375, 0.625, 0.75, 0.875)
+#: A near miss of the FE twin (see :attr:`_FEScan.near_misses`) is "close" below this value of
+#: its indicator (measured: 1e-5 at tan(alpha) = 0.982349, where eq. 118 has a window 0.018
+#: wide; ordinary extrema 7e-4 and above) and then probed at these relative offsets.
+NEAR_MISS_CLOSE, NEAR_MISS_PROBES = 1e-3, (1e-4, 3e-4, 1e-3)
 #: Relative imaginary part above which an FE eigenvalue counts as complex (and a pencil
 #: eigenvalue ``Omega^2`` as a flutter pair): near a coalescence the pair splits like
 #: ``sqrt(p - p_c)``, so this locates the FE coalescence to ~1e-12 relative, while round-off
@@ -328,10 +332,10 @@ class _FEScan:
 
     #: Neighbouring pairs searched for hidden windows (undamped), see :func:`_modes_coupled`.
     coupled: int = 10**6
-    #: Loads of the indicators' optimised extrema where the FE signature did not change (a
-    #: near coalescence, or crossing): :func:`_events` fills it; the exact regime is checked
-    #: there (a window the FE twin has just closed opens there on eq. 118).
-    near_misses: tuple[float, ...] = ()
+    #: ``(load, |indicator|)`` of the indicators' optimised extrema where the FE signature
+    #: did not change (a near coalescence, or crossing): :func:`_events` fills it; the exact
+    #: regime is checked there (a window the FE twin has just closed opens there on eq. 118).
+    near_misses: tuple[tuple[float, float], ...] = ()
 
     def spectra(self, p: NDArray) -> NDArray:
         p = np.atleast_1d(np.asarray(p, dtype=float))
@@ -424,7 +428,7 @@ def _events(scan: _FEScan, p_max: float, step: float) -> list[_Event]:
         return out
 
     events: list[_Event] = []
-    near: list[float] = []
+    near: list[tuple[float, float]] = []
     for i in range(n):
         if sigs[i] != sigs[i + 1]:
             events += bisect(grid[i], grid[i + 1], sigs[i], sigs[i + 1])
@@ -456,8 +460,8 @@ def _events(scan: _FEScan, p_max: float, step: float) -> list[_Event]:
         if s_min != s_out:
             events += bisect(a, float(res.x), s_out, s_min)
             events += bisect(float(res.x), b, s_min, s_out)
-        else:
-            near.append(float(res.x))
+        elif np.isfinite(res.fun):
+            near.append((float(res.x), abs(float(res.fun))))
     events.sort(key=lambda e: e.a)
     scan.near_misses = tuple(sorted(near))
     return events
@@ -799,11 +803,15 @@ def critical_loads(g: RodGroups, p_max: float = 80.0, n_elements: int | None = N
     to ``p_max``). A window about to close along tan(alpha) that the FE twin has already
     closed (at tan(alpha) = 0.98229-0.98235 a flutter window near p = 69.7, 12 elements; an
     outside audit) leaves the twin a near miss, an indicator's extremum without a change of
-    signature: the exact regime is checked there too (:attr:`_FEScan.near_misses`), and a
-    disagreement sends the scan to the finer twin below (measured: p_max 80 and 300 agree at
-    every tan(alpha) in [0.98220, 0.98245] on a 1e-5 grid; 5 of those differed before). Not
-    guaranteed: a window whose exact extent misses the twin's near miss. Where the FE twin's
-    window differs from the exact one
+    signature: the exact regime is checked there too (:attr:`_FEScan.near_misses`; where the
+    twin comes within :data:`NEAR_MISS_CLOSE` of coalescing, also at
+    :data:`NEAR_MISS_PROBES` on either side), and a disagreement, or no verdict there, sends
+    the scan to the finer twin below, and a second failure is refused. Measured on a 2e-7
+    grid of tan(alpha) at p_max 80: the window is found up to 0.9823435, refused from
+    0.982344 to 0.9823492 (eq. 118's roots there too close for Newton), and not reported from
+    0.9823494, where it is at most ~0.005 wide and closes at ~0.9823495 (an outside review's
+    fine FE). Not guaranteed, then: a window narrower than that at its closing. Where the FE
+    twin's window differs from the exact one
     (within ~1e-5 in tan(alpha) of its opening) Newton finds no double root: the scan is
     redone once on a 3x finer twin, and a second failure is refused.
 
@@ -912,13 +920,29 @@ def _solve_on(g: RodGroups, g_scan: RodGroups, n_el: int, p_max: float, step: fl
         # and where the FE twin nearly changed regime: a window it has just closed may be
         # open on eq. (118) there (an outside audit: tan(alpha) = 0.98232, a flutter window
         # [69.574, 69.763] reported as divergence at p_max 80, found at p_max 300)
-        near = [p for p in scan.near_misses
+        near = [(p, v) for p, v in scan.near_misses
                 if iv["p_from"] + 1e-6 * width < p < iv["p_to"] - 1e-6 * width]
+        # Where the twin comes within NEAR_MISS_CLOSE of coalescing, the exact window (if any)
+        # may lie beside the twin's near miss (by its error, ~0.02 at p ~ 70 on 13 elements):
+        # probed at relative offsets NEAR_MISS_PROBES on either side too (an outside review:
+        # tan(alpha) = 0.982349, window [69.6597, 69.6774], near miss at 69.6853).
+        probes = [p * (1 + sign * r) for p, v in near if v < NEAR_MISS_CLOSE
+                  for r in NEAR_MISS_PROBES for sign in (-1.0, 1.0)]
+        probes = [p for p in probes if iv["p_from"] < p < iv["p_to"]]
         checks = [iv["p_from"] + frac * width for frac in REGIME_CHECK_POINTS]
-        for mid in checks + near:
+        near_at = [p for p, _ in near]
+        for k, mid in enumerate(checks + near_at + probes):
             try:
                 r = _exact_regime(mid, g)
             except ConvergenceError as exc:
+                if k >= len(checks):
+                    # No verdict at a near miss (eq. 118's roots nearly coincide there): a
+                    # window may open or close within the twin's error. Unresolved: the finer
+                    # twin decides, or it is refused (an outside review: left alone, windows
+                    # up to 0.087 wide at tan(alpha) = 0.982343-0.982349 went unreported).
+                    raise ConvergenceError(
+                        f"no exact regime at p = {mid:.6g}, where the FE twin nearly changes "
+                        f"regime (a window within its error): {exc}") from None
                 first_error = first_error or exc
                 continue
             verdicts += 1
