@@ -209,7 +209,7 @@ def plot_limit_cycle_amplitude(data: dict[str, Any]) -> Figure:
     ax1.set_xlabel("follower load P [N]")
     ax1.set_ylabel("limit-cycle amplitude [deg]")
     # under the axes: inside, it hid the alpha2 branch (a figure review)
-    ax1.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=2)
+    ax1.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.24), ncol=2)
     q = data["quantities"]
     text = pendulum_text(data.get("params", {}).get("pendulum"))
     if text:
