@@ -680,3 +680,19 @@ def test_a_window_at_its_closing_is_found_or_refused_never_silently_missed(tan_a
         return
     assert any(iv["regime"] == "flutter" and 69.6 < iv["p_from"] < iv["p_to"] < 69.75
                for iv in c.intervals)
+
+
+def test_a_damped_window_the_reduced_twin_loses_is_found_by_the_retry_on_more_modes():
+    """Outside review: tan(alpha) = 1.52753, eta = 1.48316e-4, gamma = 0.224965 has a flutter
+    window [207.986, 208.798] (p_max 210-220 find it; a 60-120-element unreduced FE spectrum
+    and eq. 118 confirm it); for p_max 260-400 the 15-mode reduced twin lost it, reported as
+    divergence (silently before the near-miss check, refused after it). The retry now runs on
+    twice the modes and finds it."""
+    g = RodGroups(tan_alpha=1.52753, eta=1.48316e-4, gamma=0.224965)
+    got = ar.critical_loads(g, p_max=300.0).intervals
+    ref = ar.critical_loads(g, p_max=220.0).intervals
+    window = [iv for iv in got if iv["regime"] == "flutter" and 200 < iv["p_from"] < 210]
+    assert len(window) == 1
+    assert window[0]["p_from"] == pytest.approx(ref[-2]["p_from"], rel=1e-9)
+    assert window[0]["p_to"] == pytest.approx(ref[-2]["p_to"], rel=1e-9)
+    assert str(ar._exact_regime(208.4, g)) == "flutter"
