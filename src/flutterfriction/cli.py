@@ -72,8 +72,6 @@ ZIEGLER_PARAMS = {
 #: integration could run for hours or lose accuracy (absolute tolerances in SI units).
 BECK_ELEMENTS = (1, 16)  # the chapter's meshes go to 16 (beck_limit_cycle scene)
 BECK_LOAD_MAX = CYCLE_LOAD_MAX  # P / P_flu (models.rod)
-BECK_T_MAX_SCALES = CYCLE_T_MAX_SCALES  # t_max / (l^2 sqrt(rho/B))
-BECK_T_MAX_DEFAULT_SCALES = CYCLE_T_MAX_DEFAULT_SCALES
 BECK_ETA_MAX = 1.0  # as `rod`
 BECK_GAMMA_MAX, BECK_TIP_MASS_RATIO_MAX = CYCLE_GAMMA_MAX, CYCLE_TIP_MASS_RATIO_MAX
 #: The approach to the cycle is governed by the dissipation: measured on list (119) at 5.5 N
@@ -279,8 +277,8 @@ def build_parser() -> argparse.ArgumentParser:
                     help=f"P2 elements, {BECK_ELEMENTS[0]}..{BECK_ELEMENTS[1]} (default 4)")
     lb.add_argument("--t-max", type=_number, default=None,
                     help=f"simulated time allowed for the cycle to converge [s], at most "
-                         f"{BECK_T_MAX_SCALES:g} time scales l^2 sqrt(rho/B) (default "
-                         f"{BECK_T_MAX_DEFAULT_SCALES:g} of them: 31.4 s for list (119))")
+                         f"{CYCLE_T_MAX_SCALES:g} time scales l^2 sqrt(rho/B) (default "
+                         f"{CYCLE_T_MAX_DEFAULT_SCALES:g} of them: 31.4 s for list (119))")
     lb.add_argument("--quiet", action="store_true",
                     help="no progress messages on stderr")
     lb.add_argument("--json", action="store_true", help="print one JSON object")
@@ -351,10 +349,10 @@ def _limit_cycle_beck(args: argparse.Namespace) -> dict:
             f"got {groups.eta:.4g}: the cycle attracts at a rate ~ eta (it needs ~"
             f"{BECK_ATTRACTION_SCALES:g}/eta time scales l^2 sqrt(rho/B), measured), beyond the "
             f"largest --t-max below {BECK_ETA_MIN:g}")
-    t_limit = BECK_T_MAX_SCALES * T
-    t_max = BECK_T_MAX_DEFAULT_SCALES * T if args.t_max is None else args.t_max
+    t_limit = CYCLE_T_MAX_SCALES * T
+    t_max = CYCLE_T_MAX_DEFAULT_SCALES * T if args.t_max is None else args.t_max
     if not 0 < t_max <= t_limit:
-        raise ParameterError(f"--t-max must be in (0, {t_limit:.4g}] s ({BECK_T_MAX_SCALES:g} "
+        raise ParameterError(f"--t-max must be in (0, {t_limit:.4g}] s ({CYCLE_T_MAX_SCALES:g} "
                              f"time scales l^2 sqrt(rho/B) = {T:.4g} s), got {t_max!r}")
     if not args.P > 0:
         raise ParameterError(f"--P must be > 0 N, got {args.P!r}")
