@@ -1,7 +1,8 @@
 """The figure check: every figure the workflow draws is legible and explained, or the run fails.
 
-A figure is checked as matplotlib draws it: the check draws it once without rasterising
-(:meth:`~matplotlib.figure.Figure.draw_without_rendering`) and records every text, legend and
+A figure is checked as matplotlib draws it: the check draws it once (without rasterising,
+:meth:`~matplotlib.figure.Figure.draw_without_rendering`, or into the Agg canvas the PNG is cut
+from) and records every text, legend and
 axes actually drawn, in drawing order; extents are matplotlib's own
 (:meth:`~matplotlib.text.Text.get_window_extent` with the canvas renderer). Offences name the
 figure's text and the axes (its number in ``fig.axes`` and its title or labels). The rules, each
@@ -217,16 +218,20 @@ def _collection_style(c: Collection) -> tuple[str, str, str] | None:
     return _style(colours[0], "none", "o")
 
 
-def check_figure(fig: Figure, *, tight: bool = True) -> list[Offence]:
+def check_figure(fig: Figure, *, tight: bool = True, render: bool = False) -> list[Offence]:
     """The offences of ``fig`` (empty when it passes), drawn as it is saved: ``tight`` when
     saved with ``bbox_inches="tight"`` (the saved area is then the tight bounding box, else
-    the canvas). Its one draw (without rendering, the layout engine included) is the one
+    the canvas). Its one draw (the layout engine included) is the one
     :func:`flutterfriction.plotting.save_figure` lays the figure out and measures it by, at
-    the PNG's resolution."""
-    if not hasattr(fig.canvas, "get_renderer"):
+    the PNG's resolution: without rendering, or with ``render`` into the Agg canvas (whose
+    pixels the PNG is then cut from)."""
+    if not isinstance(fig.canvas, FigureCanvasAgg):
         FigureCanvasAgg(fig)
     with _recording() as drawn:
-        fig.draw_without_rendering()
+        if render:
+            fig.canvas.draw()
+        else:
+            fig.draw_without_rendering()
     renderer = fig.canvas.get_renderer()
     pt = 72.0 / fig.dpi  # points per pixel
     # axes by their number in fig.axes; an inset or a secondary axis as <its parent's>.<n>

@@ -15,7 +15,11 @@ import numpy as np
 matplotlib.use("Agg")
 
 import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib import colors as mcolors  # noqa: E402
+from matplotlib import image as mimage  # noqa: E402
+from matplotlib.backends.backend_agg import FigureCanvasAgg  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
+from matplotlib.transforms import Bbox  # noqa: E402
 
 from flutterfriction.figure_check import check_figure, saved_pad_inches  # noqa: E402
 from flutterfriction.figure_offences import offences_json  # noqa: E402
@@ -178,6 +182,32 @@ def _embedded_fonts_without_layout_tables() -> Iterator[None]:
         Options._drop_tables_default = default
 
 
+def _canvas_cut(fig: Figure, tight: Bbox, pad: float) -> np.ndarray | None:
+    """The PNG of ``fig`` saved with ``bbox_inches=tight.padded(pad)`` [in], cut from its
+    rendered Agg canvas (RGBA rows, top first); the pad beyond the canvas is the figure's
+    background. None where something drawn reaches beyond the canvas (``tight`` is not inside
+    it) or the saved background is not the figure's: savefig must draw that. The size is
+    savefig's; the box's corner is rounded to a whole pixel (savefig shifts the drawing by its
+    fraction of a pixel instead)."""
+    if plt.rcParams["savefig.transparent"] or plt.rcParams["savefig.facecolor"] != "auto":
+        return None
+    rgba = np.asarray(fig.canvas.buffer_rgba())
+    height, width = rgba.shape[:2]
+    if (tight.x0 * fig.dpi < 0 or tight.y0 * fig.dpi < 0 or tight.x1 * fig.dpi > width
+            or tight.y1 * fig.dpi > height):
+        return None
+    box = tight.padded(pad)
+    # savefig's size: its canvas truncates the box's size to whole pixels, with 1e-8 px for
+    # rounding (FigureCanvasBase.get_width_height)
+    x0, y0 = round(box.x0 * fig.dpi), round(box.y0 * fig.dpi)
+    x1, y1 = (x0 + int(box.width * fig.dpi + 1e-8), y0 + int(box.height * fig.dpi + 1e-8))
+    out = np.empty((y1 - y0, x1 - x0, 4), dtype=np.uint8)
+    out[...] = np.round(255 * np.asarray(mcolors.to_rgba(fig.get_facecolor())))
+    cx0, cy0, cx1, cy1 = max(x0, 0), max(y0, 0), min(x1, width), min(y1, height)
+    out[y1 - cy1:y1 - cy0, cx0 - x0:cx1 - x0] = rgba[height - cy1:height - cy0, cx0:cx1]
+    return out
+
+
 def save_figure(fig: Figure, *paths: str | os.PathLike, draft: bool = False,
                 check: str | os.PathLike | None = None) -> None:
     """Write ``fig`` to each path atomically (temp file + rename), without dates in metadata,
@@ -190,34 +220,51 @@ def save_figure(fig: Figure, *paths: str | os.PathLike, draft: bool = False,
     file (the workflow's check fails the run on any). A PDF's embedded font subsets leave out
     the OpenType layout tables no PDF reader uses (:func:`_embedded_fonts_without_layout_tables`).
 
-    The figure is laid out and measured once at the PNG's resolution, by one draw without
-    rendering (the check's, when checked): its layout engine runs there, and every format is
-    rendered from that layout (a PNG inside the box measured there; a PDF measures its own, at
-    its 72 dpi, as text extents differ by resolution: up to 0.107 in wider there than at the
-    PNG's 200 dpi in Figs. 15-17, more than the 0.1 in pad, measured).
-    ``bbox_inches="tight"`` measured the PNG in a draw of its own, and the check drew at the
-    figure's 150 dpi, not the PNG's (three quick-preset PNGs passed it with overlapping
-    labels): a checked PNG is now drawn twice (was 3 times), PDF + PNG 4 times (was 5). The
-    files are the same with or without the check."""
+    The figure is laid out, measured and rendered once at the PNG's resolution, by one draw
+    into the Agg canvas (the check's, when checked): its layout engine runs there, the PNG is
+    that canvas cut to the padded tight box (:func:`_canvas_cut`; where a drawing reaches
+    beyond the canvas, savefig draws the box instead), and every other format is rendered
+    from that layout (a PDF measures its own box, at its 72 dpi, as text extents differ by
+    resolution: up to 0.107 in wider there than at the PNG's 200 dpi in Figs. 15-17, more
+    than the 0.1 in pad, measured). A checked PNG is drawn once (3 times before the check
+    measured at the PNG's resolution, 2 before it was cut from the canvas), PDF + PNG 3 times
+    (were 5, then 4). Cutting also keeps a figure legend where the check measured it: savefig
+    anchored it to the padded box, 0.05 in lower. The files are the same with or without the
+    check."""
     rc = {"pdf.fonttype": 3, "savefig.dpi": 100} if draft else {}
     engine = fig.get_layout_engine()
     with plt.rc_context(rc):
         dpi = plt.rcParams["savefig.dpi"]
         shown_dpi = fig.dpi
         fig.set_dpi(fig.dpi if dpi == "figure" else dpi)  # measured as the PNG is drawn
+        pngs = [Path(p) for p in paths if Path(p).suffix == ".png"]
         try:
             if check is not None:
                 start = time.perf_counter()
-                offences = check_figure(fig, tight=True)
+                offences = check_figure(fig, tight=True, render=bool(pngs))
                 write_json(check, offences_json(Path(check).stem, offences))
                 print(f"{Path(check).stem}: figure check, {len(offences)} offences "
                       f"({1e3 * (time.perf_counter() - start):.0f} ms)", *offences,
                       sep="\n  ", flush=True)
+            elif pngs:
+                if not isinstance(fig.canvas, FigureCanvasAgg):
+                    FigureCanvasAgg(fig)
+                fig.canvas.draw()
             else:
                 fig.draw_without_rendering()
-            box = fig.get_tightbbox().padded(saved_pad_inches())
+            tight = fig.get_tightbbox()
+            box = tight.padded(saved_pad_inches())
+            # the PNG is cut from the canvas just rendered (one draw for the layout, the check
+            # and the pixels), unless a drawing reaches beyond the canvas: savefig then draws
+            # the larger area
+            cut = _canvas_cut(fig, tight, saved_pad_inches()) if pngs else None
+            for path in pngs if cut is not None else ():
+                with atomic_path(path) as tmp:
+                    mimage.imsave(tmp, cut, format="png", dpi=fig.dpi,
+                                  metadata={"Software": None})
         finally:
             fig.set_dpi(shown_dpi)
+        paths = tuple(p for p in paths if cut is None or Path(p) not in pngs)
         try:
             # laid out above; every format renders that layout (no engine at all: with
             # "none"'s placeholder engine, savefig would still draw once before rendering).
