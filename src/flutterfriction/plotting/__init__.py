@@ -258,6 +258,9 @@ def save_figure(fig: Figure, *paths: str | os.PathLike, draft: bool = False,
             # and the pixels), unless a drawing reaches beyond the canvas: savefig then draws
             # the larger area
             cut = _canvas_cut(fig, tight, saved_pad_inches()) if pngs else None
+            if pngs and cut is None:
+                print(f"{pngs[0].stem}: drawn beyond its canvas, saved by a second draw",
+                      flush=True)
             for path in pngs if cut is not None else ():
                 with atomic_path(path) as tmp:
                     mimage.imsave(tmp, cut, format="png", dpi=fig.dpi,

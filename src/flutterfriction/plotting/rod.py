@@ -293,7 +293,7 @@ def _title(data, fig: str, what: str) -> str:
             "ours: geometrically exact rod, P2 elements (the chapter's: ABAQUS, 20 linear B21 "
             "elements)\n"
             f"black: the limit cycle on the transient's {n} P2 elements (Newton; within "
-            f"{100 * max(err.values()):.2f}% of the {data['meshes'][-1]}-element one); on "
+            f"{100 * max(err.values()):.2f}% of the {data['meshes'][-1]}-element one);\non "
             f"{data['meshes'][-2]} elements A = {c['tip_amplitude_m'] * 1000:.1f} mm, "
             f"T = {c['period_s'] * 1000:.2f} ms\n"
             f"the transient from the flutter mode, tip displacement "
@@ -322,7 +322,8 @@ def _growth(ax, x, y, t, cx, cy):
 
 
 def _figure_legend(fig, ax):
-    fig.legend(*ax.get_legend_handles_labels(), loc="outside lower center", ncol=3,
+    # one entry a row: three side by side were 2.5 in wider than the figure
+    fig.legend(*ax.get_legend_handles_labels(), loc="outside lower center", ncol=1,
                fontsize=7, frameon=False)
 
 
@@ -532,13 +533,13 @@ def plot_fig12(data: dict[str, Any]) -> Figure:
         return f"{f(u['p_flu'])} / {f(u['p_div'])}, damped {f(d['p_flu'])} / {f(d['p_div'])}"
     fig.suptitle(f"Fig. 12: the Pflüger rod, {list119(data)}, tip mass tan α = M/(ρl); "
                  "flutter / divergence loads p\n"
-                 + (f"Erratum: the caption's tan α = {t_st:g} gives {loads(stated)}; the loads "
+                 + (f"Erratum: the caption's tan α = {t_st:g} gives {loads(stated)};\nthe loads "
                     f"the chapter quotes are those at tan α = {t_fit:.4g}: {loads(fitted)}"
                     + _one_rad_note(data) if quoted and t_st == 1.0 else
                     f"tan α = {t_st:g}: {loads(stated)}; tan α = {t_fit:.4g}: {loads(fitted)} "
                     "(the chapter quotes 16.51 / 30.22, damped 7.78 / 30.52; see the errata)"),
                  fontsize=8.5)
-    fig.tight_layout(rect=(0, 0.04, 1, 0.985), h_pad=1.6)
+    fig.tight_layout(rect=(0, 0.04, 1, 0.98), h_pad=1.6)
     _branch_legend(fig, len(fitted["undamped"]["re"]) // 2,
                    _shows_divergence(stated.values(), p_st)
                    or _shows_divergence(fitted.values(), p))

@@ -49,8 +49,8 @@ def _coulomb_panel(ax: Axes, data: dict[str, Any]) -> None:
     ax.set_aspect("equal")
     # under the panel (inside, lower left, it covered point 7 and the 6-7 slip; a review)
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), fontsize=7, ncol=2)
-    ax.set_title("(right) the Coulomb criterion: a nonassociative 'flow rule'\n"
-                 "(b not parallel to a); points numbered along the path", fontsize=8)
+    ax.set_title("(right) the Coulomb criterion:\na nonassociative 'flow rule' (b not parallel "
+                 "to a);\npoints numbered along the path", fontsize=8)
 
 
 STICK_SLIP = {"stick": "C0", "slip": "C3"}
@@ -139,7 +139,7 @@ def _bricks_panel(ax: Axes, data: dict[str, Any]) -> None:
     ax.set_ylim(-H - 1.9, H + N * f + 3.4)  # (room above the N arrow for the legend)
     ax.set_aspect("equal")
     ax.set_axis_off()
-    ax.set_title(f"(left) two 'bricks' in contact, after the first slip (point {k} of the path)",
+    ax.set_title(f"(left) two 'bricks' in contact,\nafter the first slip (point {k} of the path)",
                  fontsize=8)
 
 
@@ -298,7 +298,7 @@ def plot_acoustic_eigenvalues(data: dict[str, Any]) -> Figure:
 def plot_localization_directions(data: dict[str, Any]) -> Figure:
     """g_E(n) over the (sigma_1, sigma_3) plane and the maximum over the sphere."""
     th = np.degrees(data["theta"])
-    fig, ax = plt.subplots(figsize=(5.4, 3.6))
+    fig, ax = plt.subplots(figsize=(5.4, 3.6), layout="constrained")
     ax.plot(th, data["g_E"], color="C0",
             label=r"$g^E_{cr}(n)$, n in the $(\sigma_1,\sigma_3)$ plane")
     ax.axhline(data["g_max"], color="C3", ls="--", lw=1.0,
@@ -333,7 +333,7 @@ def plot_flutter_map(data: dict[str, Any]) -> Figure:
     zoomed on the directions that flutter; (c) their fraction against the anisotropy."""
     th = np.degrees(data["theta"])
     # 11.4 in wide, texts >= 7 pt: legible with the figure 1200 px wide (the figure check)
-    fig, (ax1, ax2, ax3) = plt.subplots(1, 3, figsize=(11.4, 3.9),
+    fig, (ax1, ax2, ax3) = plt.subplots(1, 3, figsize=(11.4, 3.9), layout="constrained",
                                         gridspec_kw={"width_ratios": [1.25, 1, 0.8]})
     g1 = np.array([np.nan if v is None else v for v in data["g1"]], float)
     g2 = np.array([np.nan if v is None else v for v in data["g2"]], float)
@@ -396,5 +396,4 @@ def plot_flutter_map(data: dict[str, Any]) -> Figure:
     text = _case_text(data.get("params", {}).get("plane_case", {}))
     if text:
         fig.suptitle(f"(a): {text}, n in the $(e_1, e_3)$ plane", fontsize=7.5)
-    fig.tight_layout()
     return fig

@@ -11,7 +11,7 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Arc, Patch
 
-from flutterfriction.plotting import REGIME_COLOURS, list47, pendulum_text
+from flutterfriction.plotting import REGIME_COLOURS, list47, pendulum_text, wrap_items
 from flutterfriction.plotting.labels import declutter, label_at
 from flutterfriction.plotting.pendulum import MASS, ROD, draw_pendulum
 
@@ -33,7 +33,7 @@ def plot_dead_load_spectrum(data: dict[str, Any], title: str) -> Figure:
     re = np.array(c["omega2_re"])
     closed = np.array(c["omega2_closed_form"])
     e_cr, e_sup = _q(data, "eta_cr"), _q(data, "eta_sup")
-    fig, ax = plt.subplots(figsize=(5.2, 3.4))
+    fig, ax = plt.subplots(figsize=(5.2, 3.4), layout="constrained")
     _shade_regimes(ax, [e_cr, e_sup], ["stable", "divergence", "divergence"], eta[-1])
     for i, branch in enumerate(re):
         ax.plot(eta, branch, color="C0", lw=1.6,
@@ -70,7 +70,7 @@ def plot_follower_spectrum(data: dict[str, Any], title: str, in_newtons: bool = 
     unit = data["load_unit_N"] if in_newtons else 1.0
     x = gamma * unit
     g_flu, g_div = _q(data, "gamma_flu"), _q(data, "gamma_div")
-    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(5.2, 4.6), sharex=True,
+    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(5.2, 4.6), sharex=True, layout="constrained",
                                    gridspec_kw={"height_ratios": [3, 2]})
     step = max(1, len(gamma) // 30)
     for ax, key, label in ((ax1, "re", r"Re $\omega^2$"), (ax2, "im", r"Im $\omega^2$")):
@@ -115,7 +115,7 @@ def plot_fig03(data: dict[str, Any]) -> Figure:
     line, parab = np.array(c["line"]), np.array(c["parabola"])
     g_flu, g_div = _q(data, "gamma_flu"), _q(data, "gamma_div")
     vertex = _q(data, "gamma_vertex")
-    fig, ax = plt.subplots(figsize=(5.4, 3.8))
+    fig, ax = plt.subplots(figsize=(5.4, 3.8), layout="constrained")
     _shade_regimes(ax, [g_flu, g_div], ["stable", "flutter", "divergence"], gamma[-1])
     ax.plot(gamma, line, color="C0", lw=1.8, label=r"$\beta_1 - \gamma\beta_2$")
     ax.plot(gamma, parab, color="C3", lw=1.8, label=r"$(\beta_1 - \gamma\beta_2)^2 - 4ka$")
@@ -148,8 +148,9 @@ def plot_fig03(data: dict[str, Any]) -> Figure:
              rf"$\beta_2$ = {co['beta2']:.4f}")
     printed = data.get("gammas_as_printed")
     if printed is not None:  # the erratum of eq. (37), stated where its values show
-        title += ("\n" + rf"$\gamma_{{flu}}, \gamma_{{div}}$ from eq. (37) corrected, "
-                  rf"$\beta_1 \mp 2\sqrt{{ka}}$; as printed, $\beta_1 \mp 2\sqrt{{k}}\,a$, "
+        title += ("\n" + r"$\gamma_{flu}, \gamma_{div}$ from eq. (37) corrected, "
+                  r"$\beta_1 \mp 2\sqrt{ka}$;" + "\n"
+                  + r"as printed, $\beta_1 \mp 2\sqrt{k}\,a$, "
                   f"they would be {printed[0]:.3f}, {printed[1]:.3f}")
     ax.set_title(title, pad=28, fontsize=8)
     return fig
@@ -182,7 +183,7 @@ def plot_fig04(data: dict[str, Any]) -> Figure:
     span = float(np.linalg.norm(np.array(cases[order[0]]["points"]["C"][0])))
     fig = plt.figure(figsize=(8.6, 1.05 * sum(rows) + 0.5 * len(order) + 0.5))
     outer = fig.add_gridspec(len(order), 1, height_ratios=[r + 0.5 for r in rows], hspace=0.35,
-                             top=0.93, bottom=0.06)
+                             top=0.93, bottom=0.07)
     for k, name in enumerate(order):
         case = cases[name]
         sub = outer[k].subgridspec(rows[k], ncol + 2, width_ratios=[1] * ncol + [0.15, 1.6],
@@ -353,7 +354,7 @@ def plot_eq25(data: dict[str, Any]) -> Figure:
     text = pendulum_text(data.get("params", {}).get("pendulum"))
     return plot_dead_load_spectrum(
         data, r"Eq. (25): dead load on equal rods, $H_{cr}$ = (3-$\sqrt{5}$)/2 K/L"
-        + (f"\n{text}" if text else ""))
+        + (f"\n{wrap_items(text, 60)}" if text else ""))
 
 
 def plot_eq46(data: dict[str, Any]) -> Figure:

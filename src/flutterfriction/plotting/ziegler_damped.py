@@ -78,7 +78,7 @@ def plot_fig05(data: dict[str, Any]) -> Figure:
 def plot_paradox_limit(data: dict[str, Any]) -> Figure:
     """The damped flutter load against epsilon on a log axis: the Ziegler paradox."""
     eps = np.array(data["eps"])
-    fig, ax = plt.subplots(figsize=(5.4, 3.6))
+    fig, ax = plt.subplots(figsize=(5.4, 3.6), layout="constrained")
     ax.semilogx(eps, data["gamma_flu_routh"], "o", ms=3.5, mfc="none", color="C0",
                 label="Routh–Hurwitz (exact verdict) on the matrices")
     ax.semilogx(eps, data["gamma_flu_eq54"], color="C3", lw=1.2,
@@ -97,7 +97,7 @@ def plot_paradox_limit(data: dict[str, Any]) -> Figure:
     ax.set_ylabel(r"flutter load $P_{flu}\,L/K$ [-]")
     ax.set_ylim(1.2, 2.6)
     # under the axes: at the upper right it hid eq. (54)'s curve (a figure review)
-    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.17), ncol=2, fontsize=7)
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=2, fontsize=7)
     ax.set_title("Flutter load with vanishing hinge viscosity (symmetric pendulum)")
     return fig
 
@@ -150,7 +150,7 @@ def plot_fig19_theory(data: dict[str, Any]) -> Figure:
     ax2.set_title("Ratios against viscosity", fontsize=8)
     declutter(ax2)
     fig.suptitle("Fig. 19, theory only: the experimental spots of the printed figure are "
-                 "measurements, not reproduced; its horizontal theory bars are drawn here as "
+                 "measurements, not reproduced;\nits horizontal theory bars are drawn here as "
                  "columns", fontsize=8)
     note = own_parameters_note(data, "pendulum", "list47", width=170)
     fig.tight_layout(rect=(0, 0.05 if note else 0, 1, 1))

@@ -77,7 +77,7 @@ def plot_fig13(data: dict[str, Any]) -> Figure:
     a1, a2 = np.degrees(data["alpha"])
     t = np.array(data["t"])
     k = _transient_end(t, a1, np.degrees(data["limit_cycle"]["alpha1_amplitude_rad"]))
-    fig, ax = plt.subplots(figsize=(4.8, 4.6))
+    fig, ax = plt.subplots(figsize=(4.8, 4.6), layout="constrained")
     lc = _transient_and_cycle(ax, a1, a2, t, k, t[k], True)
     fig.colorbar(lc, ax=ax, label=f"time t [s] along the transient (to {t[k]:.1f} s)")
     T = data["limit_cycle"]["period_s"]
@@ -97,13 +97,13 @@ def plot_fig14(data: dict[str, Any]) -> Figure:
     t = np.array(data["t"])
     lcd = data["limit_cycle"]
     k = _transient_end(t, a[0], np.degrees(lcd["alpha1_amplitude_rad"]))
-    fig, axes = plt.subplots(2, 1, figsize=(4.8, 6.4))
+    fig, axes = plt.subplots(2, 1, figsize=(4.8, 6.4), layout="constrained")
     for i, ax in enumerate(axes):
         lc = _transient_and_cycle(ax, a[i], w[i], t, k, t[k], i == 0)
         ax.set_xlabel(rf"$\alpha_{i + 1}$ [deg]")
         ax.set_ylabel(rf"$\dot\alpha_{i + 1}$ [deg/s]")
     fig.colorbar(lc, ax=axes, label=f"time t [s] along the transient (to {t[k]:.1f} s)")
-    fig.legend(loc="lower center", bbox_to_anchor=(0.45, -0.04), fontsize=7, frameon=False,
+    fig.legend(loc="outside lower center", fontsize=7, frameon=False,
                title=f"transient: until the α1 peaks are within {100 * TRANSIENT_TOL:g} % of "
                      "the cycle's", title_fontsize=6.5)
     axes[0].set_title(f"Fig. 14: {_load_text(data)}; amplitudes "
@@ -140,11 +140,11 @@ def plot_fig20(data: dict[str, Any]) -> Figure:
     fig.suptitle(f"Fig. 20: {list47_viscous(data, short=True)}, P = {data['P']:.3f} N (middle "
                  f"of the flutter interval {data['P_flu']:.2f}–{data['P_div']:.2f} N), from "
                  f"α1 = α2 = {a0:g}° at rest\nsimulations only: the measured acceleration of "
-                 "the printed figure (plate at 75 mm/s) is an experiment, not reproduced; the "
+                 "the printed figure (plate at 75 mm/s) is an experiment, not reproduced;\nthe "
                  "model's follower force does not depend on the plate's speed"
                  + (f"\n{note}" if note else ""), fontsize=8)
     ax1.set_title(f"the first {t[-1]:g} s (C: the pendulum's loaded end)", fontsize=8)
-    ax2.set_title(f"detail: the first {tl[-1]:g} s (the linear solution is cut there)",
+    ax2.set_title(f"detail: the first {tl[-1]:g} s\n(the linear solution is cut there)",
                   fontsize=8)
     fig.tight_layout()
     return fig
