@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 
+import mpmath
 import numpy as np
 import pytest
 from hypothesis import assume, example, given, settings
@@ -585,3 +586,34 @@ def test_an_erratum_without_a_printed_interval_is_strict_json(tmp_path):
                        "Q": [10 / 3, 0, 0, 0, 0, -0.05], "n": [1.0, 0, 0]})
     write_json(tmp_path / "e.json", d)
     assert read_json(tmp_path / "e.json")["errata"]["eq188_g1"]["printed"] is None
+
+
+@pytest.mark.parametrize("lam", [1.0, 1e8])
+@pytest.mark.parametrize("rel", [1e-8, 1e-12])
+def test_isotropic_regime_changes_at_the_localization_modulus(lam, rel):
+    """An outside audit: just below g_loc the smaller real eigenvalue of A(n) is negative
+    (divergence), yet a threshold of 1e-10 max|eta| called it stable (up to 2 % below g_loc at
+    lam/mu = 1e8, where max|eta| ~ 1e8 mu). The regime now follows that root's sign, which
+    the product formula gives to rounding: checked against mpmath (60 digits) on either side,
+    1e-8 and 1e-12 relative from g_loc."""
+    from flutterfriction.analysis.acoustic import isotropic_acoustic
+
+    Pv, Qv, n = [1, -0.5, -0.5, 0, 0, 0.8], [0.6, -0.3, -0.3, 0, 0, -0.8], [1.0, 1.0, 1.0]
+    g_loc = isotropic_acoustic(lam, 1.0, Pv, Qv, n).g_localization
+    with mpmath.workdps(60):
+        nn = mpmath.matrix(n) / mpmath.sqrt(3)
+
+        def smallest(g):
+            # A(n) = mu 1 + (lam + mu) n n - (E[P] n)(n E[Q]) / g, E = isotropic (mu = 1)
+            def en(V):  # E[V] n for a Voigt 6-vector V
+                T = mpmath.matrix([[V[0], V[5], V[4]], [V[5], V[1], V[3]], [V[4], V[3], V[2]]])
+                tr = T[0, 0] + T[1, 1] + T[2, 2]
+                return lam * tr * nn + 2 * (T * nn)
+            p, q = en([mpmath.mpf(v) for v in Pv]), en([mpmath.mpf(v) for v in Qv])
+            A = mpmath.eye(3) + (lam + 1) * nn * nn.T - p * q.T / g
+            return min(mpmath.re(e) for e in mpmath.eig(A)[0])
+
+        for side, expected in ((-1, "divergence"), (+1, "stable")):
+            g = g_loc * (1 + side * rel)
+            assert (smallest(mpmath.mpf(g)) < 0) == (expected == "divergence")
+            assert isotropic_acoustic(lam, 1.0, Pv, Qv, n, g=g).regime.value == expected

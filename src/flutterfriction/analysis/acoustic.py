@@ -671,8 +671,11 @@ def isotropic_acoustic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike, n: Arr
                              f"larger than {g!r}")
     # the pair is complex exactly inside the interval (the factored discriminant): any
     # imaginary part is flutter, however narrow the interval (a threshold on |Im| called a
-    # genuine pair 1 +- 9e-8 i stable; the review of this change)
-    regime = classify_eigenvalues([1.0, *roots], imag_rtol=0.0)
+    # genuine pair 1 +- 9e-8 i stable; the review of this change). A real pair's smaller root
+    # comes from the product c (its sign is that of g - g_loc, to rounding): any negative
+    # root is divergence (a threshold of 1e-10 max|eta| called g up to 2 % below g_loc stable
+    # at lam/mu = 1e8, and g_loc (1 - 1e-8) at lam/mu = 1; an outside audit)
+    regime = classify_eigenvalues([1.0, *roots], rtol=0.0, imag_rtol=0.0)
     return IsotropicAcoustic(g_loc, interval, eta, regime, tuple(notes))
 
 
