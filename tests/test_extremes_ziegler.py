@@ -336,3 +336,39 @@ def test_a_limit_cycle_at_a_torque_scale_beyond_the_dynamics_range_is_refused(sc
                         k2=scale, c1=scale**1.5, c2=scale**1.5)
     with pytest.raises(ParameterError, match=r"^k2 must be in \[1e-140, 1e\+140\] N m"):
         dy.ziegler_limit_cycle(p, 4.0, 0.01)
+
+
+#: An outside audit's pendulum (in range: every ratio within 1e+-6): its spectrum spans 1e10,
+#: and the first-order eigenvalues lost the slow pair (6.8e-14 +- 1704i at 1.5 H_cr: stable).
+WIDE_SPECTRUM = dict(l1=23016.091870442, l2=1.0, d=10434.074262711962, h=0.0,
+                     m1=1.676082212310191e-06, m2=1.0, m3=0.0, k1=1.242050618772466e-05, k2=1.0)
+
+
+@pytest.mark.parametrize("factor", [0.5, 1 - 1e-6, 1 + 1e-6, 1.1, 1.5])
+def test_undamped_regime_and_spectrum_of_a_wide_spectrum_against_mpmath(factor):
+    """The undamped regime and spectrum come from the exact biquadratic det(M s^2 + K): at
+    factor x H_cr the slow pair is real (divergence) above H_cr and imaginary below, as the
+    roots of det(M s^2 + K(H)) in 50-digit mpmath say; the spectrum agrees to 1e-9 (the load
+    in units of k2/l1 is rounded once: 1e-16 / 1e-6 relative in det K at 1 +- 1e-6 H_cr)."""
+    from flutterfriction.analysis.ziegler import regime, spectrum
+
+    p = ZieglerPendulum(**WIDE_SPECTRUM)
+    H = factor * dead_critical_loads(p)[0]
+    with mp.workdps(50):
+        # the matrices of eqs. (11), (26) from the parameters (the doubles' exact values)
+        v = {k: mp.mpf(x) for k, x in WIDE_SPECTRUM.items()}
+        w = (v["m2"] * v["l2"] + v["m3"] * v["h"]) * v["l1"]
+        M = mp.matrix([[v["m1"] * v["d"] ** 2 + (v["m2"] + v["m3"]) * v["l1"] ** 2, w],
+                       [w, v["m2"] * v["l2"] ** 2 + v["m3"] * v["h"] ** 2]])
+        K = mp.matrix([[v["k1"] + v["k2"] - mp.mpf(H) * v["l1"], -v["k2"]],
+                       [-v["k2"], v["k2"] - mp.mpf(H) * v["l2"]]])
+        a = mp.det(M)
+        b = M[0, 0] * K[1, 1] + M[1, 1] * K[0, 0] - M[0, 1] * K[1, 0] - M[1, 0] * K[0, 1]
+        lams = mp.polyroots([a, b, mp.det(K)], maxsteps=200, extraprec=200)
+        exact = sorted((complex(r) for lam in lams for r in (mp.sqrt(lam), -mp.sqrt(lam))),
+                       key=lambda z: (z.real, z.imag))
+    expected = "divergence" if factor > 1 else "stable"
+    assert regime(p, 0.0, H).value == expected
+    got = sorted(spectrum(p, 0.0, H), key=lambda z: (round(z.real, 20), z.imag))
+    for g, e in zip(got, exact, strict=True):
+        assert abs(g - e) <= 1e-9 * abs(e)
