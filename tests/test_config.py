@@ -142,6 +142,9 @@ def test_validate_config_accepts_the_shipped_config(config):
     (("scenes", "fig02", "pendulum", "m1"), float("nan"), "m1: must be a finite number"),
     (("scenes", "beck_hopf", "A_max"), float("inf"), "A_max"),
     (("sweep_parts",), 0, "sweep_parts"),
+    # a viscous pendulum in the undamped scenes (computed as undamped; an outside audit)
+    (("scenes", "eq47", "pendulum"), "list47_viscous", "eq47.pendulum: c1 = c2 = 0 here"),
+    (("scenes", "eq25", "pendulum", "c2"), 0.1, "eq25.pendulum: c1 = c2 = 0 here.*c2 = 0.1"),
 ])
 def test_validate_config_names_the_key(config, path, value, match):
     from flutterfriction.config import validate_config

@@ -301,12 +301,18 @@ def _scene_specific_problems(scene: str, params: dict[str, Any], prefix: str) ->
                 # (a duration of 1e300 s ended in numpy's "Maximum allowed size exceeded")
                 lines.append(f"{where}.cases.{name}.duration: at most {FIG04_MAX_FRAMES} frames "
                              f"of dt = {params['dt']} s, got {duration / params['dt']:.3g}")
+    if scene in UNDAMPED_SCENES:
+        pend = _pendulum_of(params)
+        viscous = {k: pend[k] for k in ("c1", "c2")
+                   if isinstance(pend, dict) and isinstance(pend.get(k), int | float)
+                   and pend[k] != 0}
+        if viscous:
+            lines.append(f"{where}.pendulum: c1 = c2 = 0 here (this scene's closed forms and "
+                         "critical loads are the undamped ones, eqs. (19)-(48); viscous hinges "
+                         "are §2.4's scenes), got "
+                         + ", ".join(f"{k} = {v:g} N m s" for k, v in viscous.items()))
     if scene == "fig18":
-        pend = params.get("pendulum")
-        if isinstance(pend, str):  # a chapter list by name
-            from flutterfriction.parameters import LISTS, parameter_list
-
-            pend = parameter_list(pend) if pend in LISTS else None
+        pend = _pendulum_of(params)
         mu, r = params.get("mu", 0.25), params.get("wheel_radius", 0.02)
         if isinstance(pend, dict) and all(isinstance(pend.get(k), int | float)
                                           for k in ("l1", "l2")) \
@@ -320,6 +326,19 @@ def _scene_specific_problems(scene: str, params: dict[str, Any], prefix: str) ->
 
 #: Fig. 4's frames per case (duration / dt): the chapter draws 12 and 6.
 FIG04_MAX_FRAMES = 1000
+#: The scenes of the undamped pendulum (§2.2-2.3): a viscous pendulum there was computed as
+#: undamped and its regime checks compared damped and undamped verdicts (an outside audit).
+UNDAMPED_SCENES = ("fig03", "fig04", "eq25", "eq46", "eq47", "eq48", "errata_ziegler")
+
+
+def _pendulum_of(params: dict[str, Any]) -> Any:
+    """A scene's pendulum as a dict (a chapter list by name resolved), else as given."""
+    pend = params.get("pendulum")
+    if isinstance(pend, str):
+        from flutterfriction.parameters import LISTS, parameter_list
+
+        pend = parameter_list(pend) if pend in LISTS else None
+    return pend
 
 # (ConvergenceError too: a scene's check that solves, e.g. the flutter load of the linearised
 # rod or the acoustic tensor's interval, says so in one line instead of a traceback that
