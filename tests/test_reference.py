@@ -329,6 +329,14 @@ def test_a_scene_with_other_parameters_is_not_applicable_not_failed():
     assert rows[0].status == NOT_APPLICABLE and "pendulum.k1: 0.189 -> 0.25" in rows[0].note
     assert rows[0].reproduced == 4.7476  # your own value, shown
     assert failed(rows) == []
+    # ... but its two methods are still compared: a disagreement fails (an outside audit: a
+    # viscous pendulum computed as undamped passed, "flutter" against the independent "stable")
+    q = data["eq47"]["quantities"][entry["key"]]
+    q["independent"] = 4.80
+    rows = run_check({"quantities": [entry]}, data, "paper", recorded)
+    assert rows[0].status == "FAIL" and "two methods disagree" in rows[0].note
+    assert rows[0].agreement > 1
+    q["independent"] = 4.7476
     # the same data with the chapter's parameters: checked, and 4.7476 N fails
     data["eq47"]["params"] = recorded["paper"]["eq47"]
     assert [r.status for r in run_check({"quantities": [entry]}, data, "paper", recorded)] == [

@@ -120,21 +120,36 @@ def parameter_changes(recorded: Any, used: Any, where: str = "") -> list[str]:
 
 
 def _not_applicable(entry: dict[str, Any], changes: list[str],
-                    data: Mapping[str, Any]) -> CheckRow:
+                    data: Mapping[str, Any], fidelity: str = "paper") -> CheckRow:
     """The entry's row for a scene run with other parameters: the values this run computed
-    (your own), no comparison, the changed keys named."""
+    (your own), not compared with the chapter's, the changed keys named. The two methods are
+    still compared with each other, at the entry's agreement tolerance: a disagreement FAILs
+    (an outside audit: dropping that check too let a viscous pendulum computed as undamped
+    pass, its regime "flutter" against the independent "stable")."""
     shown = "; ".join(changes[:3]) + (f"; {len(changes) - 3} more" if len(changes) > 3 else "")
     kind = "quantities" if "quoted" in entry else "errata"
-    q = (data[entry["scene"]].get(kind) or {}).get(entry["key"]) or {}
+    q = ((data.get(entry["scene"]) or {}).get(kind) or {}).get(entry["key"]) or {}
+    value, independent = q.get("value", q.get("corrected")), q.get("independent")
+    agreement, agrees = None, True
+    if isinstance(value, str) or isinstance(independent, str):
+        # a categorical statement: the same word, unless the chapter's two differ by design
+        agrees = "quoted_independent" in entry or value == independent
+    elif all(isinstance(v, int | float) and not isinstance(v, bool)
+             for v in (value, independent)):
+        agr_tol = entry["agreement"] if kind == "errata" else _tolerances(entry, fidelity)[1]
+        agreement = normalised_error(value, independent, agr_tol)
+        agrees = agreement <= 1.0
+    note = f"scene {entry['scene']!r} ran with other parameters than the chapter's: {shown}"
+    if not agrees:
+        note += (f"; its two methods disagree: {value!r} against the independent "
+                 f"{independent!r}")
     return CheckRow(id=entry["id"], kind="quantity" if kind == "quantities" else "erratum",
                     source=entry["source"], quoted=entry.get("quoted", entry.get("printed")),
                     unit=entry.get("unit", q.get("unit", "")),
-                    reproduced=q.get("value", q.get("corrected")),
-                    independent=q.get("independent"), method=q.get("method", ""),
+                    reproduced=value, independent=independent, method=q.get("method", ""),
                     independent_method=q.get("independent_method", ""), error=None,
-                    agreement=None, status=NOT_APPLICABLE,
-                    note=f"scene {entry['scene']!r} ran with other parameters than the "
-                         f"chapter's: {shown}")
+                    agreement=agreement, status=NOT_APPLICABLE if agrees else "FAIL",
+                    note=note)
 
 
 def normalised_error(x: float, ref: float, tol: Mapping[str, float]) -> float:
@@ -435,7 +450,7 @@ def run_check(reference: dict[str, Any], data: Mapping[str, Any],
                         ("errata", lambda e: _check_erratum(e, data))):
         for e in reference.get(kind, []):
             moved = changes(e)
-            rows.append(_not_applicable(e, moved, data) if moved else check(e))
+            rows.append(_not_applicable(e, moved, data, fidelity) if moved else check(e))
     return rows
 
 

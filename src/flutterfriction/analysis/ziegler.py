@@ -337,14 +337,15 @@ def regime(pendulum: ZieglerPendulum, P: float = 0.0, H: float = 0.0) -> Regime:
 
     Undamped: from the exact biquadratic ``det(M s^2 + K)`` (:func:`_undamped_regime`; the
     eigenvalues called a pendulum in divergence stable, 4 of 400 random pendulums in range at
-    1.1 H_cr, an outside audit). With hinge viscosity: from the exact Routh and Sturm root counts of the characteristic polynomial (exact fractions of
-    the parameters and of the loads in units of k2/l1, which are rounded once,
+    1.1 H_cr, an outside audit). With hinge viscosity: from the exact Routh and Sturm root
+    counts of the characteristic polynomial (exact fractions of the parameters and of the
+    loads in units of k2/l1, which are rounded once,
     :func:`~.polynomial.regime_from_coefficients`). Why: a growth rate of order viscosity x
     load distance is below what the eigenvalues resolve at small viscosity (an outside audit:
     c = 1e-8 at P = 1.6 K/L, between the damped flutter load 4/3 and 2, max Re s = 1.3e-9 was
     read as stable); the exact counts resolve any growth rate. Exactly on a critical load (a
     root exactly on the imaginary axis, e.g. s = 0 at H_cr) the counts give no verdict and
-    the eigenvalues decide, as undamped. A damped pendulum outside the model's numerical range
+    the eigenvalues decide (undamped too). A damped pendulum outside the model's numerical range
     is refused (:class:`ParameterError`), as its critical loads are."""
     P = check_real("P", P)
     H = check_real("H", H)
