@@ -372,3 +372,17 @@ def test_undamped_regime_and_spectrum_of_a_wide_spectrum_against_mpmath(factor):
     got = sorted(spectrum(p, 0.0, H), key=lambda z: (round(z.real, 20), z.imag))
     for g, e in zip(got, exact, strict=True):
         assert abs(g - e) <= 1e-9 * abs(e)
+
+
+@pytest.mark.parametrize("lam", [10**2.5, 1e3, 10**3.5])
+def test_coalescences_within_the_first_scan_step_are_found(lam):
+    """An outside audit: with k1/k2 = 1e6 the scan window (4e6 load units, 512 steps) held both
+    coalescences in its first step at l1/l2 = 10^2.5 ... 10^3.5 (1e3 and 5e3 units at 1e3)
+    and the pendulum was refused. The zoomed windows find them; eq. (37) (closed form) agrees."""
+    from flutterfriction.closed_forms.ziegler import flutter_divergence_gammas
+
+    p = ZieglerPendulum(l1=lam, l2=1.0, d=lam, h=0.0, m1=1.0, m2=1.0, m3=0.0, k1=1e6, k2=1.0)
+    got = follower_critical_gammas(p)
+    closed = flutter_divergence_gammas(p.groups())
+    assert got == pytest.approx(closed, rel=1e-9)
+    assert critical_loads(p).P_div_undamped == pytest.approx(closed[1] * p.load_unit, rel=1e-9)

@@ -47,20 +47,31 @@ def _dimensionless(pendulum: ZieglerPendulum) -> DimensionlessMatrices:
     return pendulum.dimensionless_matrices()
 
 
+#: Zoomed scan windows (each 8 times smaller) tried when the first brackets nothing: down to
+#: 8^-12 = 1.5e-11 of it, below any coalescence of the model's numerical range (ratios 1e+-6).
+ZOOMS = 12
+
+
 def follower_critical_gammas(pendulum: ZieglerPendulum, n_scan: int = 512,
                              max_doublings: int = 40) -> tuple[float, float]:
     """Dimensionless ``(gamma_flu, gamma_div) = (P_flu, P_div) l1/k2`` under the follower load
     alone, from the dimensionless matrices (see :func:`follower_critical_loads`).
 
-    The scan window starts at ``4 max(1, k1/k2)`` and doubles at most ``max_doublings`` times
-    (to ``4e12`` load units with 40: far above any coalescence in the model's numerical range,
+    The scan window starts at ``4 max(1, k1/k2)``; where it brackets nothing, it shrinks
+    (:data:`ZOOMS` times by 8), then doubles at most ``max_doublings - 1`` times
+    (to ``2e12`` load units with 40: far above any coalescence in the model's numerical range,
     where ``gamma_div`` stays below ``~1e8``). A discriminant at its round-off floor is refused
     (:class:`ConvergenceError`), never minimised."""
     n_scan = check_integer("n_scan", n_scan, 8, 10**6)
     max_doublings = check_integer("max_doublings", max_doublings, 1, 1000)
     m = _dimensionless(pendulum)
-    load_max = 4.0 * max(1.0, pendulum.k1 / pendulum.k2)
-    for _ in range(max_doublings):
+    base = 4.0 * max(1.0, pendulum.k1 / pendulum.k2)
+    # the window k1/k2 suggests first; where it brackets nothing, windows 8, 64, ... times
+    # smaller (both loads can lie in its first step: k1/k2 = 1e6 with l1/l2 = 1e3 puts them at
+    # 1e3 and 5e3 load units, within 4e6/512; an outside audit), then larger ones
+    windows = [base] + [base * 8.0**-j for j in range(1, ZOOMS + 1)] \
+        + [base * 2.0**j for j in range(1, max_doublings)]
+    for load_max in windows:
         try:
             roots = coalescence_loads(m.K, m.G_follower, m.M, load_max, n_scan,
                                       noise_floor=True)
@@ -74,9 +85,9 @@ def follower_critical_gammas(pendulum: ZieglerPendulum, n_scan: int = 512,
                 raise ConvergenceError(f"expected two coalescence loads, found {roots} "
                                        f"(in units of k2/l1)")
             return roots[0], roots[1]
-        load_max *= 2.0
     raise ConvergenceError(
-        f"no flutter/divergence coalescence bracketed up to P = {load_max:g} k2/l1 (a flutter "
+        f"no flutter/divergence coalescence bracketed from P = {windows[ZOOMS]:.3g} to "
+        f"{windows[-1]:g} k2/l1 (a flutter "
         f"interval narrower than the scan resolves: this combination of ratios is beyond what "
         f"double precision separates)")
 
