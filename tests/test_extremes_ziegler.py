@@ -386,3 +386,23 @@ def test_coalescences_within_the_first_scan_step_are_found(lam):
     closed = flutter_divergence_gammas(p.groups())
     assert got == pytest.approx(closed, rel=1e-9)
     assert critical_loads(p).P_div_undamped == pytest.approx(closed[1] * p.load_unit, rel=1e-9)
+
+
+def test_subnormal_input_is_refused_and_tiny_scales_keep_their_viscosity(capsys):
+    """An outside audit: c1 = 1e-323 (subnormal) ended in a ZeroDivisionError traceback, as
+    l2 sqrt(k2) sqrt(m2) underflowed to 0 at l2 = 1e-124, k2 = m2 = 1e-200. A subnormal input
+    is refused by name; the viscosity group is formed from mantissas and exponents (eq. 29's
+    epsilon at scales 1e200 equals that of the same pendulum at unit scales)."""
+    tiny = ["--l1", "1e-124", "--l2", "1e-124", "--d", "1e-124", "--h", "0", "--m1", "1e-200",
+            "--m2", "1e-200", "--m3", "0", "--k1", "1e-200", "--k2", "1e-200"]
+    assert main(["ziegler", *tiny, "--c1", "1e-323"]) == 2
+    err = capsys.readouterr().err
+    assert "--c1 must be 0 or >= 2.23e-308" in err and err.count("\n") == 1
+    # at the other end l2 sqrt(k2) sqrt(m2) = 1e400 overflowed: epsilon was 0, silently
+    p = ZieglerPendulum(l1=1e200, l2=1e200, d=1e200, h=0.0, m1=1e200, m2=1e200, m3=0.0,
+                        k1=1e200, k2=1e200, c1=1e298, c2=1e298)
+    unit = ZieglerPendulum(l1=1.0, l2=1.0, d=1.0, h=0.0, m1=1.0, m2=1.0, m3=0.0, k1=1.0,
+                           k2=1.0, c1=1e-102, c2=1e-102)
+    assert p.relative_viscosity(p.c2) == pytest.approx(1e-102, rel=1e-15)
+    assert damped_flutter_load(p) / p.load_unit == pytest.approx(
+        damped_flutter_load(unit) / unit.load_unit, rel=1e-12)

@@ -15,6 +15,7 @@ from scipy.optimize import brentq, minimize
 
 from flutterfriction.analysis.stability import Regime
 from flutterfriction.errors import (
+    NORMAL_MIN,
     ConvergenceError,
     ParameterError,
     check_finite_array,
@@ -566,6 +567,11 @@ def isotropic_acoustic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike, n: Arr
         # real numbers only (an audit: a complex entry raised a bare TypeError, a string or a
         # bool was read as a number)
         arrays[key] = check_finite_array(nm[key], value, (size,), f"{size} finite numbers")
+        tiny = (arrays[key] != 0) & (np.abs(arrays[key]) < NORMAL_MIN)
+        if tiny.any():  # (an outside audit: P = 1e-320 ... was read with its digits lost)
+            raise ParameterError(f"{nm[key]}: each entry must be 0 or >= {NORMAL_MIN:.3g} in "
+                                 f"magnitude (a subnormal double has lost digits), got "
+                                 f"{float(arrays[key][tiny][0])!r}")
     nv = arrays["n"]
     n_max = float(np.abs(nv).max())
     if n_max == 0.0:

@@ -78,7 +78,7 @@ def _eps_c(pendulum: ZieglerPendulum) -> tuple[float, float]:
     """``(epsilon, c)`` of eq. (29); needs c2 > 0 (c = c1/c2)."""
     if pendulum.c2 <= 0:
         raise ParameterError("the dimensionless form of eq. (29) needs c2 > 0 (c = c1/c2)")
-    eps = pendulum.c2 / (pendulum.l2 * math.sqrt(pendulum.k2 * pendulum.m2))
+    eps = pendulum.relative_viscosity(pendulum.c2)
     return eps, pendulum.c1 / pendulum.c2
 
 

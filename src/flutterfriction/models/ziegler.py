@@ -209,6 +209,24 @@ class ZieglerPendulum:
                     f"{name}: the relative viscosity {name}/(l2 sqrt(k2 m2)) = 10^{e:.4g} must be "
                     f"0 or within [{MIN_RELATIVE_VISCOSITY:g}, {MAX_RELATIVE_VISCOSITY:g}]")
 
+    def relative_viscosity(self, c: float) -> float:
+        """``c/(l2 sqrt(k2 m2))`` (eq. 29's epsilon for c = c2), formed from mantissas and
+        exponents apart: ``l2 sqrt(k2) sqrt(m2)`` alone underflows to 0 at l2 = 1e-124,
+        k2 = m2 = 1e-200 (a ZeroDivisionError; an outside audit) and overflows at the other
+        end, while the group itself lies in the model's range."""
+        if c == 0:
+            return 0.0
+
+        def root(x: float) -> tuple[float, int]:  # sqrt(x) as (mantissa, exponent)
+            m, e = math.frexp(x)
+            if e % 2:
+                m, e = 2 * m, e - 1
+            return math.sqrt(m), e // 2
+
+        (mc, ec), (ml, el) = math.frexp(c), math.frexp(self.l2)
+        (mk, ek), (mm, em) = root(self.k2), root(self.m2)
+        return math.ldexp(mc / (ml * mk * mm), ec - el - ek - em)
+
     def dimensionless_matrices(self, exact: bool = False) -> DimensionlessMatrices:
         """Matrices in the units of eqs. (17), (29), (32) (see :class:`DimensionlessMatrices`).
 
@@ -225,8 +243,7 @@ class ZieglerPendulum:
         zero = 0 * one
         M = np.array([[g.lam**2 * (g.rho1 * g.y1**2 + 1 + g.rho2), g.lam * (1 + g.rho2 * g.y2)],
                       [g.lam * (1 + g.rho2 * g.y2), 1 + g.rho2 * g.y2**2]])
-        unit = self.l2 * math.sqrt(self.k2) * math.sqrt(self.m2)
-        e1, e2 = self.c1 / unit, self.c2 / unit
+        e1, e2 = self.relative_viscosity(self.c1), self.relative_viscosity(self.c2)
         if exact:  # (a float times a fraction is a float)
             e1, e2 = Fraction(e1), Fraction(e2)
         C = np.array([[e1 + e2, -e2], [-e2, e2]])
