@@ -151,6 +151,24 @@ def test_validate_config_names_the_key(config, path, value, match):
 
     problems = validate_config(_with(config, path, value), SCHEMA_PATH)
     assert problems and any(__import__("re").search(match, p) for p in problems), problems
+
+
+@pytest.mark.parametrize(("path", "value", "match"), [
+    (("scenes", "errata_solids", "Q"), [1.0, -0.5, -0.5, 0.0, 0.0, 0.8],
+     "errata_solids: P, Q, n: this case has no flutter interval"),
+    (("scenes", "acoustic_eigenvalues", "g_max"), 1e-3,
+     "acoustic_eigenvalues: g_min, g_max: .* must contain the flutter interval"),
+    (("scenes", "flutter_map", "anisotropy", "sigma"), [1.0, 1.0, 1.0],
+     "flutter_map: sigma must have a non-zero deviator"),
+    (("scenes", "localization_directions", "mu_f"), -5.0,
+     r"localization_directions: mu_f must lie in \[0, sqrt3"),
+    (("scenes", "localization_directions", "beta"), 1e300, "localization_directions: beta"),
+])
+def test_scene_checks_refuse_cases_their_jobs_fail_on(config, path, value, match):
+    """The solids' cases refused before any job, naming the keys (an outside audit: each
+    passed the dry run and failed in its job, two with a traceback)."""
+    problems = validate_config(_with(config, path, value), SCHEMA_PATH, scenes=SCENES)
+    assert problems and any(__import__("re").search(match, p) for p in problems), problems
     # one short line per problem, never a schema dump
     assert all("\n" not in p and len(p) < 400 for p in problems)
 

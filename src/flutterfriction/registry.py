@@ -301,18 +301,20 @@ _ENTRIES = [
         "localization_directions": _fig(
             "solids:plot_localization_directions",
             "The localization modulus over band directions, its maximum over the sphere, "
-            "against Rudnicki and Rice (1975).")}),
+            "against Rudnicki and Rice (1975).")},
+          check=solids.check_localization_directions),
     Scene("flutter_map", solids.flutter_map, "solids", {"flutter_map": _fig(
         "solids:plot_flutter_map",
         "Which directions flutter against g; and flutter triggered by a small elastic "
-        "anisotropy at the coalescence of three eigenvalues.")}),
+        "anisotropy at the coalescence of three eigenvalues.")},
+          check=solids.check_flutter_map),
     Scene("fig23", sketches.fig23, "solids", {"fig23": _fig(
         "sketches:plot_fig23",
         "Fig. 23: twinning shear u = |x·f2| f1 (eq. 169) drawn on a lattice: the displacement "
         "is continuous across the plane f1, its gradient jumps by the rank-one 2 f1⊗f2 "
         "(eq. 171).")}),
     Scene("solids_statements", solids.solids_statements, "solids"),
-    Scene("errata_solids", solids.errata_solids, "solids"),
+    Scene("errata_solids", solids.errata_solids, "solids", check=solids.check_errata_solids),
 ]
 
 #: Scene name -> :class:`Scene`, in the chapter's order (read-only).

@@ -136,6 +136,9 @@ def drucker_prager_tensors(sigma: ArrayLike, friction_angle: float,
     sigma = check_symmetric("sigma", sigma)
     phi = check_real("friction_angle", friction_angle)
     chi = check_real("dilatancy_angle", dilatancy_angle)
+    for name, angle in (("friction_angle", phi), ("dilatancy_angle", chi)):
+        if not abs(angle) <= math.pi / 2:  # (an outside audit: 1e10 and 4 rad were accepted)
+            raise ParameterError(f"{name} must lie in [-pi/2, pi/2] rad, got {angle!r}")
     dev = sigma - I3 * np.trace(sigma) / 3
     norm = np.linalg.norm(dev)
     if norm == 0:

@@ -10,7 +10,7 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from flutterfriction.analysis import acoustic as ac
-from flutterfriction.errors import ParameterError, check_positive
+from flutterfriction.errors import ParameterError, check_positive, check_real
 from flutterfriction.models import solid as so
 from flutterfriction.models.contact import CoulombContact, integrate_path
 from flutterfriction.scenes.common import n_points, quantity, take
@@ -134,6 +134,16 @@ def _acoustic_range(params: dict[str, Any]):
             raise ParameterError(f"{name}: {str(exc).removeprefix('g: ')}") from None
     E = so.isotropic_elasticity(lam, mu)
     ac.flutter_interval_bruteforce(E, P, Q, n, g_max=g_max)  # (its range, naming g_max)
+    # the figure shows the flutter interval: there must be one, inside [g_min, g_max] (an
+    # outside audit: Q = P, or g_max below g1, failed in the job with no key named)
+    interval = so.flutter_interval_isotropic(lam, mu, P, Q, n)
+    if interval is None:
+        raise ParameterError("P, Q, n: this case has no flutter interval (eq. 188, corrected), "
+                             "which the figure shows: give a nonassociative case (Q not "
+                             "parallel to P) with one")
+    if not (g_min < interval[0] and interval[1] < g_max):
+        raise ParameterError(f"g_min, g_max: [{g_min:g}, {g_max:g}] Pa must contain the flutter "
+                             f"interval [{interval[0]:.6g}, {interval[1]:.6g}] Pa (eq. 188)")
     return lam, mu, P, Q, n, E, g_min, g_max
 
 
@@ -175,12 +185,33 @@ def acoustic_eigenvalues(params: dict[str, Any]) -> dict[str, Any]:
 
 
 # ---------------------------------------------------------------------- localization
+#: The largest Drucker-Prager friction or dilatancy coefficient (mu = sqrt3 sin(phi)).
+DP_COEFFICIENT_MAX = math.sqrt(3.0)
+
+
+def check_localization_directions(params: dict[str, Any]) -> None:
+    """The material and state as :func:`localization_directions` refuses them (the
+    configuration check)."""
+    check_positive("G", params["G"])
+    nu = check_real("nu", params["nu"])
+    if not -1 < nu < 0.5:
+        raise ParameterError(f"nu must lie in (-1, 0.5), got {nu}")
+    _dp_state(params)
+
+
 def _dp_state(params: dict[str, Any]):
     """Drucker–Prager in Rudnicki–Rice form: tension-positive stress with s_II / tau = N,
     Q = S^/sqrt2 + mu_f I/3, P = S^/sqrt2 + beta I/3 (so that H is R&R's h)."""
     N = float(params["N"])
     if not -1 / math.sqrt(3) - 1e-12 <= N <= 1 / math.sqrt(3) + 1e-12:
         raise ParameterError(f"N = s_II/tau must lie in [-1/sqrt3, 1/sqrt3], got {N}")
+    for key in ("mu_f", "beta"):
+        # Drucker-Prager's friction and dilatancy coefficients: 0 ... sqrt3 (sin of an angle
+        # times sqrt3); an outside audit ran mu_f = -5 and beta = 1e300 (an OverflowError)
+        value = check_real(key, params[key])
+        if not 0.0 <= value <= DP_COEFFICIENT_MAX:
+            raise ParameterError(f"{key} must lie in [0, sqrt3 = {DP_COEFFICIENT_MAX:.6g}] "
+                                 f"(Drucker-Prager), got {value!r}")
     a = math.sqrt(max(0.0, (2 - 1.5 * N**2) / 2))
     s = np.diag([-N / 2 + a, N, -N / 2 - a])
     S = s / np.linalg.norm(s)
@@ -376,9 +407,26 @@ def solids_statements(params: dict[str, Any]) -> dict[str, Any]:
 
 
 # ---------------------------------------------------------------------- errata of §3
+def check_errata_solids(params: dict[str, Any]) -> None:
+    """The case as :func:`errata_solids` needs it: with a flutter interval (eq. 188 corrected;
+    an outside audit: Q = P, or n = e3, ended in a TypeError in the job)."""
+    lam, mu, P, Q, n = _nonassociative_case(params)
+    if so.flutter_interval_isotropic(lam, mu, P, Q, n) is None:
+        raise ParameterError("P, Q, n: this case has no flutter interval (eq. 188, corrected), "
+                             "so the erratum cannot be shown: give a nonassociative case with one")
+
+
+def check_flutter_map(params: dict[str, Any]) -> None:
+    """The plane case and the anisotropy section as :func:`flutter_map` refuses them (the
+    configuration check; an outside audit: a stress without deviator failed in the job)."""
+    _nonassociative_case({**params["plane_case"], "n": [1, 0, 0]})
+    anisotropy_setup(params["anisotropy"])
+
+
 def errata_solids(params: dict[str, Any]) -> dict[str, Any]:
     """Eq. (188) as printed vs corrected vs brute force, for the nonassociative case."""
     take(params, {"lam", "mu", "P", "Q", "n"})
+    check_errata_solids(params)
     lam, mu, P, Q, n = _nonassociative_case(params)
     E = so.isotropic_elasticity(lam, mu)
     corrected = so.flutter_interval_isotropic(lam, mu, P, Q, n)
