@@ -552,7 +552,8 @@ def _numeric_argv(parser: argparse.ArgumentParser, argv: Sequence[str]) -> list[
     """Joins each numeric option with the numbers that follow it (``--P -1 0.5 ...``,
     ``--P -1,0.5,...``, ``--lam -1e-3``) into one ``--P=-1,0.5,...`` word: argparse alone takes
     a word starting with ``-`` for an option unless it is a plain negative number like ``-1``.
-    Only words that are numbers are gathered, and only as many as the option takes."""
+    Only words that are numbers are gathered: as many as a scalar option takes, every one that
+    follows a vector option (whose action checks the count)."""
     out: list[str] = []
     current, i, argv = parser, 0, list(argv)
     while i < len(argv):
@@ -574,7 +575,9 @@ def _numeric_argv(parser: argparse.ArgumentParser, argv: Sequence[str]) -> list[
             continue
         words = [value] if value else []  # "--P=" alone: the numbers follow
         count = _words_of_numbers(value) if value else 0
-        while count < size and i < len(argv):
+        # a vector option gathers every number that follows (its count is then checked: a 7th
+        # number to --P was "unrecognized arguments: 7", naming no option; an outside audit)
+        while (count < size or size > 1) and i < len(argv):
             k = _words_of_numbers(argv[i])
             if not k or (size == 1 and k > 1):
                 break
