@@ -406,3 +406,20 @@ def test_subnormal_input_is_refused_and_tiny_scales_keep_their_viscosity(capsys)
     assert p.relative_viscosity(p.c2) == pytest.approx(1e-102, rel=1e-15)
     assert damped_flutter_load(p) / p.load_unit == pytest.approx(
         damped_flutter_load(unit) / unit.load_unit, rel=1e-12)
+
+
+def test_linear_response_refuses_where_its_matrix_misses_the_spectrum():
+    """An outside audit: for a pendulum whose spectrum spans 1e10 the rounded first-order
+    matrix grows at the wrong rate (its slow pair 6.8e-14 +- 1704i instead of the exact
+    +-1.08e-7 at 1.5 H_cr): refused, saying so; near a coalescence (a Jordan block, where the
+    eigensolver's own error is sqrt(eps)) an ordinary pendulum is answered."""
+    from flutterfriction.analysis.ziegler import linear_response
+
+    p = ZieglerPendulum(**WIDE_SPECTRUM)
+    with pytest.raises(ConvergenceError, match="beyond double precision"):
+        linear_response(p, 0.0, 1.5 * dead_critical_loads(p)[0], [0.01, 0, 0, 0], [0.0, 10.0])
+    q = ZieglerPendulum(**LIST47)
+    P_flu, P_div = follower_critical_gammas(q)
+    for P in (P_flu * (1 - 1e-9), P_flu * (1 + 1e-9), P_div * (1 + 1e-9)):
+        x = linear_response(q, P * q.load_unit, 0.0, [0.01, 0, 0, 0], [0.0, 20.0])
+        assert np.all(np.isfinite(x))

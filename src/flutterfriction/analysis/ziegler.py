@@ -377,6 +377,11 @@ def regime(pendulum: ZieglerPendulum, P: float = 0.0, H: float = 0.0) -> Regime:
         return classify(s)
 
 
+#: The largest error of the exponents ``s t`` the linear response accepts (the eigenvalues of
+#: its rounded first-order matrix against the exact spectrum, times the longest time).
+LINEAR_RESPONSE_EXPONENT_ERROR = 1e-6
+
+
 def linear_response(pendulum: ZieglerPendulum, P: float, H: float, state0: ArrayLike,
                     times: ArrayLike) -> NDArray:
     """Exact solution of the linear eqs. (11) + (26) at the given instants.
@@ -412,6 +417,27 @@ def linear_response(pendulum: ZieglerPendulum, P: float, H: float, state0: Array
         raise ParameterError(f"times: the linear response overflows the double range at "
                              f"t = {bad[0]:.3g} s (growth rate max Re s = "
                              f"{np.linalg.eigvals(A).real.max():.3g} 1/s)")
+    exact = None if is_damped(pendulum) else _undamped_spectrum(pendulum, P, H)
+    if exact is not None and t.size:
+        # expm(A t) grows as the eigenvalues of the rounded A do: refused where they miss the
+        # exact spectrum by more than 1e-6 over the times asked (an outside audit: a pendulum
+        # with a spectrum spanning 1e10 grew at 1.2e-3 1/s instead of 3.8e-4)
+        # (beyond the eigensolver's own error: 1e3 eps max|s|, and sqrt(eps) |s| at a
+        # coalescence, where a Jordan block splits but expm does not)
+        rounded = np.linalg.eigvals(A)
+        scale = float(np.max(np.abs(exact)))
+        eps = np.finfo(float).eps
+        misses = [float(np.min(np.abs(rounded - z))) for z in exact]
+        beyond = [m for m, z in zip(misses, exact, strict=True)
+                  if m > 1e3 * eps * scale + 1e2 * math.sqrt(eps) * abs(z)]
+        miss = max(beyond, default=0.0)
+        if miss * float(np.max(np.abs(t))) > LINEAR_RESPONSE_EXPONENT_ERROR:
+            raise ConvergenceError(
+                f"the linear response of this pendulum is beyond double precision: the "
+                f"eigenvalues of its first-order matrix miss the exact spectrum by {miss:.3g} "
+                f"1/s, an error of {miss * float(np.max(np.abs(t))):.3g} in exp(s t) at "
+                f"t = {float(np.max(np.abs(t))):.3g} s (its spectrum spans "
+                f"{np.max(np.abs(exact)) / max(np.min(np.abs(exact)), 1e-300):.3g})")
     return x
 
 
