@@ -423,3 +423,18 @@ def test_linear_response_refuses_where_its_matrix_misses_the_spectrum():
     for P in (P_flu * (1 - 1e-9), P_flu * (1 + 1e-9), P_div * (1 + 1e-9)):
         x = linear_response(q, P * q.load_unit, 0.0, [0.01, 0, 0, 0], [0.0, 20.0])
         assert np.all(np.isfinite(x))
+
+
+def test_damped_closed_form_is_exact_where_its_terms_cancel():
+    """An outside audit: the generalised eq. (54) in doubles was 8.6e-6 off where the damped
+    load is 1e-11 of beta1 (l1/l2 = 102, k1/k2 = 1e-3, c1 = 0); in exact rational arithmetic
+    (it holds eps^2 only) it meets the exact Routh verdicts' load to 1e-12, here and for the
+    chapter's list (47)."""
+    from flutterfriction.closed_forms.ziegler_damped import damped_flutter_gamma_exact
+
+    cancelling = ZieglerPendulum(l1=28.97, l2=0.2845, d=28.97, h=0.254, m1=746.7, m2=6.74,
+                                 m3=0.0, k1=4e-5, k2=0.0391, c1=0.0, c2=4.25e-5)
+    viscous47 = ZieglerPendulum(**LIST47, c1=0.006, c2=0.006)
+    for p in (cancelling, viscous47):
+        assert damped_flutter_gamma_exact(p) * p.load_unit == pytest.approx(
+            damped_flutter_load(p), rel=1e-12)

@@ -100,14 +100,13 @@ def vanishing_viscosity_cases() -> list[StressResult]:
     """Hinge viscosity down to 1e-10 of the reference: exact Routh–Hurwitz against the closed
     form (eq. 54 generalised, exact in eps)."""
     from flutterfriction.analysis.ziegler import damped_flutter_load, regime
-    from flutterfriction.closed_forms.ziegler_damped import damped_flutter_gamma, viscosity_groups
+    from flutterfriction.closed_forms.ziegler_damped import damped_flutter_gamma_exact
     from flutterfriction.models.ziegler import ZieglerPendulum
 
     out = []
     for c in (1e-6, 1e-8, 1e-10):
         p = ZieglerPendulum(**LIST47, c1=c, c2=c)
-        eps, cr = viscosity_groups(p)
-        exact = damped_flutter_gamma(p.groups(), eps, cr) * p.load_unit
+        exact = damped_flutter_gamma_exact(p) * p.load_unit
         for method, tol in (("routh", 1e-12), ("eigenvalues", 1e-5)):
             out.append(_judge(
                 "vanishing viscosity", f"c1 = c2 = {c:g} N m s, {method}",

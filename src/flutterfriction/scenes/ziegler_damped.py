@@ -169,7 +169,6 @@ class _Fig19:
             raise ParameterError(f"c_min must be < c_max = {self.c_max:g} N m s, "
                                  f"got {self.c_min:g}")
         self.P_flu0, self.P_div0 = follower_critical_loads(p0)
-        self.per_c = p0.relative_viscosity(1.0)  # epsilon = c2 per_c (eq. 29)
         for name, r, ratio in (("flutter_ratio", self.r_flu, self.flutter_ratio_closed),
                                ("divergence_ratio", self.r_div, self.divergence_ratio)):
             ends = sorted((ratio(self.c_min), ratio(self.c_max)))
@@ -185,8 +184,7 @@ class _Fig19:
         return self.p0.with_(c1=c, c2=c)
 
     def flutter_ratio_closed(self, c: float) -> float:
-        return (cfd.damped_flutter_gamma(self.p0.groups(), c * self.per_c, 1.0)
-                * self.p0.load_unit / self.P_flu0)
+        return cfd.damped_flutter_gamma_exact(self.hinge(c)) * self.p0.load_unit / self.P_flu0
 
     def divergence_ratio(self, c: float, method: str = "eigenvalues") -> float:
         return damped_divergence_load(self.hinge(c), method) / self.P_div0

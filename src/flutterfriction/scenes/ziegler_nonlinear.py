@@ -394,7 +394,7 @@ def pendulum_work_precision(params: dict[str, Any]) -> dict[str, Any]:
         follower_critical_loads,
     )
     from flutterfriction.closed_forms.ziegler import critical_loads_closed_form
-    from flutterfriction.closed_forms.ziegler_damped import damped_flutter_gamma
+    from flutterfriction.closed_forms.ziegler_damped import damped_flutter_gamma_exact
 
     take(params, {"pendulum", "cycle_pendulum", "c_values", "methods", "rtols", "repeats",
                    "load_factor"})
@@ -416,8 +416,7 @@ def pendulum_work_precision(params: dict[str, Any]) -> dict[str, Any]:
                      "error": abs(v - P_mp) / P_mp, "wall_s": t})
     for c in params["c_values"]:
         pd = p.with_(c1=float(c), c2=float(c))
-        eps, cr = viscosity_groups(pd)
-        exact = damped_flutter_gamma(pd.groups(), eps, cr) * pd.load_unit
+        exact = damped_flutter_gamma_exact(pd) * pd.load_unit
         for method in ("routh", "eigenvalues"):
             v, t = timed(lambda pd=pd, method=method: damped_flutter_load(pd, method))
             runs.append({"family": "pendulum damped flutter load", "method": method,
