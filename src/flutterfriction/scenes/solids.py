@@ -189,14 +189,19 @@ def acoustic_eigenvalues(params: dict[str, Any]) -> dict[str, Any]:
 DP_COEFFICIENT_MAX = math.sqrt(3.0)
 
 
-def check_localization_directions(params: dict[str, Any]) -> None:
-    """The material and state as :func:`localization_directions` refuses them (the
-    configuration check)."""
-    check_positive("G", params["G"])
+def _localization_case(params: dict[str, Any]) -> tuple[float, float, np.ndarray, np.ndarray]:
+    """``(G, nu, P, Q)`` of :func:`localization_directions`, checked."""
+    G = check_positive("G", params["G"])
     nu = check_real("nu", params["nu"])
     if not -1 < nu < 0.5:
         raise ParameterError(f"nu must lie in (-1, 0.5), got {nu}")
-    _dp_state(params)
+    return (G, nu, *_dp_state(params))
+
+
+def check_localization_directions(params: dict[str, Any]) -> None:
+    """The material and state as :func:`localization_directions` refuses them (the
+    configuration check)."""
+    _localization_case(params)
 
 
 def _dp_state(params: dict[str, Any]):
@@ -232,12 +237,9 @@ def localization_directions(params: dict[str, Any]) -> dict[str, Any]:
     """g_E(n) over the directions of the (sigma_1, sigma_3) principal plane and its maximum over
     the whole sphere, against Rudnicki and Rice's closed form."""
     take(params, {"G", "nu", "beta", "mu_f", "N", "n_points", "n_search"})
-    G, nu = check_positive("G", params["G"]), float(params["nu"])
-    if not -1 < nu < 0.5:
-        raise ParameterError(f"nu must lie in (-1, 0.5), got {nu}")
+    G, nu, P, Q = _localization_case(params)
     lam = 2 * G * nu / (1 - 2 * nu)
     E = so.isotropic_elasticity(lam, G)
-    P, Q = _dp_state(params)
     theta = np.linspace(0, np.pi, n_points(params))
     gE = ac.localization_moduli(E, P, Q, _direction_in_plane(theta))
     g_max, n_max = ac.max_localization_modulus(E, P, Q, int(params.get("n_search", 4000)))
