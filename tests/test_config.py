@@ -163,6 +163,8 @@ def test_validate_config_names_the_key(config, path, value, match):
     (("scenes", "localization_directions", "mu_f"), -5.0,
      r"localization_directions: mu_f must lie in \[0, sqrt3"),
     (("scenes", "localization_directions", "beta"), 1e300, "localization_directions: beta"),
+    (("scenes", "flutter_map", "anisotropy", "eps_values"), [0.0, 100.0],
+     "eps = 100 makes the elasticity E0 \\+ eps T not positive definite"),
 ])
 def test_scene_checks_refuse_cases_their_jobs_fail_on(config, path, value, match):
     """The solids' cases refused before any job, naming the keys (an outside audit: each

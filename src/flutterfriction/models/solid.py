@@ -52,6 +52,16 @@ def random_elasticity_perturbation(rng: np.random.Generator) -> NDArray:
     return T / np.linalg.norm(T)
 
 
+def mandel_matrix(E: NDArray) -> NDArray:
+    """The 6x6 Mandel matrix of a fourth-order tensor with minor symmetries (its eigenvalues
+    are the tensor's on symmetric second-order tensors: positive definite elasticity has all
+    of them > 0)."""
+    pairs = [(0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1)]
+    weight = [1.0, 1.0, 1.0, math.sqrt(2), math.sqrt(2), math.sqrt(2)]
+    return np.array([[E[i, j, k, l] * wa * wb for (k, l), wb in zip(pairs, weight, strict=True)]
+                     for (i, j), wa in zip(pairs, weight, strict=True)])
+
+
 def apply(E: NDArray, A: ArrayLike) -> NDArray:
     """``E[A]``."""
     return np.einsum("ijkl,kl->ij", E, np.asarray(A, dtype=float))

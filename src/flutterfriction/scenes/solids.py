@@ -422,7 +422,14 @@ def check_flutter_map(params: dict[str, Any]) -> None:
     """The plane case and the anisotropy section as :func:`flutter_map` refuses them (the
     configuration check; an outside audit: a stress without deviator failed in the job)."""
     _nonassociative_case({**params["plane_case"], "n": [1, 0, 0]})
-    anisotropy_setup(params["anisotropy"])
+    a = anisotropy_setup(params["anisotropy"])
+    for eps in params["anisotropy"]["eps_values"]:
+        # the perturbed elasticity must stay positive definite (an outside audit ran eps = 100)
+        least = float(np.linalg.eigvalsh(so.mandel_matrix(a.E0 + float(eps) * a.T)).min())
+        if not least > 0:
+            raise ParameterError(f"anisotropy.eps_values: eps = {eps:g} makes the elasticity "
+                                 f"E0 + eps T not positive definite (its least Mandel "
+                                 f"eigenvalue {least:.3g} Pa)")
 
 
 def errata_solids(params: dict[str, Any]) -> dict[str, Any]:
