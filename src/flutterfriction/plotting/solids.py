@@ -391,8 +391,9 @@ def plot_flutter_map(data: dict[str, Any]) -> Figure:
                   fontsize=8)
     ax3.plot(an["eps"], np.array(an["fraction_flutter"]) * 100, "o-", ms=3.5, color="C3")
     ax3.set_xlabel("elastic anisotropy ε [-]")
-    ax3.set_ylabel(f"directions that flutter [%] (of the ±{off[-1]:g}° patch)")
-    ax3.set_title("(c) flutter appears with anisotropy", fontsize=8)
+    ax3.set_ylabel("directions that flutter [%]")
+    ax3.set_title(f"(c) flutter appears with anisotropy\n(share of the ±{off[-1]:g}° patch)",
+                  fontsize=8)
     text = _case_text(data.get("params", {}).get("plane_case", {}))
     if text:
         fig.suptitle(f"(a): {text}, n in the $(e_1, e_3)$ plane", fontsize=7.5)

@@ -89,7 +89,7 @@ def plot_follower_spectrum(data: dict[str, Any], title: str, in_newtons: bool = 
     # the normalisation of eq. (17), as Fig. eq25 states it (a figure review: with the load in
     # newtons, omega^2 read as a dimensional quantity)
     ax1.set_ylabel(r"Re $\omega^2$ [-], $\omega^2 = m_2 l_2^2\,\Omega^2/k_2$")
-    fmt = ("{:.3f} N" if in_newtons else "{:.4f} K/L")
+    fmt = ("{:.4f} N" if in_newtons else "{:.4f} K/L")  # (the caption quotes 4.8038, 8.8042 N)
     # Threshold values above the frame, clear of the branches (ending / starting at their line).
     for name, val, ha in ((r"$P_{flu}$", g_flu, "right"), (r"$P_{div}$", g_div, "left")):
         ax1.annotate(name + " = " + fmt.format(val * unit), (val * unit, 1.0),
@@ -149,10 +149,10 @@ def plot_fig03(data: dict[str, Any]) -> Figure:
     printed = data.get("gammas_as_printed")
     if printed is not None:  # the erratum of eq. (37), stated where its values show
         title += ("\n" + r"$\gamma_{flu}, \gamma_{div}$ from eq. (37) corrected, "
-                  r"$\beta_1 \mp 2\sqrt{ka}$;" + "\n"
-                  + r"as printed, $\beta_1 \mp 2\sqrt{k}\,a$, "
+                  r"$(\beta_1 \mp 2\sqrt{ka})/\beta_2$;" + "\n"
+                  + r"as printed, $(\beta_1 \mp 2\sqrt{k}\,a)/\beta_2$, "
                   f"they would be {printed[0]:.3f}, {printed[1]:.3f}")
-    ax.set_title(title, pad=28, fontsize=8)
+    ax.set_title(title, pad=6, fontsize=8)  # (placed above the top P axis by matplotlib)
     return fig
 
 
@@ -240,8 +240,9 @@ def plot_fig04(data: dict[str, Any]) -> Figure:
         if np.abs(alpha).max() > FIG04_MAX_DEG:
             for sgn in (1, -1):
                 ax_t.axhspan(sgn * FIG04_MAX_DEG, sgn * lim, color="0.88", lw=0)
-            ax_t.text(0.03, 0.97, f"beyond ±{FIG04_MAX_DEG:g}°: linearisation invalid",
-                      transform=ax_t.transAxes, fontsize=6.5, va="top", color="0.3")
+            ax_t.text(0.03, 0.97, f"|α| > {FIG04_MAX_DEG:g}°: linearisation invalid",
+                      transform=ax_t.transAxes, fontsize=6.5, va="top", color="0.3",
+                      bbox={"facecolor": "0.88", "edgecolor": "none", "pad": 1.0}, zorder=5)
         ax_t.set_xlim(0, times[-1])
         ax_t.set_xlabel("time t [s]")
         ax_t.set_ylabel("linear solution [deg]")
