@@ -324,7 +324,8 @@ def plot_localization_directions(data: dict[str, Any]) -> Figure:
     ax.set_xlabel(r"angle of n from the $\sigma_1$ axis [deg]")
     ax.set_ylabel(r"$g^E_{cr}(n)$ [Pa]")
     # under the axes: inside, it hid the curve's rising branch (a figure review)
-    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.17), ncol=2)
+    # one entry a row: in two columns it was wider than the axes (a figure review)
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.17), ncol=1)
     return fig
 
 
