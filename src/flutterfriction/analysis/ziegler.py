@@ -254,17 +254,23 @@ def critical_loads(pendulum: ZieglerPendulum) -> CriticalLoads:
 def _undamped_biquadratic(pendulum: ZieglerPendulum, P: float, H: float
                           ) -> tuple[Fraction, Fraction, Fraction]:
     """``(a, b, c)`` with ``det(M lam + K + gamma G_f + eta G_d) = a lam^2 + b lam + c``,
-    ``lam = s^2`` in units of ``k2/(m2 l2^2)`` (the undamped eq. 11 plus eq. 26), exact
-    fractions of the parameters and of the loads in units of k2/l1 (rounded once)."""
+    ``lam = s^2`` in units of ``k2/(m2 l2^2)`` (the undamped eq. 11 plus eq. 26): the
+    characteristic polynomial in exact fractions of the parameters and of the loads in units
+    of k2/l1 (rounded once; :func:`_exact_loads`), whose odd coefficients vanish."""
     m = _exact_dimensionless(pendulum)
+    a, _, b, _, c = characteristic_polynomial(m.M, m.C, _exact_loads(pendulum, m, P, H))
+    return a, b, c
+
+
+def _exact_loads(pendulum: ZieglerPendulum, m: DimensionlessMatrices, P: float, H: float
+                 ) -> NDArray:
+    """``K + gamma G_f + eta G_d`` in exact fractions, the loads in units of k2/l1 rounded once
+    (refused, naming them, where they overflow)."""
     gamma, eta = P / pendulum.load_unit, H / pendulum.load_unit
     if not (math.isfinite(gamma) and math.isfinite(eta)):
         raise ParameterError(f"the loads P = {P!r}, H = {H!r} N overflow in units of k2/l1 = "
                              f"{pendulum.load_unit:.3g} N")
-    M, K = m.M, m.K + Fraction(gamma) * m.G_follower + Fraction(eta) * m.G_dead
-    return (M[0, 0] * M[1, 1] - M[0, 1] * M[1, 0],
-            M[0, 0] * K[1, 1] + M[1, 1] * K[0, 0] - M[0, 1] * K[1, 0] - M[1, 0] * K[0, 1],
-            K[0, 0] * K[1, 1] - K[0, 1] * K[1, 0])
+    return m.K + Fraction(gamma) * m.G_follower + Fraction(eta) * m.G_dead
 
 
 def _undamped_regime(a: Fraction, b: Fraction, c: Fraction) -> Regime | None:
@@ -283,11 +289,12 @@ def _undamped_regime(a: Fraction, b: Fraction, c: Fraction) -> Regime | None:
     return None
 
 
-def _undamped_spectrum(pendulum: ZieglerPendulum, P: float, H: float) -> NDArray | None:
-    """The undamped spectrum [1/s] from the exact biquadratic: ``s^2`` from its exact
-    discriminant, the smaller root from the product ``c/a`` (no cancellation), ``s = +-sqrt``,
-    in units of ``sqrt(k2/m2)/l2``; None where it leaves the double range."""
-    a, b, c = _undamped_biquadratic(pendulum, P, H)
+def _undamped_spectrum(pendulum: ZieglerPendulum, a: Fraction, b: Fraction, c: Fraction
+                       ) -> NDArray | None:
+    """The undamped spectrum [1/s] from the exact biquadratic ``(a, b, c)``
+    (:func:`_undamped_biquadratic`): ``s^2`` from its exact discriminant, the smaller root from
+    the product ``c/a`` (no cancellation), ``s = +-sqrt``, in units of ``sqrt(k2/m2)/l2``;
+    None where it leaves the double range."""
     disc = b * b - 4 * a * c
     try:
         fa, fb, fc, fd = (float(v) for v in (a, b, c, disc))
@@ -317,11 +324,20 @@ def spectrum(pendulum: ZieglerPendulum, P: float = 0.0, H: float = 0.0) -> NDArr
     spans ~1e10 (an outside audit: a pendulum with l1/l2 = 2.3e4, k1/k2 = 1.2e-5 in divergence
     at 1.5 H_cr gave the pair 6.8e-14 +- 1704i instead of +-1.083e-7). Damped: the eigenvalues
     of the first-order matrix."""
+    return _spectrum(pendulum, P, H)[0]
+
+
+def _spectrum(pendulum: ZieglerPendulum, P: float, H: float
+              ) -> tuple[NDArray, tuple[Fraction, Fraction, Fraction] | None]:
+    """:func:`spectrum`, and the undamped pendulum's exact biquadratic (None when damped), which
+    :func:`regime` then uses without forming it again."""
     K = _finite_stiffness(pendulum, P, H)
+    coefficients = None
     if not is_damped(pendulum):
-        s = _undamped_spectrum(pendulum, check_real("P", P), check_real("H", H))
+        coefficients = _undamped_biquadratic(pendulum, check_real("P", P), check_real("H", H))
+        s = _undamped_spectrum(pendulum, *coefficients)
         if s is not None:
-            return s
+            return s, coefficients
     try:
         with np.errstate(over="ignore", invalid="ignore"):
             s = state_eigenvalues(pendulum.mass_matrix(), K, pendulum.viscosity_matrix())
@@ -330,7 +346,7 @@ def spectrum(pendulum: ZieglerPendulum, P: float = 0.0, H: float = 0.0) -> NDArr
     if not np.all(np.isfinite(s)):
         raise ParameterError(f"the loads P = {P!r}, H = {H!r} N overflow the first-order "
                              f"matrix (load unit k2/l1 = {pendulum.load_unit:.3g} N)")
-    return s
+    return s, coefficients
 
 
 def _finite_stiffness(pendulum: ZieglerPendulum, P: float, H: float) -> NDArray:
@@ -361,18 +377,14 @@ def regime(pendulum: ZieglerPendulum, P: float = 0.0, H: float = 0.0) -> Regime:
     P = check_real("P", P)
     H = check_real("H", H)
     if not is_damped(pendulum):
-        s = spectrum(pendulum, P, H)  # the same checks of the loads (finite matrices)
-        verdict = _undamped_regime(*_undamped_biquadratic(pendulum, P, H))
+        s, coefficients = _spectrum(pendulum, P, H)  # (with the checks of the loads)
+        verdict = _undamped_regime(*coefficients)
         return verdict if verdict is not None else classify(s)  # on a boundary: as before
     s = spectrum(pendulum, P, H)  # the same checks of the loads (finite matrices)
     m = _exact_dimensionless(pendulum)
-    gamma, eta = P / pendulum.load_unit, H / pendulum.load_unit
-    if not (math.isfinite(gamma) and math.isfinite(eta)):
-        raise ParameterError(f"the loads P = {P!r}, H = {H!r} N overflow in units of k2/l1 = "
-                             f"{pendulum.load_unit:.3g} N")
-    K = m.K + Fraction(gamma) * m.G_follower + Fraction(eta) * m.G_dead
     try:
-        return regime_from_coefficients(characteristic_polynomial(m.M, m.C, K))
+        return regime_from_coefficients(
+            characteristic_polynomial(m.M, m.C, _exact_loads(pendulum, m, P, H)))
     except ConvergenceError:  # a root exactly on the imaginary axis: a critical load
         return classify(s)
 
@@ -417,7 +429,8 @@ def linear_response(pendulum: ZieglerPendulum, P: float, H: float, state0: Array
         raise ParameterError(f"times: the linear response overflows the double range at "
                              f"t = {bad[0]:.3g} s (growth rate max Re s = "
                              f"{np.linalg.eigvals(A).real.max():.3g} 1/s)")
-    exact = None if is_damped(pendulum) else _undamped_spectrum(pendulum, P, H)
+    exact = None if is_damped(pendulum) else \
+        _undamped_spectrum(pendulum, *_undamped_biquadratic(pendulum, P, H))
     if exact is not None and t.size:
         # expm(A t) grows as the eigenvalues of the rounded A do: refused where they miss the
         # exact spectrum by more than 1e-6 over the times asked (an outside audit: a pendulum
