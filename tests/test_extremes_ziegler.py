@@ -438,3 +438,38 @@ def test_damped_closed_form_is_exact_where_its_terms_cancel():
     for p in (cancelling, viscous47):
         assert damped_flutter_gamma_exact(p) * p.load_unit == pytest.approx(
             damped_flutter_load(p), rel=1e-12)
+
+
+def test_damped_closed_form_in_doubles_refuses_where_its_terms_cancel():
+    """A second outside audit: the generalised eq. (54) in doubles returned -1.2e-7 (the sign
+    lost) for a load of 1.0e-11 (l1/l2 = 1e3, m1/m2 = 1e6, k1/k2 = 1e-2, c1 = 0), silently. It
+    now refuses where its rounding bound exceeds 1e-8 of the load, and where it answers it is
+    within that of the exact form, on random pendulums spanning the cancelling ones."""
+    from flutterfriction.closed_forms import ziegler_damped as cfd
+
+    audit = ZieglerPendulum(l1=1000, l2=1, d=1000, h=0, m1=1e6, m2=1, m3=0, k1=0.01, k2=1,
+                            c1=0, c2=0.1)
+    eps, c = cfd.viscosity_groups(audit)
+    with pytest.raises(ConvergenceError, match="cancels here.*damped_flutter_gamma_exact"):
+        cfd.damped_flutter_gamma(audit.groups(), eps, c)
+    with pytest.raises(ConvergenceError, match="cancels here"):
+        cfd.vanishing_viscosity_flutter_gamma(audit.groups(), c)
+    assert cfd.damped_flutter_gamma_exact(audit) == pytest.approx(1.000998996998004e-11,
+                                                                  rel=1e-12)
+    rng = np.random.default_rng(3)
+    answered = refused = 0
+    for _ in range(200):
+        l1, m1, k1 = 10 ** rng.uniform(-6, 6, 3)
+        c2 = 10 ** rng.uniform(-8, 2)
+        c1 = 0.0 if rng.random() < 0.5 else c2 * 10 ** rng.uniform(-6, 6)
+        p = ZieglerPendulum(l1=l1, l2=1, d=rng.uniform(0.05, 1) * l1, h=rng.uniform(0, 1),
+                            m1=m1, m2=1, m3=0, k1=k1, k2=1, c1=c1, c2=c2)
+        eps, c = cfd.viscosity_groups(p)
+        try:
+            gamma = cfd.damped_flutter_gamma(p.groups(), eps, c)
+        except ConvergenceError:
+            refused += 1
+            continue
+        answered += 1
+        assert gamma == pytest.approx(cfd.damped_flutter_gamma_exact(p), rel=1e-8)
+    assert answered > 100 and refused > 10  # both sides of the bound are exercised

@@ -33,7 +33,7 @@ from flutterfriction.closed_forms.ziegler import (
     coefficient_beta1,
     coefficient_beta2,
 )
-from flutterfriction.errors import ParameterError
+from flutterfriction.errors import ConvergenceError, ParameterError
 from flutterfriction.models.ziegler import PendulumGroups, ZieglerPendulum
 
 if TYPE_CHECKING:
@@ -127,12 +127,44 @@ def _q1_q3(g: PendulumGroups, c: float) -> tuple[float, float]:
     return q1, c + g.k
 
 
-def damped_flutter_gamma(g: PendulumGroups, eps: float, c: float) -> float:
-    """Damped flutter load ``gamma* = P*_flu l1/k2`` for any pendulum (generalises eq. 54)."""
+def _flutter_terms(g, eps2, c):
+    """The three terms of eq. (54) generalised, ``beta1 + c eps^2 - t`` (``t`` the AM-GM term),
+    each a sum of products of nonnegative groups; and ``beta2``. Any arithmetic: floats or
+    Fractions."""
     q1, q3 = _q1_q3(g, c)
-    a, k = coefficient_a(g), g.k
-    return (coefficient_beta1(g) + c * eps**2 - (a * q3**2 + k * q1**2) / (q1 * q3)) \
-        / coefficient_beta2(g)
+    t = (coefficient_a(g) * q3**2 + g.k * q1**2) / (q1 * q3)
+    return coefficient_beta1(g), c * eps2, t, coefficient_beta2(g)
+
+
+# Where the load is small against beta1 (k1 << k2 with c1 = 0, the Ziegler paradox in the
+# extreme) the terms' difference loses their rounding's digits: the float form refuses where the
+# bound below exceeds CANCELLATION_RTOL of the load. Measured against the exact form on 2,661
+# random pendulums (ratios 1e-6..1e6) where it is usable: error <= 2 eps (sum of terms)/|load|,
+# so 64 eps is a 32x margin.
+CANCELLATION_RTOL = 1e-8
+_TERM_ROUNDING = 64 * np.finfo(float).eps
+
+
+def damped_flutter_gamma(g: PendulumGroups, eps: float, c: float) -> float:
+    """Damped flutter load ``gamma* = P*_flu l1/k2`` for any pendulum (generalises eq. 54).
+
+    Raises
+    ------
+    ConvergenceError
+        Where the terms cancel so that the doubles' rounding could exceed ``CANCELLATION_RTOL``
+        of the load (an outside audit: l1/l2 = 1e3, m1/m2 = 1e6, k1/k2 = 1e-2, c1 = 0 gave
+        -1.2e-7 for 1.0e-11); :func:`damped_flutter_gamma_exact` answers there.
+    """
+    b1, viscous, t, b2 = _flutter_terms(g, eps**2, c)
+    num = b1 + viscous - t
+    bound = _TERM_ROUNDING * (b1 + viscous + t)
+    if not bound <= CANCELLATION_RTOL * abs(num):
+        raise ConvergenceError(
+            f"the closed form of the damped flutter load cancels here: its terms are "
+            f"{(b1 + viscous + t) / max(abs(num), 1e-300):.1e} times the load, so rounding "
+            f"could exceed {CANCELLATION_RTOL:g} of it; damped_flutter_gamma_exact(pendulum) "
+            f"evaluates it in exact arithmetic")
+    return num / b2
 
 
 def damped_flutter_gamma_exact(pendulum: ZieglerPendulum) -> float:
@@ -145,13 +177,10 @@ def damped_flutter_gamma_exact(pendulum: ZieglerPendulum) -> float:
 
     if pendulum.c2 <= 0:
         raise ParameterError("the dimensionless form of eq. (29) needs c2 > 0 (c = c1/c2)")
-    g = pendulum.groups(exact=True)
     eps2 = F(pendulum.c2) ** 2 / (F(pendulum.l2) ** 2 * F(pendulum.k2) * F(pendulum.m2))
-    c = F(pendulum.c1) / F(pendulum.c2)
-    q1, q3 = _q1_q3(g, c)
-    a, k = coefficient_a(g), g.k
-    return float((coefficient_beta1(g) + c * eps2 - (a * q3**2 + k * q1**2) / (q1 * q3))
-                 / coefficient_beta2(g))
+    b1, viscous, t, b2 = _flutter_terms(pendulum.groups(exact=True), eps2,
+                                        F(pendulum.c1) / F(pendulum.c2))
+    return float((b1 + viscous - t) / b2)
 
 
 def vanishing_viscosity_flutter_gamma(g: PendulumGroups, c: float) -> float:
