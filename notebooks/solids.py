@@ -59,7 +59,7 @@ show("fig22", width=520)
 d = scene("fig22")
 display(Markdown(
     f"Branches along the path: {', '.join(d['branch'][1:])}. Slip operator at the slip point: "
-    f"C21 - C12 = {d['quantities']['slip_operator_asymmetry']['value']} N/m = mu k_N; "
+    f"C21 - C12 = {d['quantities']['slip_operator_asymmetry']['value']} N/m = mu k_N sgn p_T; "
     f"largest |f| while slipping: {d['quantities']['cone_drift_while_slipping']['value']:.1e} N."))
 
 # %% [markdown]

@@ -15,7 +15,7 @@ from flutterfriction.analysis import acoustic as ac
 from flutterfriction.errors import ParameterError
 from flutterfriction.models import solid as so
 from flutterfriction.models.contact import CoulombContact, integrate_path
-from flutterfriction.scenes.solids import rudnicki_rice_hcr
+from flutterfriction.scenes.solids import fig22, rudnicki_rice_hcr
 
 
 def sym(rng_vals) -> np.ndarray:
@@ -617,3 +617,43 @@ def test_isotropic_regime_changes_at_the_localization_modulus(lam, rel):
             g = g_loc * (1 + side * rel)
             assert (smallest(mpmath.mpf(g)) < 0) == (expected == "divergence")
             assert isotropic_acoustic(lam, 1.0, Pv, Qv, n, g=g).regime.value == expected
+
+
+@pytest.mark.parametrize(("contact", "path", "p_T"), [
+    ((0.1, 1.0, 0.3), [[0, 0], [1e-11, 0], [1e-11, 1e-12]], 3e-13),  # 1 pN normal force
+    ((1e-13, 1e-13, 0.5), [[0, 0], [1, 0], [1, 1]], 5e-14),
+    ((1, 1, 1e-13), [[0, 0], [1, 0], [1, 1]], 1e-13),
+    ((1e6, 1, 1e-15), [[0, 0], [1, 0], [1, 1e-10]], 1e-10),  # stick, 10 % inside the cone
+    ((1, 1, 1e-10), [[0, 0], [1, 0], [1, 1e-10 - 5e-13], [1, 2e-10]], 1e-10),
+])
+def test_small_forces_and_small_friction_stick_until_the_cone(contact, path, p_T):
+    """A second outside audit: the cone's round-off had an absolute floor of 1e-12 N and a
+    p_N term, so forces well inside a cone of small forces or small mu were taken as on it: a
+    stick step slipped and p_T froze (0 instead of 3e-13 N, ...; 0.5 % low). The stop operator
+    |p_T| <= mu p_N gives the final p_T by hand."""
+    r = integrate_path(CoulombContact(*contact), path)
+    assert r.p[-1, 1] == pytest.approx(p_T, rel=1e-12)
+    assert CoulombContact(1e-13, 1e-13, 0.5).rate([1e-13, 0], [0, 1]) == pytest.approx(
+        [0, 1e-13], rel=1e-12)
+
+
+def test_inadmissible_forces_and_malformed_input_are_refused_by_name():
+    """The audit: rate() answered for a force outside the cone and for a tensile p_N;
+    integrate_path("ab") and friction_function([1, 2, 3]) were raw numpy errors."""
+    c = CoulombContact(1.0, 1.0, 1.0)
+    for p in ([1, 5], [-1, 0]):
+        with pytest.raises(ParameterError, match=r"^p = .* is outside the Coulomb cone"):
+            c.rate(p, [0, 1])
+    with pytest.raises(ParameterError, match="^vertices must be"):
+        integrate_path(c, "ab")
+    with pytest.raises(ParameterError, match="^p must be two finite numbers"):
+        c.friction_function([1, 2, 3])
+
+
+def test_fig22_asymmetry_on_the_negative_side_of_the_cone():
+    """The audit: a path first slipping at p_T < 0 failed its own exact check, the independent
+    C21 - C12 lacking sgn p_T (eq. 143: mu k_N sgn p_T)."""
+    q = fig22({"k_N": 2.0, "k_T": 1.0, "mu": 0.5,
+               "path": [[0, 0], [1, 0], [1, -1.5], [1, 1.0]]})["quantities"]
+    for key in ("slip_operator_asymmetry", "slip_operator_C21"):
+        assert q[key]["value"] == q[key]["independent"] == -1.0

@@ -42,8 +42,11 @@ class CoulombContact:
 
     def friction_function(self, p: ArrayLike) -> float:
         """``f = |p_T| - mu p_N`` (eq. 128)."""
-        pN, pT = np.asarray(p, dtype=float)
-        return abs(pT) - self.mu * pN
+        return self._friction(check_finite_array("p", p, (2,), "two finite numbers (p_N, p_T)"))
+
+    def _friction(self, p: NDArray) -> float:
+        """:meth:`friction_function` of a checked force (the path's inner loop)."""
+        return abs(p[1]) - self.mu * p[0]
 
     @staticmethod
     def _side(p: ArrayLike, side: float | None) -> float:
@@ -67,20 +70,31 @@ class CoulombContact:
 
     def cone_tolerance(self, p: NDArray) -> float:
         """Round-off of the friction function at ``p``: relative to its terms ``|p_T|`` and
-        ``mu p_N``, not to ``p_N`` alone (with ``mu ~ 1e5`` a force on the cone missed it by
-        1e-7 and a stick step never advanced)."""
-        return 1e-12 * max(1.0, abs(p[0]), abs(p[1]), self.mu * abs(p[0]))
+        ``mu p_N`` only (with ``mu ~ 1e5`` a force on the cone missed it by 1e-7 and a stick
+        step never advanced). No absolute floor and no ``p_N`` alone: a second outside audit
+        found forces well inside the cone taken as on it, so a stick step slipped and ``p_T``
+        froze (1 pN forces; ``mu = 1e-13``; ``mu = 1e-10`` 0.5 % inside the cone). Not the
+        segment's increment either: a stick step to the cone rounds relative to the step it
+        takes, not to the whole segment's."""
+        return 1e-12 * max(abs(p[1]), self.mu * abs(p[0]))
+
+    def check_admissible(self, name: str, p: NDArray) -> None:
+        """Refuse a force outside the model: tensile ``p_N < 0`` or outside the cone."""
+        if p[0] < 0 or self._friction(p) > self.cone_tolerance(p):
+            raise ParameterError(f"{name} = {p.tolist()} is outside the Coulomb cone "
+                                 f"|p_T| <= mu p_N with p_N >= 0 (mu = {self.mu:g})")
 
     def rate(self, p: ArrayLike, u_dot: ArrayLike) -> NDArray:
         """``p_dot`` of eq. (140) at the force ``p`` for the displacement rate ``u_dot``."""
         p, u_dot = (check_finite_array(name, x, (2,), "two finite numbers (normal, tangential)")
                     for name, x in (("p", p), ("u_dot", u_dot)))
+        self.check_admissible("p", p)  # (an outside audit: p_T = 5 mu p_N gave a rate)
         E = self.elastic_matrix()
         if p[0] <= 0 and (E @ u_dot)[0] < 0:
             raise ParameterError("u_dot separates the contact at p_N = 0 (p_N would turn "
                                  "tensile): not modelled (chapter §3.1: contact only), as "
                                  "integrate_path")
-        if self.friction_function(p) < -self.cone_tolerance(p):
+        if self._friction(p) < -self.cone_tolerance(p):
             return E @ u_dot
         # At the apex (p_T = 0) the side of the cone is the one the elastic trial rate leaves
         # by (an outside audit: the default side +1 let p_T = (0, 0) -> (0, -3) stick out of
@@ -109,12 +123,14 @@ def integrate_path(contact: CoulombContact, vertices: ArrayLike,
     the cone (computed exactly), so every piece is linear. ``p0`` must be admissible
     (``p_N >= 0``, ``|p_T| <= mu p_N``).
     """
-    V = np.asarray(vertices, dtype=float)
+    try:
+        V = np.asarray(vertices, dtype=float)
+    except (ValueError, TypeError):  # strings, ragged nesting (an outside audit: a traceback)
+        V = np.empty((0, 0))
     if V.ndim != 2 or V.shape[1] != 2 or len(V) < 2 or not np.all(np.isfinite(V)):
         raise ParameterError("vertices must be a finite (m >= 2, 2) array of (u_N, u_T)")
     p = check_finite_array("p0", p0, (2,), "two finite numbers (p_N, p_T)").copy()
-    if p[0] < 0 or contact.friction_function(p) > contact.cone_tolerance(p):
-        raise ParameterError(f"p0 = {p0} is outside the Coulomb cone |p_T| <= mu p_N")
+    contact.check_admissible("p0", p)
     E = contact.elastic_matrix()
     # forces of every segment (and their sums along the path) within the double range: an
     # outside audit's 1e308 m overflowed in E du and was refused only as "no slip"
@@ -142,7 +158,7 @@ def integrate_path(contact: CoulombContact, vertices: ArrayLike,
             dp_trial = E @ du
             # The side of the cone: sgn p_T, or at the apex the direction of the trial rate.
             side = np.sign(p[1]) if abs(p[1]) > tol else (np.sign(dp_trial[1]) or 1.0)
-            on_cone = contact.friction_function(p) >= -tol
+            on_cone = contact._friction(p) >= -tol
             a, b = contact.gradient(p, side), contact.slip_direction(p, side)
             if on_cone and a @ dp_trial > 0:  # plastic loading: slip to the end of the segment
                 lam = (a @ dp_trial) / (a @ E @ b) * (1.0 - t)

@@ -60,7 +60,8 @@ def fig22(params: dict[str, Any]) -> dict[str, Any]:
                              "stick, slip and unloading")
     slip_pt = r.p[r.branch.index("slip")]
     C = c.slip_operator(slip_pt)
-    closed = np.array([[c.k_N, 0.0], [c.mu * c.k_N * np.sign(slip_pt[1]), 0.0]])
+    sgn = float(np.sign(slip_pt[1])) or 1.0  # the side of the cone slipped on (eq. 136)
+    closed = np.array([[c.k_N, 0.0], [c.mu * c.k_N * sgn, 0.0]])
     drift = max(abs(c.friction_function(p)) for p, b in zip(r.p, r.branch, strict=True)
                 if b == "slip")
     onset = r.branch.index("slip") - 1  # the recorded point where the first slip piece starts
@@ -87,8 +88,9 @@ def fig22(params: dict[str, Any]) -> dict[str, Any]:
             "slip_operator_C21": quantity(float(C[1, 0]), float(closed[1, 0]),
                                            "eq. (143) from E, a, b", "closed form mu k_N sgn p_T",
                                            "N/m"),
-            "slip_operator_asymmetry": quantity(float(C[1, 0] - C[0, 1]), c.mu * c.k_N,
-                                                 "C21 - C12 of eq. (143)", "mu k_N", "N/m"),
+            "slip_operator_asymmetry": quantity(float(C[1, 0] - C[0, 1]), c.mu * c.k_N * sgn,
+                                                 "C21 - C12 of eq. (143)", "mu k_N sgn p_T",
+                                                 "N/m"),
             "cone_drift_while_slipping": quantity(float(drift), 0.0,
                                                    "max |f| on the slip pieces", "zero", "N"),
         }}
