@@ -345,3 +345,48 @@ def test_the_polished_crossing_refuses_bad_input(change, match):
     with pytest.raises(ParameterError, match=match):
         polish_flutter_crossing(args["M"], args["C"], args["K0"], args["K1"], args["load"],
                                 rtol=rtol)
+
+
+def test_divergence_far_above_the_flutter_load_is_found():
+    """A second outside audit: with c1 = 0 the damped flutter load can be 1e20 times below the
+    divergence load (1.0e-14 N and 999010.77 N, from 60-digit roots of the exact quartic), beyond
+    the 60 doublings the scan had: refused, quoting a load in units of k2/l1."""
+    p = ZieglerPendulum(l1=1000, l2=1, d=1000, h=0, m1=1e6, m2=1, m3=0, k1=0.01, k2=1,
+                        c1=0, c2=0.1)
+    assert damped_flutter_load(p) == pytest.approx(1.000998996998004e-14, rel=1e-12)
+    assert damped_divergence_load(p) == pytest.approx(999010.7667290791, rel=1e-12)
+
+
+def test_the_generic_onsets_refuse_a_start_past_the_onset_and_bad_windows():
+    """The audit: from a start already unstable (or in divergence) the exact verdicts returned
+    the start plus a rounding error as the onset; load_max = -1 returned -1.8e16; NaN or
+    singular matrices and mismatched shapes were numpy tracebacks."""
+    from flutterfriction.analysis.damped import divergence_onset, flutter_onset
+    from flutterfriction.analysis.stability import classify
+    from flutterfriction.errors import ConvergenceError, ParameterError
+
+    M, K, G = [[2, 1], [1, 1]], [[2, -1], [-1, 1]], [[-1, 1], [0, 0]]
+    C = 0.1 * np.array([[2, -1], [-1, 1]])
+    onset = flutter_onset(M, C, K, G, method="routh", load_max=4.0)
+    assert flutter_onset(M, C, K, G, load_max=4.0) == pytest.approx(onset, rel=1e-9)
+    for method in ("routh", "eigenvalues"):
+        with pytest.raises(ConvergenceError, match="already unstable at the start load 3"):
+            flutter_onset(M, C, K, G, method=method, start=3.0, load_max=4.0)
+    with pytest.raises(ConvergenceError, match="already unstable at the start load 0"):
+        flutter_onset(M, -C, K, G, method="routh")
+    div = divergence_onset(M, C, K, G, method="algebraic", start=onset, load_max=2 * onset)
+    for method in ("algebraic", "eigenvalues"):
+        with pytest.raises(ConvergenceError, match="already in divergence"):
+            divergence_onset(M, C, K, G, method=method, start=2 * div, load_max=4 * div)
+    for kwargs, match in (({"load_max": -1.0}, "^load_max must be in"),
+                          ({"load_max": float("nan")}, "^load_max must be finite"),
+                          ({"n_scan": 0}, "^n_scan must be"),
+                          ({"max_doublings": 0}, "^max_doublings must be")):
+        with pytest.raises(ParameterError, match=match):
+            flutter_onset(M, C, K, G, method="routh", **kwargs)
+    for bad_M, match in (([[np.nan, 1], [1, 1]], "^M must be"), ([[1, 1], [1, 1]], "nonsingular"),
+                         ([[1, 0, 0], [0, 1, 0], [0, 0, 1]], "^C must be")):
+        with pytest.raises(ParameterError, match=match):
+            flutter_onset(bad_M, C, K, G)
+    with pytest.raises(ParameterError, match="^s must be finite"):
+        classify([np.nan, -1])

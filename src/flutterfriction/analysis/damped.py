@@ -37,6 +37,7 @@ from flutterfriction.errors import (
     ConvergenceError,
     ParameterError,
     check_finite_array,
+    check_integer,
     check_real,
 )
 
@@ -70,7 +71,25 @@ class _System:
 
     def __init__(self, M: ArrayLike, C: ArrayLike, K0: ArrayLike, K1: ArrayLike) -> None:
         given = [np.asarray(x) for x in (M, C, K0, K1)]
-        self.M, self.C, self.K0, self.K1 = (np.asarray(x, dtype=float) for x in given)
+        n = given[0].shape[0] if given[0].ndim == 2 else 0
+        # (an outside audit: NaN or singular M, mismatched shapes gave numpy's tracebacks)
+        try:
+            self.M, self.C, self.K0, self.K1 = (
+                check_finite_array(name, x.astype(float) if x.dtype == object else x, (n, n),
+                                   "a finite square matrix of M's shape")
+                for name, x in zip(("M", "C", "K0", "K1"), given, strict=True))
+        except (TypeError, ValueError) as exc:
+            if isinstance(exc, ParameterError):
+                raise
+            raise ParameterError("M, C, K0, K1 must be real square matrices of one shape") \
+                from None
+        try:  # singular exactly (a rank test would refuse valid masses spanning 1e18)
+            if n == 0:
+                raise np.linalg.LinAlgError
+            np.linalg.solve(self.M, np.eye(n))
+        except np.linalg.LinAlgError:
+            raise ParameterError("M must be a nonsingular square matrix (the mass matrix)") \
+                from None
         if not np.any(self.C):
             raise ParameterError("C must be non-zero: use the coalescence solver when undamped")
         self.in_load = None
@@ -115,13 +134,21 @@ class _System:
 def _scan(regime_of: Callable[[float], Regime | None], target: Callable[[Regime], bool],
           start: float, load_max: float, n_scan: int, max_doublings: int,
           regimes_of: Callable[[NDArray], list[Regime | None]] | None = None,
-          ) -> tuple[float, float]:
+          past: str = "unstable") -> tuple[float, float]:
     """First bracket ``[a, b]`` with ``not target(regime(a))`` and ``target(regime(b))``.
     ``regimes_of``: the same verdicts for a whole grid at once (one batched eigenvalue call),
     else ``regime_of`` point by point (the exact verdicts stop at the first target)."""
+    # (an outside audit: started beyond the onset, the exact verdicts returned the start
+    # load plus a rounding error as the onset)
+    r0 = regime_of(start)
+    if r0 is not None and target(r0):
+        raise ConvergenceError(f"already {past} at the start load {start:g}: the onset lies "
+                               f"below it")
     lo = start
     hi = load_max
     for _ in range(max_doublings):
+        if not hi < _LOAD_LIMIT:
+            break
         previous = lo
         grid = np.linspace(lo, hi, n_scan + 1)[1:]
         verdicts = regimes_of(grid) if regimes_of is not None else None
@@ -133,7 +160,24 @@ def _scan(regime_of: Callable[[float], Regime | None], target: Callable[[Regime]
                 return previous, float(p)
             previous = float(p)
         lo, hi = hi, 2 * hi
-    raise ConvergenceError(f"no change of regime found up to load {hi:g}")
+    raise ConvergenceError(f"no change of regime found up to load {lo:g}")
+
+
+#: The scans stop doubling their window here (before the double range ends).
+_LOAD_LIMIT = 1e300
+
+
+def _check_scan(start: float, load_max: float, n_scan: int, max_doublings: int
+                ) -> tuple[float, float, int, int]:
+    """The scan's arguments, refused by name before any work (an outside audit: load_max = -1
+    returned -1.8e16, n_scan = 0 said "already unstable")."""
+    start = check_real("start", start)
+    load_max = check_real("load_max", load_max)
+    if not start < load_max < _LOAD_LIMIT:
+        raise ParameterError(f"load_max must be in (start, {_LOAD_LIMIT:g}) = ({start:g}, "
+                             f"{_LOAD_LIMIT:g}), got {load_max:g}")
+    return (start, load_max, check_integer("n_scan", n_scan, 1, 100_000),
+            check_integer("max_doublings", max_doublings, 1, 2000))
 
 
 def _bisect(is_after: Callable[[float], bool], a: float, b: float) -> float:
@@ -152,7 +196,10 @@ def _bisect(is_after: Callable[[float], bool], a: float, b: float) -> float:
 def flutter_onset(M: ArrayLike, C: ArrayLike, K0: ArrayLike, K1: ArrayLike, *,
                   method: str = "eigenvalues", start: float = 0.0, load_max: float = 1.0,
                   n_scan: int = 256, max_doublings: int = 60) -> float:
-    """Smallest load above ``start`` where the damped system loses stability."""
+    """Smallest load above ``start`` where the damped system loses stability (the window
+    ``(start, load_max]`` scanned in ``n_scan`` steps, then doubled at most ``max_doublings``
+    times; ConvergenceError if the system is unstable at ``start`` or none is found)."""
+    start, load_max, n_scan, max_doublings = _check_scan(start, load_max, n_scan, max_doublings)
     sys_ = _System(M, C, K0, K1)
     if method == "eigenvalues":
         def growth(p: float) -> float:
@@ -162,6 +209,8 @@ def flutter_onset(M: ArrayLike, C: ArrayLike, K0: ArrayLike, K1: ArrayLike, *,
         # bracket when fast, strongly damped modes set the spectral scale), then Brent.
         lo, hi = start, load_max
         for _ in range(max_doublings):
+            if not hi < _LOAD_LIMIT:
+                break
             grid = np.linspace(lo, hi, n_scan + 1)
             g = sys_.spectra(grid).real.max(axis=1)
             up = np.nonzero(g > 0)[0]
@@ -182,7 +231,7 @@ def flutter_onset(M: ArrayLike, C: ArrayLike, K0: ArrayLike, K1: ArrayLike, *,
                 return float(brentq(growth, grid[i - 1], grid[i],
                                     xtol=4 * np.finfo(float).eps * abs(grid[i])))
             lo, hi = hi, 2 * hi
-        raise ConvergenceError(f"no loss of stability found up to load {hi:g}")
+        raise ConvergenceError(f"no loss of stability found up to load {lo:g}")
     if method == "routh":
         def unstable(p: float) -> bool:
             return not routh_hurwitz(sys_.coefficients(p)).stable
@@ -357,7 +406,9 @@ def confirm_onset(M: ArrayLike, C: ArrayLike, K0: ArrayLike, K1: ArrayLike, load
 def divergence_onset(M: ArrayLike, C: ArrayLike, K0: ArrayLike, K1: ArrayLike, *,
                      method: str = "eigenvalues", start: float = 0.0, load_max: float = 1.0,
                      n_scan: int = 256, max_doublings: int = 60) -> float:
-    """Smallest load above ``start`` where the motion is divergence (unstable roots all real)."""
+    """Smallest load above ``start`` where the motion is divergence (unstable roots all real);
+    the window as :func:`flutter_onset`'s (ConvergenceError if in divergence at ``start``)."""
+    start, load_max, n_scan, max_doublings = _check_scan(start, load_max, n_scan, max_doublings)
     sys_ = _System(M, C, K0, K1)
     regimes_of = None
     if method == "eigenvalues":
@@ -380,7 +431,7 @@ def divergence_onset(M: ArrayLike, C: ArrayLike, K0: ArrayLike, K1: ArrayLike, *
     else:
         raise ParameterError(f"method must be 'eigenvalues' or 'algebraic', got {method!r}")
     a, b = _scan(regime_of, lambda r: r == Regime.DIVERGENCE, start, load_max, n_scan,
-                 max_doublings, regimes_of=regimes_of)
+                 max_doublings, regimes_of=regimes_of, past="in divergence")
     # Narrow the bracket on the verdict first, so that it holds this one coalescence only.
     for _ in range(20):
         mid = 0.5 * (a + b)

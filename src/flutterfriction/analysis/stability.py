@@ -24,7 +24,7 @@ import scipy.linalg as sla
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq, minimize_scalar
 
-from flutterfriction.errors import ConvergenceError
+from flutterfriction.errors import ConvergenceError, ParameterError
 from flutterfriction.results import Regime  # noqa: F401  (re-exported)
 
 Matrix = NDArray[np.float64]
@@ -58,6 +58,8 @@ def classify(s: ArrayLike, rtol: float = 1e-8) -> Regime:
     found with it, see :func:`coalescence_loads`.
     """
     s = np.asarray(s, dtype=complex)
+    if not np.all(np.isfinite(s)):  # (an outside audit: [nan, -1] was "stable")
+        raise ParameterError(f"s must be finite eigenvalues, got {s.tolist()}")
     scale = float(np.max(np.abs(s))) if s.size else 0.0
     tol = rtol * np.abs(s) + 1000 * np.finfo(float).eps * scale
     unstable = s.real > tol

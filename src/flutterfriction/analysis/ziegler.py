@@ -227,7 +227,15 @@ def damped_divergence_load(pendulum: ZieglerPendulum, method: str = "algebraic")
     starts at the damped flutter load from the exact Routh criterion."""
     args = _damped_args(pendulum)
     start = flutter_onset(*args, method="routh", load_max=_window(pendulum))
-    p = divergence_onset(*args, method=method, start=start, load_max=2 * start)
+    # Doubling until the double range ends (~15 s at worst, bounded): an outside audit found
+    # divergence 1e20 times the flutter load (c1 = 0, k1/k2 = 1e-2, m1/m2 = 1e6: 1.0e-14 N and
+    # 999010.77 N) beyond the 60 doublings allowed before, refused.
+    try:
+        p = divergence_onset(*args, method=method, start=start, load_max=2 * start,
+                             max_doublings=2000)
+    except ConvergenceError as exc:  # its loads are in units of k2/l1: said in newtons
+        raise ConvergenceError(f"damped divergence load: {exc} (loads in units of k2/l1 = "
+                               f"{pendulum.load_unit:g} N)") from None
     if method == "eigenvalues":
         p = confirm_onset(*args, p, "divergence")
     return p * pendulum.load_unit
