@@ -114,3 +114,22 @@ def test_fig18_draws(data):
         if ax.get_visible() and ax.get_xlabel():
             assert "[" in ax.get_xlabel() and "[" in ax.get_ylabel()
     plt.close(fig)
+
+
+def test_the_lever_near_wedging_and_beyond_the_double_range():
+    """A second outside audit: b - mu r formed after rounding mu r was 1.1 % off where it is
+    ~1e-15 b (now exact, rounded once: the value for these doubles, by Fractions); a lever
+    whose P/W overflowed returned inf; B == C and a NaN plate velocity returned [nan, nan]."""
+    from fractions import Fraction as F
+
+    lever = FrictionLever(1.0, 0.5, 9.99999999999999, 0.1)
+    exact = F(0.1) * F(0.5) / (F(1.0) - F(0.1) * F(9.99999999999999))
+    assert lever.follower_ratio() == pytest.approx(float(exact), rel=1e-15)
+    with pytest.raises(ParameterError, match="beyond the double range"):
+        FrictionLever(1.0, 1e300, 1 - 1e-16, 1.0)
+    with pytest.raises(ParameterError, match="^W = .* beyond the double range"):
+        FrictionLever(1.0, 10.0, 0.0, 1.0).follower_force(1e308)
+    with pytest.raises(ParameterError, match="^B and C must be distinct"):
+        follower_direction(np.zeros(2), np.zeros(2), np.array([1.0, 0.0]))
+    with pytest.raises(ParameterError, match="^plate_velocity must be"):
+        follower_direction(np.zeros(2), np.ones(2), np.array([np.nan, 0.0]))

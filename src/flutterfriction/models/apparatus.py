@@ -24,12 +24,19 @@ fulcrum at the origin; the plate's surface is the line y = -r.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
+from fractions import Fraction
 
 import numpy as np
 from numpy.typing import NDArray
 
-from flutterfriction.errors import ParameterError, check_nonnegative, check_positive
+from flutterfriction.errors import (
+    ParameterError,
+    check_finite_array,
+    check_nonnegative,
+    check_positive,
+)
 
 
 @dataclass(frozen=True)
@@ -60,15 +67,25 @@ class FrictionLever:
         object.__setattr__(self, "wheel_radius",
                            check_nonnegative("wheel_radius", self.wheel_radius, "m"))
         object.__setattr__(self, "mu", check_positive("mu", self.mu))
-        if self.length - self.mu * self.wheel_radius <= 0:
+        if self.lever_arm() <= 0:
             raise ParameterError(
                 f"mu * wheel_radius = {self.mu * self.wheel_radius!r} m must be < length = "
                 f"{self.length!r} m: otherwise the friction's moment wedges the lever")
+        if not math.isfinite(self.follower_ratio()):  # (an outside audit: inf returned)
+            raise ParameterError(
+                f"weight_arm / (length - mu * wheel_radius) = P / (mu W) is beyond the double "
+                f"range (weight_arm = {self.weight_arm!r} m, length - mu * wheel_radius = "
+                f"{self.lever_arm()!r} m)")
 
     # ------------------------------------------------------------------ closed form
+    def lever_arm(self) -> float:
+        """``b - mu r`` [m], in exact arithmetic rounded once: near wedging ``mu r`` rounded
+        first would cancel against ``b`` (an outside audit: 1.1 % off at b - mu r ~ 1e-15 b)."""
+        return float(Fraction(self.length) - Fraction(self.mu) * Fraction(self.wheel_radius))
+
     def contact_ratio(self) -> float:
         """``R / W = a / (b - mu r)`` (moment balance about the fulcrum)."""
-        return self.weight_arm / (self.length - self.mu * self.wheel_radius)
+        return self.weight_arm / self.lever_arm()
 
     def follower_ratio(self) -> float:
         """``P / W = mu a / (b - mu r)``: the slope of the calibration line."""
@@ -80,7 +97,10 @@ class FrictionLever:
 
     def follower_force(self, W: float) -> float:
         """``P = mu a W / (b - mu r)`` [N] for the hanging weight ``W`` [N] >= 0."""
-        return self.follower_ratio() * check_nonnegative("W", W, "N")
+        P = self.follower_ratio() * check_nonnegative("W", W, "N")
+        if not math.isfinite(P):
+            raise ParameterError(f"W = {W!r} N gives a follower force beyond the double range")
+        return P
 
     # ------------------------------------------------------------------ the forces
     def points(self) -> dict[str, NDArray]:
@@ -103,9 +123,15 @@ def follower_direction(B: NDArray, C: NDArray, plate_velocity: NDArray) -> NDArr
     is resisted, by the Coulomb force ``mu R`` opposite to the wheel's sliding relative to the
     plate, i.e. along the plate's velocity component on BC (the wheel's own velocity
     neglected). With the plate moving towards A this is the follower force, from C to B."""
-    t = np.asarray(C, dtype=float) - np.asarray(B, dtype=float)
-    t /= np.linalg.norm(t)
-    s = float(np.asarray(plate_velocity, dtype=float) @ t)
+    B, C, v = (check_finite_array(name, x, (2,), "a finite point or vector (x, y)")
+               for name, x in (("B", B), ("C", C), ("plate_velocity", plate_velocity)))
+    t = C - B
+    norm = float(np.linalg.norm(t))
+    if not 0 < norm < math.inf:  # (an outside audit: B == C gave [nan, nan])
+        raise ParameterError(f"B and C must be distinct points, a finite distance apart "
+                             f"(|BC| = {norm:g} m)")
+    t /= norm
+    s = float(v @ t)
     if s == 0.0:
         raise ParameterError("the plate must slide along BC (its velocity is normal to BC)")
     return np.sign(s) * t
