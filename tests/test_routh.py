@@ -178,3 +178,22 @@ def test_integer_hurwitz_minors_equal_the_fraction_elimination():
             a[0] = a[0] or 1.0
             coeffs = [Fraction(float(x)) for x in a]
             assert _exact_minors(coeffs) == _minors_in_fractions(coeffs)
+
+
+def test_coefficients_that_are_not_real_numbers_or_leave_the_double_range_are_refused():
+    """A second outside audit: complex coefficients were a raw TypeError, "1" and True were read
+    as numbers, Hurwitz determinants beyond the double range came back as inf with a warning,
+    a NaN perturbation was blamed on the coefficients."""
+    from flutterfriction.analysis.routh import hurwitz_determinants, robustly_stable
+    from flutterfriction.errors import ParameterError
+
+    for coeffs in ([1, 2j, 1], ["1", "2"], [True, 2, 1]):
+        with pytest.raises(ParameterError, match="^coeffs must be real numbers"):
+            routh_hurwitz(coeffs)
+        with pytest.raises(ParameterError, match="^coeffs must be real numbers"):
+            hurwitz_determinants(coeffs)
+    with pytest.raises(ParameterError, match="leave the double range"):
+        hurwitz_determinants([1.0, 1e200, 1e200, 1.0])
+    with pytest.raises(ParameterError, match="^rel_perturbation must be finite"):
+        robustly_stable([1, 3, 3, 1], float("nan"))
+    assert list(hurwitz_determinants([1, 3, 3, 1])) == pytest.approx([3, 8, 8])

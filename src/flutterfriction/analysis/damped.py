@@ -384,6 +384,9 @@ def confirm_onset(M: ArrayLike, C: ArrayLike, K0: ArrayLike, K1: ArrayLike, load
     rod's high-degree FE polynomials are checked against eq. 118 instead). ``rel`` = 1e-6 is
     ~1e4 times the eigenvalue methods' error where they are reliable (<= 1e-10 on the
     chapter's systems)."""
+    load, rel = check_real("load", load), check_real("rel", rel)  # (not "coeffs": an audit)
+    if not 0 < rel < 1:
+        raise ParameterError(f"rel must be in (0, 1), got {rel!r}")
     sys_ = _System(M, C, K0, K1)
     below, above = load * (1 - rel), load * (1 + rel)
     if kind == "flutter":

@@ -14,6 +14,7 @@ These are the algebraic twins of the eigenvalue computations in :mod:`.stability
 from __future__ import annotations
 
 import math
+import numbers
 from fractions import Fraction
 
 import numpy as np
@@ -82,7 +83,11 @@ def exact_coefficients(coeffs: ArrayLike) -> list[Fraction]:
     arr = np.atleast_1d(np.asarray(coeffs, dtype=object))
     out = []
     for x in arr.tolist():
-        if isinstance(x, (Fraction, int)) and not isinstance(x, bool):
+        # real numbers only (an outside audit: "1" and True were read as numbers, a complex
+        # coefficient was a raw TypeError)
+        if isinstance(x, bool | np.bool_) or not isinstance(x, numbers.Real):
+            raise ParameterError(f"coeffs must be real numbers, got {arr.tolist()!r:.120}")
+        if isinstance(x, (Fraction, int)):
             out.append(Fraction(x))
             continue
         v = float(x)

@@ -22,11 +22,14 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from flutterfriction.errors import ParameterError
+from flutterfriction.errors import ParameterError, check_real
 
 
 def _coefficients(coeffs: ArrayLike) -> NDArray[np.float64]:
-    a = np.atleast_1d(np.asarray(coeffs, dtype=float))
+    if isinstance(coeffs, np.ndarray) and coeffs.dtype.kind in "iuf":
+        a = np.atleast_1d(coeffs.astype(float))
+    else:  # each entry checked (numpy reads [True, 2] as integers, "1" as a number)
+        a = np.array([float(x) for x in _exact_coefficients(coeffs)])
     if a.ndim != 1 or a.size < 2:
         raise ParameterError("coeffs must be a 1-D sequence of at least two coefficients")
     if not np.all(np.isfinite(a)):
@@ -52,7 +55,12 @@ def hurwitz_matrix(coeffs: ArrayLike) -> NDArray[np.float64]:
 def hurwitz_determinants(coeffs: ArrayLike) -> NDArray[np.float64]:
     """``Delta_1 ... Delta_n`` in floating point (smooth in the coefficients: for root finding)."""
     H = hurwitz_matrix(coeffs)
-    return np.array([np.linalg.det(H[:k, :k]) for k in range(1, H.shape[0] + 1)])
+    with np.errstate(over="ignore", invalid="ignore"):
+        minors = np.array([np.linalg.det(H[:k, :k]) for k in range(1, H.shape[0] + 1)])
+    if not np.all(np.isfinite(minors)):  # (an outside audit: inf returned with a warning)
+        raise ParameterError("the Hurwitz determinants of these coefficients leave the double "
+                             "range: routh_hurwitz decides on them exactly")
+    return minors
 
 
 def _exact_minors(a: list[Fraction]) -> list[Fraction]:
@@ -130,6 +138,9 @@ def robustly_stable(coeffs: ArrayLike, rel_perturbation: float = 8 * np.finfo(fl
     ``rel_perturbation`` (relative) of ``coeffs`` is stable, i.e. the stable verdict survives the
     rounding of coefficients computed in double precision. Tests the four Kharitonov vertex
     polynomials exactly."""
+    rel_perturbation = check_real("rel_perturbation", rel_perturbation)
+    if not 0 <= rel_perturbation < 1:
+        raise ParameterError(f"rel_perturbation must be in [0, 1), got {rel_perturbation!r}")
     a = _coefficients(coeffs)[::-1]  # ascending powers, a[i] multiplies s^i
     lo = np.minimum(a * (1 - rel_perturbation), a * (1 + rel_perturbation))
     hi = np.maximum(a * (1 - rel_perturbation), a * (1 + rel_perturbation))
