@@ -456,6 +456,10 @@ def test_damped_closed_form_in_doubles_refuses_where_its_terms_cancel():
         cfd.vanishing_viscosity_flutter_gamma(audit.groups(), c)
     assert cfd.damped_flutter_gamma_exact(audit) == pytest.approx(1.000998996998004e-11,
                                                                   rel=1e-12)
+    # the scenes' helpers fall back to the exact forms there (Fig. 5's curve, the paradox map)
+    assert cfd.damped_flutter_gamma_of(audit) == cfd.damped_flutter_gamma_exact(audit)
+    assert cfd.flutter_gamma_limit(audit, 0.0) == pytest.approx(
+        cfd.damped_flutter_gamma_exact(audit.with_(c2=1e-30)), rel=1e-12)
     rng = np.random.default_rng(3)
     answered = refused = 0
     for _ in range(200):

@@ -184,8 +184,37 @@ def damped_flutter_gamma_exact(pendulum: ZieglerPendulum) -> float:
 
 
 def vanishing_viscosity_flutter_gamma(g: PendulumGroups, c: float) -> float:
-    """``lim_{eps -> 0} gamma*``: the flutter load of a vanishingly viscous pendulum."""
+    """``lim_{eps -> 0} gamma*``: the flutter load of a vanishingly viscous pendulum
+    (ConvergenceError where its terms cancel, as :func:`damped_flutter_gamma`)."""
     return damped_flutter_gamma(g, 0.0, c)
+
+
+def vanishing_viscosity_flutter_gamma_exact(pendulum: ZieglerPendulum, c: float) -> float:
+    """:func:`vanishing_viscosity_flutter_gamma` of ``pendulum`` (its viscosities ignored) with
+    ``c = c1/c2``, in exact rational arithmetic, rounded once."""
+    from fractions import Fraction as F
+
+    b1, _, t, b2 = _flutter_terms(pendulum.groups(exact=True), F(0), F(c))
+    return float((b1 - t) / b2)
+
+
+def flutter_gamma_limit(pendulum: ZieglerPendulum, c: float) -> float:
+    """:func:`vanishing_viscosity_flutter_gamma`, in doubles where they hold its digits (~1 us),
+    else exactly (~0.1 ms): for the scenes' maps over any pendulum."""
+    try:
+        return vanishing_viscosity_flutter_gamma(pendulum.groups(), c)
+    except ConvergenceError:
+        return vanishing_viscosity_flutter_gamma_exact(pendulum, c)
+
+
+def damped_flutter_gamma_of(pendulum: ZieglerPendulum) -> float:
+    """:func:`damped_flutter_gamma` of a viscous pendulum, in doubles where they hold its
+    digits, else exactly (:func:`damped_flutter_gamma_exact`)."""
+    eps, c = viscosity_groups(pendulum)
+    try:
+        return damped_flutter_gamma(pendulum.groups(), eps, c)
+    except ConvergenceError:
+        return damped_flutter_gamma_exact(pendulum)
 
 
 def paradox_free_damping_ratio(g: PendulumGroups) -> float | None:

@@ -128,10 +128,12 @@ def paradox_limit(params: dict[str, Any]) -> dict[str, Any]:
     n = max(11, n_points(params) // 20)
     eps = np.geomspace(eps_min, eps_max, n)
     numeric = np.array([damped_flutter_load(with_viscosity(p0, e), "routh") / u for e in eps])
-    closed = np.array([cfd.damped_flutter_gamma(g, e, 1.0) for e in eps])
+    # the pendulums Routh-Hurwitz is given (eps rounded through c2), in doubles or, where the
+    # closed form's terms cancel (a user's extreme pendulum), exactly
+    closed = np.array([cfd.damped_flutter_gamma_of(with_viscosity(p0, e)) for e in eps])
     eq54 = np.array([cfd.eq54_flutter_gamma(e) for e in eps])
     g_flu0 = follower_critical_loads(p0)[0] / u
-    limit = cfd.vanishing_viscosity_flutter_gamma(g, 1.0)
+    limit = cfd.flutter_gamma_limit(p0, 1.0)
     return {
         "eps": eps.tolist(), "gamma_flu_routh": numeric.tolist(),
         "gamma_flu_closed_form": closed.tolist(), "gamma_flu_eq54": eq54.tolist(),
@@ -288,8 +290,7 @@ def paradox_map(params: dict[str, Any]) -> dict[str, Any]:
     lc, lm, yd = (np.linspace(*r, n) for r in _paradox_map_ranges(params))
 
     def ratio(p: ZieglerPendulum, c: float) -> float:
-        g = p.groups()
-        return cfd.vanishing_viscosity_flutter_gamma(g, c) / cf.flutter_divergence_gammas(g)[0]
+        return cfd.flutter_gamma_limit(p, c) / cf.flutter_divergence_gammas(p.groups())[0]
 
     def pend_mass(log_m: float) -> ZieglerPendulum:
         return p0.with_(m1=p0.m2 * 10**log_m)
