@@ -657,3 +657,25 @@ def test_fig22_asymmetry_on_the_negative_side_of_the_cone():
                "path": [[0, 0], [1, 0], [1, -1.5], [1, 1.0]]})["quantities"]
     for key in ("slip_operator_asymmetry", "slip_operator_C21"):
         assert q[key]["value"] == q[key]["independent"] == -1.0
+
+
+def test_eq188_as_printed_puts_the_upper_sign_first():
+    """A reader's review: the erratum's printed form had been evaluated with the corrected sign
+    order. As printed, g1 takes the upper sign of the ± with (n.p)(n.p) under the second root,
+    so g1 > g2; the corrected form gives the interval g1 < g2 with (n.p)(n.q)."""
+    from flutterfriction.scenes.solids import _nonassociative_case
+
+    lam, mu, P, Q, n = _nonassociative_case({  # the workflow's errata_solids case
+        "lam": 1.0, "mu": 1.0, "P": [1.0, -0.5, -0.5, 0.0, 0.0, 0.8],
+        "Q": [0.6, -0.3, -0.3, 0.0, 0.0, -0.8], "n": [1.0, 0.0, 0.0]})
+    p, q = so.isotropic_vectors(lam, mu, P, Q, n)
+    N, pq, nn = (n @ p) * (n @ q), p @ q, (n @ p) ** 2
+    printed = so.flutter_interval_as_printed(lam, mu, P, Q, n)
+    assert printed == pytest.approx(
+        [(math.sqrt(N) + math.sqrt(nn - pq)) ** 2 / (lam + mu),
+         (math.sqrt(N) - math.sqrt(nn - pq)) ** 2 / (lam + mu)], rel=1e-14)
+    g1, g2 = so.flutter_interval_isotropic(lam, mu, P, Q, n)
+    assert printed[0] > printed[1] and g1 < g2
+    assert (g1, g2) == pytest.approx([(math.sqrt(N) - math.sqrt(N - pq)) ** 2 / (lam + mu),
+                                      (math.sqrt(N) + math.sqrt(N - pq)) ** 2 / (lam + mu)],
+                                     rel=1e-12)

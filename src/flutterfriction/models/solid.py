@@ -327,7 +327,9 @@ def exact_flutter_factors(lam: float, mu: float, P: ArrayLike, Q: ArrayLike,
 
 def flutter_interval_as_printed(lam: float, mu: float, P: ArrayLike, Q: ArrayLike,
                                 n: ArrayLike) -> tuple[float, float] | None:
-    """Eq. (188) exactly as printed (erratum evidence only)."""
+    """Eq. (188) exactly as printed (erratum evidence only): ``(n.p)(n.p)`` under the second
+    root, and ``g1`` with the upper sign of the printed ``±``, so that ``g1 > g2`` (a reader's
+    review: this had returned the roots in the corrected order, fixing half the misprint)."""
     n = _nonzero_direction(n)
     p, q = isotropic_vectors(lam, mu, P, Q, n)
     N, pq = (n @ p) * (n @ q), p @ q
@@ -335,7 +337,7 @@ def flutter_interval_as_printed(lam: float, mu: float, P: ArrayLike, Q: ArrayLik
     if not (N > 0 and printed > 0):
         return None
     r1, r2 = math.sqrt(N), math.sqrt(printed)
-    return (r1 - r2) ** 2 / (lam + mu), (r1 + r2) ** 2 / (lam + mu)
+    return (r1 + r2) ** 2 / (lam + mu), (r1 - r2) ** 2 / (lam + mu)
 
 
 def coalescence_modulus(lam: float, mu: float, P: ArrayLike, Q: ArrayLike) -> float:

@@ -289,7 +289,7 @@ def plot_acoustic_eigenvalues(data: dict[str, Any]) -> Figure:
     printed = data.get("flutter_interval_as_printed")
     if printed is not None:
         text += (f"\n$g_1$, $g_2$ from eq. (188) corrected; as printed it gives "
-                 f"{printed[0]:.4g}, {printed[1]:.4g} (see the errata)")
+                 f"$g_1$ = {printed[0]:.4g} > $g_2$ = {printed[1]:.4g} (see the errata)")
     if text:
         fig.suptitle(text, fontsize=7)
     return fig
