@@ -332,4 +332,7 @@ display(Markdown("| elements | generalized-α step [ms] | period error | observe
 # parameters than the chapter's (`workflow/config.yaml`), if any.
 
 # %%
-NOTE.update(Markdown(own_parameters_note(READ)))
+note = own_parameters_note(READ)
+NOTE.update(Markdown(note))
+display(Markdown(note or "None: every scene this notebook read ran with the chapter's "
+                 "parameters."))

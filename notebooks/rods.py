@@ -208,7 +208,15 @@ display(Markdown(
 # `flutterfriction rod --mass-ratio MU --eta ETA --gamma GAMMA --json`, or SI parameters:
 
 # %%
-display(Markdown(str(critical_loads(RodGroups(tan_alpha=0.5, eta=2e-3, gamma=0.05)))))
+own = RodGroups(tan_alpha=0.5, eta=2e-3, gamma=0.05)
+loads = critical_loads(own, p_max=80.0)
+display(Markdown(
+    f"A rod with tan α = M/(ρl) = {own.tan_alpha:g}, internal damping η = {own.eta:g} and "
+    f"external damping γ = {own.gamma:g} (dimensionless groups of eq. 106), loads searched up "
+    f"to p = 80: flutter at p = {loads.p_flu:.6g} (pulsation ω̃ = {loads.omega_flu:.6g}), "
+    + ("no divergence" if loads.p_div is None else f"divergence at p = {loads.p_div:.6g}")
+    + "; regimes: " + ", ".join(f"{i['regime']} {i['p_from']:.4g}–{i['p_to']:.4g}"
+                                for i in loads.intervals) + "."))
 
 
 # %% [markdown]
@@ -218,4 +226,7 @@ display(Markdown(str(critical_loads(RodGroups(tan_alpha=0.5, eta=2e-3, gamma=0.0
 # parameters than the chapter's (`workflow/config.yaml`), if any.
 
 # %%
-NOTE.update(Markdown(own_parameters_note(READ)))
+note = own_parameters_note(READ)
+NOTE.update(Markdown(note))
+display(Markdown(note or "None: every scene this notebook read ran with the chapter's "
+                 "parameters."))

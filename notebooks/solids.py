@@ -143,4 +143,7 @@ display(Markdown(f"λ = {lam:g}, μ = {mu:g}: flutter interval "
 # parameters than the chapter's (`workflow/config.yaml`), if any.
 
 # %%
-NOTE.update(Markdown(own_parameters_note(READ)))
+note = own_parameters_note(READ)
+NOTE.update(Markdown(note))
+display(Markdown(note or "None: every scene this notebook read ran with the chapter's "
+                 "parameters."))

@@ -195,4 +195,7 @@ display(Markdown("| load | eigenvalues | closed form |\n|---|---|---|\n" + "\n".
 # parameters than the chapter's (`workflow/config.yaml`), if any.
 
 # %%
-NOTE.update(Markdown(own_parameters_note(READ)))
+note = own_parameters_note(READ)
+NOTE.update(Markdown(note))
+display(Markdown(note or "None: every scene this notebook read ran with the chapter's "
+                 "parameters."))

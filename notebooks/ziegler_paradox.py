@@ -186,4 +186,7 @@ display(Markdown("| load | value [N] |\n|---|---|\n" + "\n".join(
 # parameters than the chapter's (`workflow/config.yaml`), if any.
 
 # %%
-NOTE.update(Markdown(own_parameters_note(READ)))
+note = own_parameters_note(READ)
+NOTE.update(Markdown(note))
+display(Markdown(note or "None: every scene this notebook read ran with the chapter's "
+                 "parameters."))

@@ -54,7 +54,9 @@ SEC_35 = _frozen(lam=1.0, mu=1.0, P=(1.0, -0.5, -0.5, 0.0, 0.0, 0.8),
 LISTS: Mapping[str, ParameterList] = MappingProxyType({p.name: p for p in (
     ParameterList("list47", "pendulum", "list (47), §2.3", LIST_47),
     ParameterList("list47_viscous", "pendulum", "list (47) with c1 = c2 = 0.006 N m s, §2.10",
-                  LIST_47_VISCOUS, "the viscosity is inferred from Fig. 19's quoted ratios"),
+                  LIST_47_VISCOUS,
+                  "the viscosity is §2.9's 0.006 N m s; Fig. 19's quoted ratios 0.70, 1.49 "
+                  "give 0.00625, 0.00605 (within their two digits)"),
     ParameterList("sec29", "pendulum", "§2.9, Figs. 13–14", SEC_29),
     ParameterList("list119", "rod", "list (119), §2.7", LIST_119,
                   "P = 5.5 N for Figs. 15–17"),

@@ -210,8 +210,8 @@ _ENTRIES = [
         "damping (list 119): flutter at p = 20.05 and 10.94.")}, check=rod.check_fig11),
     Scene("fig12", rod.fig12, "rods", {"fig12": _fig(
         "rod:plot_fig12",
-        "Fig. 12: the Pflüger rod, side by side as printed (tan α = 1: flutter 16.21 / 7.91, "
-        "divergence 34.46 / 34.86) and at the tip-mass ratio tan α = 1.561 that reproduces the "
+        "Fig. 12: the Pflüger rod, side by side at the caption's tan α = 1 (flutter 16.21 / 7.91, "
+        "divergence 34.46 / 34.86) and at the tip-mass ratio tan α = 1.5608 that reproduces the "
         "quoted 16.51 / 7.78 and 30.22 / 30.52 (the erratum).")}, check=rod.check_fig12),
     Scene("rod_fe_convergence", rod.rod_fe_convergence, "rods", {"rod_fe_convergence": _fig(
         "rod:plot_fe_convergence",

@@ -134,7 +134,7 @@ def _row_class(r: CheckRow) -> str:
 
 
 def _check_table(rows: Iterable[CheckRow], errata: Mapping[str, Mapping[str, Any]]) -> str:
-    out = ['<div class="wide"><table><thead><tr><th>id</th><th>source</th><th>quoted</th>'
+    out = ['<div class="wide"><table><thead><tr><th>id</th><th>source</th><th>reference</th>'
            "<th>reproduced</th>"
            "<th>method</th><th>independent</th><th>independent method</th>"
            "<th>error / agreement</th><th>status</th></tr></thead><tbody>"]
@@ -420,7 +420,7 @@ def _figure_checks(rows: list[CheckRow], own_scene: str | None = None,
     """The check rows of one figure's data, as a small table linking to the full check. With
     ``own_scene`` (the figure's data ran with other parameters), rows of another scene's data
     say so (they check that scene, not this figure)."""
-    out = ["<table><thead><tr><th>checked value</th><th>source</th><th>quoted</th>"
+    out = ["<table><thead><tr><th>checked value</th><th>source</th><th>reference</th>"
            "<th>reproduced</th><th>independent</th><th>status</th></tr></thead><tbody>"]
     for r in rows:
         cls = _row_class(r)
@@ -625,7 +625,11 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
                 "</figcaption></figure>")
         parts.append("</div>")
     parts.append('<h2 id="check">The check: every quoted number, every erratum</h2>'
-                 "<p>error: normalised error against the quoted value (for an erratum: printed "
+                 "<p>reference: the chapter's printed number where it prints one; where it "
+                 "prints none (the row's source or description says so: 'beyond', 'our own', "
+                 "'our choice') our own exact or by-hand value. For an erratum: the printed "
+                 "form's value. "
+                 "error: normalised error against the reference (for an erratum: printed "
                  "form against the independent computation, must exceed 1); agreement: primary "
                  "against independent method (must be at most 1). Errata rows are yellow; open "
                  "<i>evidence</i> for the printed and corrected forms.</p>")

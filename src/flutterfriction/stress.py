@@ -468,7 +468,10 @@ def acoustic_cases() -> list[StressResult]:
                                                decades=16)
 
         out.append(_judge(
-            "acoustic tensor", f"P, Q x {s:g} (g interval x {s * s:g})",
+            "acoustic tensor",
+            # its own test tensors, not §3.5's case (a reader took its interval for the figure's)
+            f"a test P, Q (not §3.5's), n = (0.6, 0.8, 0), scaled x {s:g} (g interval x "
+            f"{s * s:g})",
             "flutter interval from the discriminant, a quartic in 1/g",
             run, lambda closed=closed: [closed],
             lambda g, r: len(g) == 1 and all(_rel(a, b) < 1e-9 for a, b in zip(g[0], r[0],

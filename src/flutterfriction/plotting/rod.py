@@ -498,7 +498,7 @@ def plot_fig12(data: dict[str, Any]) -> Figure:
     t_fit = fitted["undamped"]["groups"]["tan_alpha"]
     if "stated" not in data:  # data from before the stated case was added
         return plot_branches(data, f"Fig. 12: the Pflüger rod, {list119(data)}, "
-                                   f"tan α = {t_fit:.4g} (see errata)")
+                                   f"tan α = {t_fit:.5g} (see errata)")
     stated = data["stated"]["cases"]
     t_st = data["stated"]["tan_alpha"]
     fig, axes = plt.subplots(4, 2, figsize=(9.6, 11.0), sharex="col")
@@ -513,8 +513,8 @@ def plot_fig12(data: dict[str, Any]) -> Figure:
     for col, (cases, pc, head) in enumerate((
             (stated, p_st, f"as the caption states: tan α = {t_st:g}" if t_st == 1.0
              else f"tan α = {t_st:g} (the caption states 1)"),
-            (fitted, p, f"tan α = {t_fit:.4g}: reproduces the loads the chapter quotes"
-             if quoted else f"tan α = {t_fit:.4g} (your choice: not the quoted loads)"))):
+            (fitted, p, f"tan α = {t_fit:.5g}: reproduces the loads the chapter quotes"
+             if quoted else f"tan α = {t_fit:.5g} (your choice: not the quoted loads)"))):
         axes[0, col].annotate(head, (0.5, 1.0), xycoords="axes fraction", xytext=(0, 26),
                               textcoords="offset points", ha="center", fontsize=9,
                               fontweight="bold")
@@ -534,9 +534,9 @@ def plot_fig12(data: dict[str, Any]) -> Figure:
     fig.suptitle(f"Fig. 12: the Pflüger rod, {list119(data)}, tip mass tan α = M/(ρl); "
                  "flutter / divergence loads p\n"
                  + (f"Erratum: the caption's tan α = {t_st:g} gives {loads(stated)};\nthe loads "
-                    f"the chapter quotes are those at tan α = {t_fit:.4g}: {loads(fitted)}"
+                    f"the chapter quotes are those at tan α = {t_fit:.5g}: {loads(fitted)}"
                     + _one_rad_note(data) if quoted and t_st == 1.0 else
-                    f"tan α = {t_st:g}: {loads(stated)}; tan α = {t_fit:.4g}: {loads(fitted)} "
+                    f"tan α = {t_st:g}: {loads(stated)}; tan α = {t_fit:.5g}: {loads(fitted)} "
                     "(the chapter quotes 16.51 / 30.22, damped 7.78 / 30.52; see the errata)"),
                  fontsize=8.5)
     fig.tight_layout(rect=(0, 0.04, 1, 0.98), h_pad=1.6)
