@@ -43,7 +43,7 @@ def scene(name):
     return data
 
 
-def show(name, width=820):
+def show(name, width=1000):
     display(Image(filename=str(FIGS / f"{name}.png"), width=width))
 
 

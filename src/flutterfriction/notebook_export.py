@@ -80,7 +80,8 @@ def offline_notebook(nb: Any, figures: dict[str, str] | None = None,
                     ' style="max-width: 100%"'
                 data.clear()
                 data["text/html"] = (f'<a href="{figure_href}/{name}"><img src="{figure_href}/'
-                                     f'{name}" alt="{name}"{style}></a>')
+                                     f'{name}" alt="{name}" title="{name}: click for the '
+                                     f'full-size figure"{style}></a>')
                 out["metadata"] = {}
     return nb
 
