@@ -27,7 +27,7 @@ from flutterfriction.analysis.rod import critical_loads
 from flutterfriction.models.rod import Rod, RodGroups
 from flutterfriction.notebook_export import quantities_table
 from flutterfriction.parameters import LIST_119
-from flutterfriction.reference import own_parameters_note
+from flutterfriction.reference import own_parameters_note, own_parameters_summary
 
 DATA, FIGS = Path("results/data"), Path("results/figures")
 
@@ -226,7 +226,5 @@ display(Markdown(
 # parameters than the chapter's (`workflow/config.yaml`), if any.
 
 # %%
-note = own_parameters_note(READ)
-NOTE.update(Markdown(note))
-display(Markdown(note or "None: every scene this notebook read ran with the chapter's "
-                 "parameters."))
+NOTE.update(Markdown(own_parameters_note(READ)))
+display(Markdown(own_parameters_summary(READ)))

@@ -25,7 +25,7 @@ from IPython.display import Image, Markdown, display
 
 from flutterfriction.models import solid as so
 from flutterfriction.notebook_export import quantities_table
-from flutterfriction.reference import own_parameters_note
+from flutterfriction.reference import own_parameters_note, own_parameters_summary
 
 DATA, FIGS = Path("results/data"), Path("results/figures")
 
@@ -143,7 +143,5 @@ display(Markdown(f"λ = {lam:g}, μ = {mu:g}: flutter interval "
 # parameters than the chapter's (`workflow/config.yaml`), if any.
 
 # %%
-note = own_parameters_note(READ)
-NOTE.update(Markdown(note))
-display(Markdown(note or "None: every scene this notebook read ran with the chapter's "
-                 "parameters."))
+NOTE.update(Markdown(own_parameters_note(READ)))
+display(Markdown(own_parameters_summary(READ)))

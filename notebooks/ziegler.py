@@ -32,7 +32,7 @@ from flutterfriction import ZieglerPendulum
 from flutterfriction.analysis.ziegler import critical_loads, regime, spectrum
 from flutterfriction.closed_forms import ziegler as cf
 from flutterfriction.plotting import chapter_list
-from flutterfriction.reference import own_parameters_note
+from flutterfriction.reference import own_parameters_note, own_parameters_summary
 
 DATA, FIGS = Path("results/data"), Path("results/figures")
 
@@ -195,7 +195,5 @@ display(Markdown("| load | eigenvalues | closed form |\n|---|---|---|\n" + "\n".
 # parameters than the chapter's (`workflow/config.yaml`), if any.
 
 # %%
-note = own_parameters_note(READ)
-NOTE.update(Markdown(note))
-display(Markdown(note or "None: every scene this notebook read ran with the chapter's "
-                 "parameters."))
+NOTE.update(Markdown(own_parameters_note(READ)))
+display(Markdown(own_parameters_summary(READ)))

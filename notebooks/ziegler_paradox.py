@@ -30,7 +30,7 @@ from flutterfriction.analysis.routh import robustly_stable, routh_hurwitz
 from flutterfriction.analysis.ziegler import critical_loads, spectrum
 from flutterfriction.closed_forms import ziegler_damped as cfd
 from flutterfriction.notebook_export import quantities_table
-from flutterfriction.reference import own_parameters_note
+from flutterfriction.reference import own_parameters_note, own_parameters_summary
 
 DATA, FIGS = Path("results/data"), Path("results/figures")
 
@@ -186,7 +186,5 @@ display(Markdown("| load | value [N] |\n|---|---|\n" + "\n".join(
 # parameters than the chapter's (`workflow/config.yaml`), if any.
 
 # %%
-note = own_parameters_note(READ)
-NOTE.update(Markdown(note))
-display(Markdown(note or "None: every scene this notebook read ran with the chapter's "
-                 "parameters."))
+NOTE.update(Markdown(own_parameters_note(READ)))
+display(Markdown(own_parameters_summary(READ)))

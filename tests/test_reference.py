@@ -395,7 +395,7 @@ def test_notebooks_note_the_scenes_computed_with_your_own_parameters():
     import json
 
     from flutterfriction.config import load_config, scene_params
-    from flutterfriction.reference import own_parameters_note
+    from flutterfriction.reference import own_parameters_note, own_parameters_summary
 
     config = load_config(ROOT / "workflow" / "config.yaml")
     params = json.loads(json.dumps(scene_params(config, "fig13")))
@@ -406,9 +406,12 @@ def test_notebooks_note_the_scenes_computed_with_your_own_parameters():
     note = own_parameters_note({"fig13": {**params, "load_factor": 2.0}}, record)
     assert note.startswith("**Computed with your own parameters.**")
     assert "- `fig13`: load_factor: 1.5 -> 2.0" in note
+    assert own_parameters_summary({"fig13": params}, record).startswith("None: every scene")
+    assert own_parameters_summary({"fig13": {**params, "load_factor": 2.0}}, record) == note
     for nb in sorted((ROOT / "notebooks").glob("*.py")):
         text = nb.read_text()
         assert "NOTE.update(Markdown(own_parameters_note(READ)))" in text, nb.name
+        assert "display(Markdown(own_parameters_summary(READ)))" in text, nb.name
         assert 'READ[name] = data.get("params")' in text, nb.name
 
 

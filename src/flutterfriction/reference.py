@@ -430,6 +430,14 @@ def own_parameters_note(read: Mapping[str, Mapping[str, Any] | None],
             "the chapter's quoted values do not apply to them:\n\n" + "\n".join(lines))
 
 
+def own_parameters_summary(read: Mapping[str, Mapping[str, Any] | None],
+                           record: str | Path = REFERENCE_PARAMETERS) -> str:
+    """:func:`own_parameters_note`, or where no scene ran with other parameters a line saying
+    so (a notebook's "Your parameters" section had ended without output; a reader's review)."""
+    return own_parameters_note(read, record) or (
+        "None: every scene this notebook read ran with the chapter's parameters.")
+
+
 def run_check(reference: dict[str, Any], data: Mapping[str, Any],
               fidelity: str = "paper",
               parameters: Mapping[str, Any] | None = None) -> list[CheckRow]:
