@@ -415,6 +415,22 @@ def _own_note(changes: list[str]) -> str:
             "the values below are yours.</p>")
 
 
+def _value_cells(r: CheckRow, unit: str) -> str:
+    """The reference, reproduced and independent cells of a figure's check row. An erratum's
+    say what they hold (a reader's review: its printed formula filled the column, and the
+    chapter's printed number sat under "independent" unexplained): the printed form in short
+    (in full on hover and in the check table), the corrected value, the independent one."""
+    if r.kind != "erratum":
+        return (f'<td class="num">{html.escape(_short(r.quoted) + unit)}</td>'
+                f'<td class="num">{html.escape(_short(r.reproduced))}</td>'
+                f'<td class="num">{html.escape(_short(r.independent))}</td>')
+    printed = _short(r.quoted)
+    brief = printed if len(printed) <= 48 else printed[:46] + "…"
+    return (f'<td title="{html.escape(printed)}">erratum, printed: {html.escape(brief)}</td>'
+            f'<td class="num">corrected: {html.escape(_short(r.reproduced))}</td>'
+            f'<td class="num">independent: {html.escape(_short(r.independent))}</td>')
+
+
 def _figure_checks(rows: list[CheckRow], own_scene: str | None = None,
                    row_scene: Mapping[str, str] | None = None) -> str:
     """The check rows of one figure's data, as a small table linking to the full check. With
@@ -430,10 +446,8 @@ def _figure_checks(rows: list[CheckRow], own_scene: str | None = None,
                    + (f" (checked on {html.escape(row_scene[r.id])}'s data, not this figure's)"
                       if own_scene and row_scene and row_scene.get(r.id, own_scene) != own_scene
                       else "") + "</td>"
-                   f'<td class="num">{html.escape(_short(r.quoted) + unit)}</td>'
-                   f'<td class="num">{html.escape(_short(r.reproduced))}</td>'
-                   f'<td class="num">{html.escape(_short(r.independent))}</td>'
-                   f'<td class="status">{html.escape(r.shown_status)}</td></tr>')
+                   + _value_cells(r, unit)
+                   + f'<td class="status">{html.escape(r.shown_status)}</td></tr>')
     out.append("</tbody></table>")
     return "\n".join(out)
 
@@ -570,6 +584,14 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
                      "</code>); the highlighted list is our choice: the chapter gives no "
                      "numbers there.</p>")
         parts.append(parameter_lists_html())
+    # The chapter figures drawn from each data file (Figs. 6-9 share one): a row naming one of
+    # them is shown under that figure, not under the first (a reader's review found Fig. 9's
+    # values under Fig. 6 only).
+    drawn_from: dict[str, set[int]] = {}
+    for section in layout["sections"]:
+        for scene in section.get("figures", {}):
+            if (number := _chapter_number(scene)) is not None:
+                drawn_from.setdefault(figure_data.get(scene, scene), set()).add(number)
     for k, section in enumerate(layout["sections"]):
         parts.append(f'<h2 id="s{k}">{html.escape(section["title"])}</h2>')
         if section.get("intro"):
@@ -580,14 +602,21 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
                          f"(source <code>notebooks/{nb}.py</code>)</p>")
         for scene, caption in section.get("figures", {}).items():
             data = figure_data.get(scene, scene)
-            named = [r for r in rows if _chapter_number(scene) in _figures_named(r.source)]
+            number = _chapter_number(scene)
+            named = [r for r in rows if number in _figures_named(r.source)]
+            others = drawn_from.get(data, set()) - {number}
+
+            def elsewhere(r: CheckRow, others: set[int] = others, number=number) -> bool:
+                names = _figures_named(r.source)
+                return bool(names & others) and number not in names
+
             if data in shown_checks:
-                mine = [r for r in named if row_scene.get(r.id) != data]
+                mine = named
                 checks = (f'<p class="links">Checked values of these data: with <a href="#fig-'
                           f'{shown_checks[data]}">{shown_checks[data]}</a>.</p>')
             else:
-                mine = rows_of.get(data, []) + [r for r in named
-                                                if r not in rows_of.get(data, [])]
+                own_rows = [r for r in rows_of.get(data, []) if not elsewhere(r)]
+                mine = own_rows + [r for r in named if r not in own_rows]
                 checks = ""
                 if rows_of.get(data):
                     shown_checks[data] = scene
