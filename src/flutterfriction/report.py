@@ -424,11 +424,12 @@ def _value_cells(r: CheckRow, unit: str) -> str:
         return (f'<td class="num">{html.escape(_short(r.quoted) + unit)}</td>'
                 f'<td class="num">{html.escape(_short(r.reproduced))}</td>'
                 f'<td class="num">{html.escape(_short(r.independent))}</td>')
-    printed = _short(r.quoted)
+    printed = _short(r.quoted).removeprefix("printed: ")
     brief = printed if len(printed) <= 48 else printed[:46] + "…"
     return (f'<td title="{html.escape(printed)}">erratum, printed: {html.escape(brief)}</td>'
             f'<td class="num">corrected: {html.escape(_short(r.reproduced))}</td>'
-            f'<td class="num">independent: {html.escape(_short(r.independent))}</td>')
+            f'<td class="num" title="{html.escape(r.independent_method)}">independent: '
+            f'{html.escape(_short(r.independent))}</td>')
 
 
 def _figure_checks(rows: list[CheckRow], own_scene: str | None = None,
