@@ -60,7 +60,8 @@ d = scene("fig22")
 display(Markdown(
     f"Branches along the path: {', '.join(d['branch'][1:])}. Slip operator at the slip point: "
     f"C21 - C12 = {d['quantities']['slip_operator_asymmetry']['value']} N/m = mu k_N sgn p_T; "
-    f"largest |f| while slipping: {d['quantities']['cone_drift_while_slipping']['value']:.1e} N."))
+    f"Prager's consistency (eq. 137) while slipping, max |a . C du| / |E du|: "
+    f"{d['quantities']['slip_consistency']['value']:.1e}."))
 
 # %% [markdown]
 # ## §3.2–3.4 The acoustic tensor and localization

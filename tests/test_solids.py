@@ -679,3 +679,27 @@ def test_eq188_as_printed_puts_the_upper_sign_first():
     assert (g1, g2) == pytest.approx([(math.sqrt(N) - math.sqrt(N - pq)) ** 2 / (lam + mu),
                                       (math.sqrt(N) + math.sqrt(N - pq)) ** 2 / (lam + mu)],
                                      rel=1e-12)
+
+
+def test_a_long_slip_stays_on_a_small_cone_and_a_return_to_the_apex_goes_on():
+    """A review of the relative cone round-off: (1) eq. (143)'s generic C22 = k_T - k_T k_T/k_T
+    rounds to ~eps k_T, so a long slip left a small cone by 2.8e-14 N and the returned force was
+    refused as a start (the path now slips with the closed form, on the cone by construction);
+    (2) unloading along the cone to the apex and reloading stalled ("did not advance"), and a
+    return to p_N = 0 rounded below it was refused as separating. Exact values by hand / by an
+    exact-rational twin of the path."""
+    c = CoulombContact(1.0, 0.21, 0.01)
+    p = integrate_path(c, [[0, 0], [1e-3, 0], [1e-3, 1e3]]).p[-1]
+    assert list(p) == pytest.approx([1e-3, 1e-5], rel=1e-15)
+    assert integrate_path(c, [[1e-3, 1e3], [2e-3, 1e3]], p0=p).p[-1] == pytest.approx(
+        [2e-3, 1e-5], rel=1e-12)
+    assert list(c.rate(p, [1, 0])) == pytest.approx([1, 0], abs=1e-15)
+    assert list(CoulombContact(1.0, 0.1, 0.01).rate(p, [0, 1])) == [0.0, 0.0]  # slip
+    stall = CoulombContact(59.22827079267285, 437.1806113928408, 8.701776216082178e-08)
+    u = 0.0009689611232546101
+    path = [[0.0, 0.0], [u, 0.0], [u, 2.284611816980041e-11], [0.0, -9.689382771364405e-07],
+            [u, 0.0]]
+    assert integrate_path(stall, path).p[-1] == pytest.approx(
+        [0.05738989179569651, 4.993939954713215e-09], rel=1e-9)
+    back = integrate_path(CoulombContact(2.0, 1.0, 0.5), [[0, 0], [1, 0], [1, 2], [0, 2], [1, 2]])
+    assert back.p[-1] == pytest.approx([2.0, 0.0], abs=1e-15)  # touched the apex, reloaded

@@ -6,6 +6,7 @@ import copy
 import json
 import math
 from collections.abc import Iterable, Iterator, Mapping
+from fractions import Fraction
 from pathlib import Path
 from typing import Any
 
@@ -317,7 +318,9 @@ def _scene_specific_problems(scene: str, params: dict[str, Any], prefix: str) ->
         if isinstance(pend, dict) and all(isinstance(pend.get(k), int | float)
                                           for k in ("l1", "l2")) \
                 and isinstance(mu, int | float) and isinstance(r, int | float) \
-                and not mu * r < pend["l1"] + pend["l2"]:
+                and all(math.isfinite(x) for x in (mu, r, pend["l1"] + pend["l2"])) \
+                and not Fraction(pend["l1"] + pend["l2"]) - Fraction(mu) * Fraction(r) > 0:
+            # decided as the lever decides it, exactly (models.apparatus.FrictionLever)
             lines.append(f"{where}.wheel_radius: mu * wheel_radius = {mu * r:g} m must be < "
                          f"l1 + l2 = {pend['l1'] + pend['l2']:g} m (else the friction's moment "
                          "wedges the lever)")

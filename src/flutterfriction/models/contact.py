@@ -74,8 +74,8 @@ class CoulombContact:
         step never advanced). No absolute floor and no ``p_N`` alone: a second outside audit
         found forces well inside the cone taken as on it, so a stick step slipped and ``p_T``
         froze (1 pN forces; ``mu = 1e-13``; ``mu = 1e-10`` 0.5 % inside the cone). Not the
-        segment's increment either: a stick step to the cone rounds relative to the step it
-        takes, not to the whole segment's."""
+        segment's increment either (it would take a stick start as on the cone); a piece that
+        reaches the cone is put on it (:func:`integrate_path`)."""
         return 1e-12 * max(abs(p[1]), self.mu * abs(p[0]))
 
     def check_admissible(self, name: str, p: NDArray) -> None:
@@ -155,6 +155,7 @@ def integrate_path(contact: CoulombContact, vertices: ArrayLike,
                     f"the contact path did not advance on the segment {u_a} -> {u_b} (the force "
                     f"{p} stays at the cone's edge to round-off)")
             tol = contact.cone_tolerance(p)
+            p_start = p
             dp_trial = E @ du
             # The side of the cone: sgn p_T, or at the apex the direction of the trial rate.
             side = np.sign(p[1]) if abs(p[1]) > tol else (np.sign(dp_trial[1]) or 1.0)
@@ -162,25 +163,40 @@ def integrate_path(contact: CoulombContact, vertices: ArrayLike,
             a, b = contact.gradient(p, side), contact.slip_direction(p, side)
             if on_cone and a @ dp_trial > 0:  # plastic loading: slip to the end of the segment
                 lam = (a @ dp_trial) / (a @ E @ b) * (1.0 - t)
-                p = p + contact.slip_operator(p, side) @ du * (1.0 - t)
+                # eq. (143) in closed form, C = [[k_N, 0], [mu k_N sgn p_T, 0]]: the force stays
+                # on the cone by construction (its generic form's C22 = k_T - k_T k_T/k_T rounds
+                # to ~eps k_T, which a long slip carried off a small cone; a review)
+                p_N = p[0] + contact.k_N * du[0] * (1.0 - t)
+                p = np.array([p_N, side * contact.mu * p_N])
                 slip += lam * b[1]
                 t = 1.0
                 branch = "slip"
             else:  # stick: elastic until the force reaches the cone (either side) or the end
                 dp = E @ du
-                t_hit = 1.0
+                t_hit, hit_side = 1.0, None
                 for s in (1.0, -1.0):  # f = s p_T - mu p_N reaches 0
                     rate = s * dp[1] - contact.mu * dp[0]
                     val = s * p[1] - contact.mu * p[0]
-                    if rate > 0 and val < 0:
-                        t_hit = min(t_hit, t + (-val / rate))
+                    if rate > 0 and val < 0 and t + (-val / rate) <= t_hit:
+                        t_hit, hit_side = t + (-val / rate), s
                 t_new = min(t_hit, 1.0)
                 p = p + dp * (t_new - t)
+                if hit_side is not None:
+                    # it reached the cone: put it there (its rounding, relative to the step,
+                    # could leave it inside by more than the cone's round-off near the apex,
+                    # and the next piece would not advance; a review)
+                    p[1] = hit_side * contact.mu * p[0]
                 t = t_new
                 branch = "stick"
             if p[0] < 0:  # on either branch: a slip through the apex separates too
-                raise ParameterError("the path separates the contact (p_N < 0): not "
-                                     "modelled (chapter §3.1: contact only)")
+                # unless it is a return to p_N = 0 rounded below it (the exact path touches
+                # the apex and goes on; a review found such paths refused as separating)
+                scale = 1e-12 * (abs(p_start[0]) + abs(contact.k_N * du[0]))
+                if p[0] >= -scale and abs(p[1]) <= contact.mu * scale:
+                    p = np.zeros(2)
+                else:
+                    raise ParameterError("the path separates the contact (p_N < 0): not "
+                                         "modelled (chapter §3.1: contact only)")
             us.append(u_a + t * du)
             ps.append(p.copy())
             slips.append(slip)
