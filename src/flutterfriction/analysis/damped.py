@@ -78,9 +78,9 @@ class _System:
                 check_finite_array(name, x.astype(float) if x.dtype == object else x, (n, n),
                                    "a finite square matrix of M's shape")
                 for name, x in zip(("M", "C", "K0", "K1"), given, strict=True))
-        except (TypeError, ValueError) as exc:
-            if isinstance(exc, ParameterError):
-                raise
+        except ParameterError:
+            raise
+        except (TypeError, ValueError):  # entries that are not numbers
             raise ParameterError("M, C, K0, K1 must be real square matrices of one shape") \
                 from None
         try:  # singular exactly (a rank test would refuse valid masses spanning 1e18)
