@@ -127,10 +127,11 @@ def paradox_limit(params: dict[str, Any]) -> dict[str, Any]:
     eps_max = check_positive("eps_max", params.get("eps_max", 2.0))
     n = max(11, n_points(params) // 20)
     eps = np.geomspace(eps_min, eps_max, n)
-    numeric = np.array([damped_flutter_load(with_viscosity(p0, e), "routh") / u for e in eps])
-    # the pendulums Routh-Hurwitz is given (eps rounded through c2), in doubles or, where the
-    # closed form's terms cancel (a user's extreme pendulum), exactly
-    closed = np.array([cfd.damped_flutter_gamma_of(with_viscosity(p0, e)) for e in eps])
+    viscous = [with_viscosity(p0, e) for e in eps]
+    numeric = np.array([damped_flutter_load(p, "routh") / u for p in viscous])
+    # on the pendulums Routh-Hurwitz is given (eps rounded through c2), in doubles or, where
+    # the closed form's terms cancel (a user's extreme pendulum), exactly
+    closed = np.array([cfd.damped_flutter_gamma_of(p) for p in viscous])
     eq54 = np.array([cfd.eq54_flutter_gamma(e) for e in eps])
     g_flu0 = follower_critical_loads(p0)[0] / u
     limit = cfd.flutter_gamma_limit(p0, 1.0)
