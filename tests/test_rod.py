@@ -623,25 +623,16 @@ def _record_solves(monkeypatch) -> list[tuple[int, int | None]]:
     return calls
 
 
-@pytest.mark.parametrize(("p_max", "solves"), [(80.0, [(12, None), (40, None)]),
-                                               (200.0, [(18, None), (54, None)])])
-def test_a_window_just_past_its_opening_is_found_by_the_finer_retry(monkeypatch, p_max, solves):
+@pytest.mark.parametrize(("p_max", "solves"), [(80.0, [(12, None)]), (200.0, [(18, None)])])
+def test_a_window_just_past_its_opening_is_solved_on_the_pairs_gap(monkeypatch, p_max, solves):
     """tan a = 0.59325025, 4e-8 past the opening of the first divergence window
-    (0.5932502122): the coarse twin's window is not eq. (118)'s, Newton fails there, and the
-    3x finer twin decides: the window [48.84648, 48.85706] (~0.01 wide). That twin is not
-    reduced: reduced to the coarse twin's unknowns (24 and 36 modes) it had opened the window
-    late and answered "no window", silently (an outside review). At p_max 200 the
-    54-element twin's window is refused instead (the regime check finds no verdict inside the
-    0.01-wide window; measured here), and nearly coincident roots may refuse it elsewhere: a
-    refusal passes, "no window" never does."""
-    from flutterfriction.errors import ConvergenceError
-
+    (0.5932502122, an outside review's mpmath): the coarse twin's window is not eq. (118)'s and
+    the two-variable Newton on (p, mu) fails there (its Jacobian is singular where the window's
+    ends merge). Its ends are the zeros of the pair's gap instead (one variable, simple zeros),
+    on the first twin: the window [48.84648, 48.85706] (~0.01 wide; before, the 3x finer twin
+    decided at p_max 80 and refused at p_max 200)."""
     calls = _record_solves(monkeypatch)
-    try:
-        c = ar.critical_loads(RodGroups(tan_alpha=0.59325025), p_max=p_max)
-    except ConvergenceError:
-        assert calls == solves
-        return
+    c = ar.critical_loads(RodGroups(tan_alpha=0.59325025), p_max=p_max)
     assert calls == solves
     assert [iv["regime"] for iv in c.intervals][:4] == [
         "stable", "flutter", "divergence", "flutter"]
@@ -668,21 +659,75 @@ def test_a_window_the_fe_twin_has_just_closed_is_found_through_its_near_miss(p_m
     assert flutter[0]["p_to"] == pytest.approx(69.76324917, abs=1e-7)
 
 
-@pytest.mark.parametrize("tan_alpha", [0.982343, 0.982346])
-def test_a_window_at_its_closing_is_found_or_refused_never_silently_missed(tan_alpha):
+@pytest.mark.parametrize("tan_alpha", [0.982343, 0.982346, 0.982349, 0.9823492])
+def test_a_window_at_its_closing_is_found(tan_alpha):
     """Outside review: at 0.982343 (window [69.6247, 69.7125]) and 0.982346 ([69.6368,
-    69.7003], fine FE) eq. (118) gives no verdict at the twin's near miss (its roots nearly
-    coincide) and the answer was "no window", silently. Unresolved there now means the finer
-    twin, then a refusal: the window, or ConvergenceError."""
-    from flutterfriction.errors import ConvergenceError
+    69.7003], fine FE) eq. (118) gave no verdict at the twin's near miss (its roots nearly
+    coincide) and the answer was "no window", silently; then a refusal up to 0.9823492. The
+    near miss's pair is now followed on its gap (analysis.rod_gap): the window is found, down
+    to 0.011 wide at 0.9823492 (it closes at ~0.9823494)."""
+    g = RodGroups(tan_alpha=tan_alpha)
+    c = ar.critical_loads(g, p_max=80.0)
+    assert sum(iv["regime"] == "flutter" and 69.6 < iv["p_from"] < iv["p_to"] < 69.75
+               for iv in c.intervals) == 1
+
+
+def _double_root_mp(tan_alpha: float, p0: float, mu0: float) -> tuple[float, float]:
+    """The double root ``f = df/dmu = 0`` of eq. (118) (undamped, ``mu = omega~^2``) at 40
+    digits (:func:`f_mp`, mpmath's Newton in two variables, derivative by mpmath)."""
+    with mp.workdps(40):
+        def G(p, mu):
+            return f_mp(p, mp.sqrt(mu), mp.mpf(tan_alpha))
+
+        sol = mp.findroot(lambda p, mu: [G(p, mu), mp.diff(lambda m: G(p, m), mu)],
+                          (mp.mpf(p0), mp.mpf(mu0)), tol=1e-30)
+        assert abs(mp.im(sol[0])) + abs(mp.im(sol[1])) < 1e-20
+        return float(mp.re(sol[0])), float(mp.re(sol[1]))
+
+
+@pytest.mark.parametrize(("tan_alpha", "p_max", "starts"), [
+    # 3e-10 past the opening (0.5932502122): a window 9.1e-4 wide
+    (0.5932502125, 60.0, [(48.8513, 170.256), (48.8522, 170.264)]),
+    # an outside review's case: the two-variable Newton put both ends at 641.3928
+    (0.55278551, 700.0, [(641.378, 2605.32), (641.393, 2605.47)]),
+    # 0.011 wide, just before the window closes along tan(alpha)
+    (0.9823492, 80.0, [(69.6632, 552.36), (69.6740, 552.65)])])
+def test_narrow_windows_are_the_zeros_of_the_pairs_gap(tan_alpha, p_max, starts):
+    """A window next to its opening or closing along tan(alpha): its ends are the zeros of the
+    coalescing pair's gap (one variable, analysis.rod_gap), where the two-variable Newton on
+    (p, mu) is ill-conditioned (its Jacobian is singular where the ends merge) and had failed
+    or converged to the other end. Checked against eq. (118)'s double roots at 40 digits
+    (mpmath, started from 4-5 digits). Tolerance 1e-10 relative: measured 2.7e-13 at
+    p = 641, 1.2e-12 at 3e-10 past the opening (the zeros' conditioning there)."""
+    c = ar.critical_loads(RodGroups(tan_alpha=tan_alpha), p_max=p_max)
+    ends = [iv["p_from"] for iv in c.intervals if starts[0][0] - 0.01 < iv["p_from"]
+            < starts[1][0] + 0.01]
+    assert len(ends) == 2
+    for got, (p0, mu0) in zip(ends, starts, strict=True):
+        assert got == pytest.approx(_double_root_mp(tan_alpha, p0, mu0)[0], rel=1e-10)
+
+
+@pytest.mark.parametrize("tan_alpha", [0.59325019, 0.5932502122])
+def test_no_window_just_before_its_opening(tan_alpha):
+    """Just before the first divergence window opens (0.5932502122 +- 2e-10, an outside
+    review's mpmath) the coarse twin already has a window and the two-variable Newton failed;
+    the call was refused after 51 s at p_max 1000. The pair's gap has no zero: flutter
+    continues (answered, p_max 60). Independently, at the gap's largest value the pair is a
+    complex one at 40 digits (mpmath's Newton on eq. 118 from the gap's prediction)."""
+    from flutterfriction.analysis.rod_gap import pair_gap
 
     g = RodGroups(tan_alpha=tan_alpha)
-    try:
-        c = ar.critical_loads(g, p_max=80.0)
-    except ConvergenceError:
-        return
-    assert any(iv["regime"] == "flutter" and 69.6 < iv["p_from"] < iv["p_to"] < 69.75
-               for iv in c.intervals)
+    c = ar.critical_loads(g, p_max=60.0)
+    assert [iv["regime"] for iv in c.intervals] == ["stable", "flutter"]
+    ps = np.linspace(48.83, 48.87, 81)
+    gaps = [pair_gap(float(p), g, 170.26) for p in ps]
+    k = int(np.argmax([gap for _, gap, _ in gaps]))
+    centre, gap, noise = gaps[k]
+    assert gap < -1e3 * noise
+    with mp.workdps(40):
+        mu = mp.findroot(lambda m: f_mp(mp.mpf(float(ps[k])), mp.sqrt(m), mp.mpf(tan_alpha)),
+                         mp.mpc(centre, math.sqrt(-gap)))
+    assert float(mp.im(mu)) == pytest.approx(math.sqrt(-gap), rel=1e-3)
 
 
 def test_a_damped_window_the_reduced_twin_loses_is_found_by_the_retry_on_more_modes():

@@ -25,6 +25,7 @@ from numpy.typing import NDArray
 from scipy.optimize import brentq, linear_sum_assignment, minimize_scalar
 
 from flutterfriction.analysis.damped import polish_flutter_crossing
+from flutterfriction.analysis.rod_gap import GAP_NOISE_FACTOR, gap_roots, pair_gap
 from flutterfriction.analysis.stability import Regime, state_eigenvalues
 from flutterfriction.errors import (
     ConvergenceError,
@@ -256,6 +257,9 @@ DAMPING_FLOOR = 1e-6
 #: Where each interval's claimed regime is checked against the exact roots of eq. (118), as
 #: fractions of the interval (the midpoint first, as before; then both sides).
 REGIME_CHECK_POINTS = (0.5, 0.125, 0.25, 0.375, 0.625, 0.75, 0.875)
+#: Half-width of the search for a failed boundary's exact zeros of its pair's gap, relative
+#: to p: 2.6x the FE twin's largest measured boundary error (7.6e-4, see SCAN_BEYOND).
+GAP_SEARCH_RTOL = 2e-3
 #: A near miss of the FE twin (see :attr:`_FEScan.near_misses`) is "close" below this value of
 #: its indicator (measured: 1e-5 at tan(alpha) = 0.982349, where eq. 118 has a window 0.018
 #: wide; ordinary extrema 7e-4 and above) and then probed at these relative offsets.
@@ -735,7 +739,11 @@ def _exact_regime(p: float, g: RodGroups) -> Regime | None:
     load only couples modes with k^2 <~ p)."""
     n_modes = int(math.ceil(math.sqrt(3 * p + 40) / math.pi)) + 1
     if not g.damped:
-        w = eigenvalues(p, g, n_modes=n_modes, n_elements=max(16, 3 * n_modes))
+        try:
+            w = eigenvalues(p, g, n_modes=n_modes, n_elements=max(16, 3 * n_modes))
+        except ConvergenceError:
+            # two roots nearly coincide (next to a coalescence): the pair by its gap
+            return _undamped_regime_by_gap(p, g, n_modes, max(16, 3 * n_modes))
     else:
         # The rightmost FE roots (with strong Kelvin-Voigt damping many overdamped roots lie
         # nearer the origin than an unstable pair) and those of smallest modulus (with tiny
@@ -781,6 +789,123 @@ def _exact_regime(p: float, g: RodGroups) -> Regime | None:
     return Regime.DIVERGENCE if np.any(unstable) else Regime.STABLE
 
 
+def _regime_of(mu: NDArray) -> Regime:
+    """Undamped regime of the roots ``mu = omega~^2``: flutter if one is complex, else
+    divergence if one is positive (a real growing ``omega~``), else stable."""
+    if np.any(np.abs(mu.imag) > 1e-8 * np.abs(mu)):
+        return Regime.FLUTTER
+    return Regime.DIVERGENCE if np.any(mu.real > 0) else Regime.STABLE
+
+
+def _undamped_regime_by_gap(p: float, g: RodGroups, n_modes: int, n_el: int
+                            ) -> Regime | None:
+    """Undamped regime at ``p`` where two roots of eq. (118) nearly coincide and Newton on
+    them fails: the pair nearest each other (FE guesses, relative distance) decided by its
+    gap (:func:`flutterfriction.analysis.rod_gap.pair_gap`: complex if negative, else two real
+    roots about its centre), every other root refined alone. ``None`` (no verdict) where the
+    gap is within :data:`~flutterfriction.analysis.rod_gap.GAP_NOISE_FACTOR` times its
+    round-off."""
+    mu = -_FEScan(g, n_el).spectra(np.array([p]))[0]  # the pencil's Omega^2 = -mu
+    mu = mu[np.argsort(np.abs(mu))][:n_modes]
+    d = np.abs(mu[:, None] - mu[None, :]) / (np.abs(mu[:, None]) + np.abs(mu[None, :]))
+    d[np.arange(mu.size), np.arange(mu.size)] = np.inf
+    i, j = np.unravel_index(int(np.argmin(d)), d.shape)
+    centre, gap, noise = pair_gap(p, g, float(0.5 * (mu[i] + mu[j]).real))
+    if abs(gap) <= GAP_NOISE_FACTOR * noise:
+        return None
+    others = [refine_eigenvalues(p, g, np.array([np.sqrt(complex(m))]))[0] ** 2
+              for k, m in enumerate(mu) if k not in (i, j)]
+    if gap < 0:
+        pair = np.array([complex(centre, math.sqrt(-gap))])
+    else:
+        pair = np.array([centre - math.sqrt(gap), centre + math.sqrt(gap)], dtype=complex)
+    return _regime_of(np.concatenate([np.array(others, dtype=complex), pair]))
+
+
+def _same_pair_near(a: _Boundary, b: _Boundary) -> bool:
+    """Two FE boundaries (undamped) within ``2 GAP_SEARCH_RTOL p`` of each other whose
+    double roots are within 5 %: the two ends of one pair's narrow window."""
+    return (b.p - a.p <= 2 * GAP_SEARCH_RTOL * max(1.0, a.p)
+            and abs(b.guess - a.guess) <= 0.05 * max(1.0, abs(a.guess)))
+
+
+def _boundaries_by_gap(g: RodGroups, bounds: list[_Boundary], i: int, error: Exception
+                       ) -> tuple[list[_Boundary], int]:
+    """Undamped: the exact boundaries replacing FE boundary ``i`` (whose two-variable Newton
+    failed) and the FE boundaries of the same pair next to it, from the zeros of the pair's
+    gap (:func:`flutterfriction.analysis.rod_gap.gap_roots`) within
+    :data:`GAP_SEARCH_RTOL` of them; and how many FE boundaries they replace.
+
+    Where a window opens or closes along tan(alpha), the two-variable Newton on (p, mu) meets
+    a singular Jacobian (the two ends merge) and the coarse twin's window is not eq. (118)'s;
+    the gap's zeros stay simple. As many zeros as FE boundaries: those, with the twin's
+    regimes; none where the twin's window has no exact counterpart (the regimes on both
+    sides agree): the twin's window is dropped. Anything else re-raises ``error``."""
+    first = bounds[i]
+    radius = GAP_SEARCH_RTOL * max(1.0, first.p)
+    cluster = [first]
+    for b in bounds[i + 1:]:
+        if not _same_pair_near(cluster[-1], b):
+            break
+        cluster.append(b)
+    try:
+        roots = gap_roots(g, max(0.0, first.p - radius), cluster[-1].p + radius, first.guess)
+    except ConvergenceError:
+        raise error from None
+    if len(roots) == len(cluster):
+        return [_Boundary(p, math.sqrt(abs(mu)), b.before, b.after, "coalescence", mu)
+                for (p, mu), b in zip(roots, cluster, strict=True)], len(cluster)
+    if not roots and cluster[0].before == cluster[-1].after and len(cluster) % 2 == 0:
+        return [], len(cluster)
+    raise error
+
+
+def _windows_at_near_misses(g: RodGroups, scan: _FEScan, exact: list[_Boundary],
+                            first: Regime, p_max: float) -> list[_Boundary]:
+    """Undamped: ``exact`` with the windows eq. (118) opens where the FE twin only nearly
+    changed regime (its near misses closer than :data:`NEAR_MISS_CLOSE`): a window the twin
+    has just closed along tan(alpha) (within its error) is still open on eq. (118) there.
+    Each such near miss's pair is followed on its gap within :data:`GAP_SEARCH_RTOL` of it;
+    two zeros are a window, its regime decided on eq. (118) at its middle."""
+    out = list(exact)
+    for p_nm, v in scan.near_misses:
+        if v >= NEAR_MISS_CLOSE or p_nm >= p_max:
+            continue
+        mu = -scan.spectra(np.array([p_nm]))[0]  # the pencil's Omega^2 = -mu
+        d = np.abs(mu[:, None] - mu[None, :]) / (np.abs(mu[:, None]) + np.abs(mu[None, :]))
+        d[np.arange(mu.size), np.arange(mu.size)] = np.inf
+        i, j = np.unravel_index(int(np.argmin(d)), d.shape)
+        radius = GAP_SEARCH_RTOL * max(1.0, p_nm)
+        roots = gap_roots(g, max(0.0, p_nm - radius), min(p_max, p_nm + radius),
+                          float(0.5 * (mu[i] + mu[j]).real))
+        # (a zero that is a boundary already solved, within its round-off, is that one)
+        roots = [(p, m) for p, m in roots
+                 if all(abs(p - b.p) > 1e-9 * max(1.0, p) for b in out)]
+        if not roots:
+            continue
+        if len(roots) != 2:
+            raise ConvergenceError(f"{len(roots)} changes of regime of eq. (118) near "
+                                   f"p = {p_nm:.6g}, where the FE twin has none")
+        (p1, m1), (p2, m2) = roots
+        if any(p1 < b.p < p2 for b in out):
+            raise ConvergenceError(f"a window of eq. (118) near p = {p_nm:.6g} that the FE "
+                                   "twin has closed straddles another change of regime")
+        outside = first
+        for b in out:
+            if b.p < p1:
+                outside = b.after
+        inside = _exact_regime(0.5 * (p1 + p2), g)
+        if inside is None:
+            raise ConvergenceError(f"no exact regime inside the window [{p1:.10g}, {p2:.10g}]"
+                                   " of eq. (118) that the FE twin has closed")
+        if inside == outside:  # another pair keeps the regime: no change
+            continue
+        out += [_Boundary(p1, math.sqrt(abs(m1)), outside, inside, "coalescence", m1),
+                _Boundary(p2, math.sqrt(abs(m2)), inside, outside, "coalescence", m2)]
+        out.sort(key=lambda b: b.p)
+    return out
+
+
 def critical_loads(g: RodGroups, p_max: float = 80.0, n_elements: int | None = None,
                    step: float = SCAN_STEP) -> RodCriticalLoads:
     """Exact critical loads (eq. 118) to ~1e-13 and every regime interval on [0, p_max].
@@ -800,20 +925,26 @@ def critical_loads(g: RodGroups, p_max: float = 80.0, n_elements: int | None = N
     wide, on 12 and on 40 elements). The scan runs to ``p_max (1 + SCAN_BEYOND)``, so a
     boundary just below ``p_max`` whose FE twin lies just beyond it is kept (unless it lies
     within ``LAST_INTERVAL_RTOL p_max`` of ``p_max``: then the regime below it is reported up
-    to ``p_max``). A window about to close along tan(alpha) that the FE twin has already
-    closed (at tan(alpha) = 0.98229-0.98235 a flutter window near p = 69.7, 12 elements; an
-    outside audit) leaves the twin a near miss, an indicator's extremum without a change of
-    signature: the exact regime is checked there too (:attr:`_FEScan.near_misses`; where the
-    twin comes within :data:`NEAR_MISS_CLOSE` of coalescing, also at
-    :data:`NEAR_MISS_PROBES` on either side), and a disagreement, or no verdict there, sends
-    the scan to the finer twin below, and a second failure is refused. Measured on a 2e-7
-    grid of tan(alpha) at p_max 80: the window is found up to 0.9823435, refused from
-    0.982344 to 0.9823492 (eq. 118's roots there too close for Newton), and not reported from
-    0.9823494, where it is at most ~0.005 wide and closes at ~0.9823495 (an outside review's
-    fine FE). Not guaranteed, then: a window narrower than that at its closing. Where the FE
-    twin's window differs from the exact one
-    (within ~1e-5 in tan(alpha) of its opening) Newton finds no double root: the scan is
-    redone once on a 3x finer twin, and a second failure is refused.
+    to ``p_max``). Undamped, a narrow window (its two FE ends within
+    ``2 GAP_SEARCH_RTOL p`` of each other) and any boundary whose two-variable Newton fails
+    are solved instead as the zeros of the coalescing pair's gap
+    (:mod:`flutterfriction.analysis.rod_gap`; one variable, simple zeros): next to a window's
+    opening or closing along tan(alpha) the two ends merge, the Newton on (p, mu) meets a
+    singular Jacobian (it failed, or converged to the other end: an outside review,
+    tan(alpha) = 0.55278551 at p ~ 641.39), and the coarse twin's window is not eq. (118)'s
+    (the gap then has no zero: the twin's window is dropped). A window the FE twin has
+    already closed (at tan(alpha) = 0.98229-0.98235 a flutter window near p = 69.7, 12
+    elements; an outside audit) leaves the twin a near miss, an indicator's extremum without
+    a change of signature: where it comes within :data:`NEAR_MISS_CLOSE` of coalescing, the
+    pair's gap is followed there too and a window it finds is added; the exact regime is
+    also checked at every near miss (and at :data:`NEAR_MISS_PROBES` on either side), and a
+    disagreement, or no verdict there, sends the scan to the finer twin below, and a second
+    failure is refused. Measured at p_max 80, without a refusal: the first divergence window
+    of the Pflüger column on a 1e-10 grid of tan(alpha) through its opening at 0.5932502122
+    (0.0009 wide 3e-10 past it), the flutter window near p = 69.7 on a 1e-7 grid through its
+    closing at ~0.9823494 (0.011 wide at 0.9823492); the ends agree with eq. (118)'s double
+    roots at 40 digits to 1e-12 (``tests/test_rod.py``). Not guaranteed, then: a window
+    narrower than its gap's round-off resolves (refused, naming the load).
 
     Parameters
     ----------
@@ -892,20 +1023,37 @@ def _solve_on(g: RodGroups, g_scan: RodGroups, n_el: int, p_max: float, step: fl
     # flutter load is 20.05095; the FE twin's 20.0517 lay beyond p_max).
     scan, first, bounds = _fe_scan(g_scan, n_el, p_max * (1 + SCAN_BEYOND), step, n_modes)
     exact: list[_Boundary] = []
-    for b in bounds:
+    i = 0
+    while i < len(bounds):
+        b = bounds[i]
         try:
+            if not g.damped and i + 1 < len(bounds) and _same_pair_near(b, bounds[i + 1]):
+                # a narrow window: next to its opening the two-variable Newton may converge
+                # to the other end (an outside review: tan(alpha) = 0.55278551, p ~ 641.39,
+                # both ends 641.3928; the window is [641.3783, 641.3928])
+                raise ConvergenceError(f"a window narrower than {2 * GAP_SEARCH_RTOL:g} p "
+                                       f"at p = {b.p:.10g}")
             p, omega = _exact_boundary(g, b)
-        except ConvergenceError:
+            solved, i = [_Boundary(p, omega, b.before, b.after, b.kind, b.guess)], i + 1
+        except ConvergenceError as exc:
             if b.p > p_max and skip_failed_beyond:  # only the extended scan sees it
                 break
-            raise
+            if g.damped:
+                raise
+            # undamped: a window opening or closing within the twin's error, solved on the
+            # pair's gap (one variable, simple zeros) instead
+            solved, used = _boundaries_by_gap(g, bounds, i, exc)
+            i += used
         # Beyond the asked range (the FE boundary may lie on either side), or so close to
         # p_max that the last interval would be a sliver narrower than the regime check
         # resolves (its check points sit on the coalescence; an outside review: p_max = the
         # exact flutter load failed): the interval below it runs to p_max.
-        if p > p_max * (1 - LAST_INTERVAL_RTOL):
+        beyond = [s for s in solved if s.p > p_max * (1 - LAST_INTERVAL_RTOL)]
+        exact += [s for s in solved if s not in beyond]
+        if beyond:
             break
-        exact.append(_Boundary(p, omega, b.before, b.after, b.kind, b.guess))
+    if not g.damped:
+        exact = _windows_at_near_misses(g, scan, exact, first, p_max)
     ps = [0.0, *[b.p for b in exact], p_max]
     if np.any(np.diff(ps) <= 0):
         raise ConvergenceError(f"the exact regime boundaries are not ordered: {ps[1:-1]} "
