@@ -707,6 +707,40 @@ def test_narrow_windows_are_the_zeros_of_the_pairs_gap(tan_alpha, p_max, starts)
         assert got == pytest.approx(_double_root_mp(tan_alpha, p0, mu0)[0], rel=1e-10)
 
 
+def _damped_double_root_mp(tan_alpha: float, eta: float, p0: float, w0: float) -> complex:
+    """The load of the double real root ``f = df/domega~ = 0`` of the damped eq. (118) at 40
+    digits, started off the real axis: complex where no divergence window is open."""
+    with mp.workdps(40):
+        def G(p, w):
+            return f_mp(p, w, mp.mpf(tan_alpha), 0, mp.mpf(eta))
+
+        sol = mp.findroot(lambda p, w: [G(p, w), mp.diff(lambda x: G(p, x), w)],
+                          (mp.mpc(p0, 1e-3), mp.mpc(w0, 1e-3)), tol=1e-30)
+        return complex(sol[0])
+
+
+@pytest.mark.parametrize(("tan_alpha", "eta", "starts"), [
+    (0.5932505, 1e-3, [(49.447, 13.116), (49.553, 13.153)]),
+    (0.5932505, 1e-6, [(48.807, 13.032), (48.910, 13.067)]),
+    (0.59325, 1e-6, [(48.85, 13.05)]),  # no window: a complex double root
+    (0.59325, 1e-3, [(49.4934, 13.1338)])])
+def test_a_damped_window_at_its_opening_is_solved_on_the_pairs_gap(tan_alpha, eta, starts):
+    """Damped (Kelvin-Voigt eta), the divergence window's ends are double real roots in
+    omega~; next to its opening the two-variable Newton failed and the call was refused
+    (tan a = 0.59325 and 0.5932502, eta = 1e-6). They are now the zeros of the pair's gap in
+    omega~ (analysis.rod_gap, variable "omega"); checked against 40-digit double roots started
+    off the real axis (a complex load: no window there), 1e-10 relative (measured 1e-13)."""
+    c = ar.critical_loads(RodGroups(tan_alpha=tan_alpha, eta=eta), p_max=60.0)
+    ends = [iv["p_from"] for iv in c.intervals if 48.5 < iv["p_from"] < 50.0]
+    exact = [_damped_double_root_mp(tan_alpha, eta, p0, w0) for p0, w0 in starts]
+    real = [p.real for p in exact if abs(p.imag) < 1e-20 * abs(p)]
+    if len(real) < len(exact):
+        assert not real and not ends
+        assert [iv["regime"] for iv in c.intervals] == ["stable", "flutter"]
+        return
+    assert ends == pytest.approx(real, rel=1e-10)
+
+
 @pytest.mark.parametrize("tan_alpha", [0.59325019, 0.5932502122])
 def test_no_window_just_before_its_opening(tan_alpha):
     """Just before the first divergence window opens (0.5932502122 +- 2e-10, an outside

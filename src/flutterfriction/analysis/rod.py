@@ -823,20 +823,22 @@ def _undamped_regime_by_gap(p: float, g: RodGroups, n_modes: int, n_el: int
 
 
 def _same_pair_near(a: _Boundary, b: _Boundary) -> bool:
-    """Two FE boundaries (undamped) within ``2 GAP_SEARCH_RTOL p`` of each other whose
-    double roots are within 5 %: the two ends of one pair's narrow window."""
-    return (b.p - a.p <= 2 * GAP_SEARCH_RTOL * max(1.0, a.p)
+    """Two FE coalescences (double real roots) within ``2 GAP_SEARCH_RTOL p`` of each other
+    whose double roots are within 5 %: the two ends of one pair's narrow window."""
+    return (a.kind == b.kind == "coalescence" and b.p - a.p <= 2 * GAP_SEARCH_RTOL * max(
+        1.0, a.p)
             and abs(b.guess - a.guess) <= 0.05 * max(1.0, abs(a.guess)))
 
 
 def _boundaries_by_gap(g: RodGroups, bounds: list[_Boundary], i: int, error: Exception
                        ) -> tuple[list[_Boundary], int]:
-    """Undamped: the exact boundaries replacing FE boundary ``i`` (whose two-variable Newton
+    """The exact boundaries replacing FE coalescence ``i`` (whose two-variable Newton
     failed) and the FE boundaries of the same pair next to it, from the zeros of the pair's
     gap (:func:`flutterfriction.analysis.rod_gap.gap_roots`) within
     :data:`GAP_SEARCH_RTOL` of them; and how many FE boundaries they replace.
 
-    Where a window opens or closes along tan(alpha), the two-variable Newton on (p, mu) meets
+    Where a window opens or closes along tan(alpha), the two-variable Newton on (p, mu) (or
+    (p, omega~), damped) meets
     a singular Jacobian (the two ends merge) and the coarse twin's window is not eq. (118)'s;
     the gap's zeros stay simple. As many zeros as FE boundaries: those, with the twin's
     regimes; none where the twin's window has no exact counterpart (the regimes on both
@@ -848,12 +850,16 @@ def _boundaries_by_gap(g: RodGroups, bounds: list[_Boundary], i: int, error: Exc
         if not _same_pair_near(cluster[-1], b):
             break
         cluster.append(b)
+    # undamped in mu = omega~^2 (omega = sqrt|mu|); damped in omega~ (its double real root)
+    variable = "omega" if g.damped else "mu"
     try:
-        roots = gap_roots(g, max(0.0, first.p - radius), cluster[-1].p + radius, first.guess)
+        roots = gap_roots(g, max(0.0, first.p - radius), cluster[-1].p + radius, first.guess,
+                          variable=variable)
     except ConvergenceError:
         raise error from None
     if len(roots) == len(cluster):
-        return [_Boundary(p, math.sqrt(abs(mu)), b.before, b.after, "coalescence", mu)
+        return [_Boundary(p, mu if g.damped else math.sqrt(abs(mu)), b.before, b.after,
+                          "coalescence", mu)
                 for (p, mu), b in zip(roots, cluster, strict=True)], len(cluster)
     if not roots and cluster[0].before == cluster[-1].after and len(cluster) % 2 == 0:
         return [], len(cluster)
@@ -925,14 +931,16 @@ def critical_loads(g: RodGroups, p_max: float = 80.0, n_elements: int | None = N
     wide, on 12 and on 40 elements). The scan runs to ``p_max (1 + SCAN_BEYOND)``, so a
     boundary just below ``p_max`` whose FE twin lies just beyond it is kept (unless it lies
     within ``LAST_INTERVAL_RTOL p_max`` of ``p_max``: then the regime below it is reported up
-    to ``p_max``). Undamped, a narrow window (its two FE ends within
-    ``2 GAP_SEARCH_RTOL p`` of each other) and any boundary whose two-variable Newton fails
-    are solved instead as the zeros of the coalescing pair's gap
+    to ``p_max``). A narrow window of a pair coalescing on the real axis (undamped, in
+    ``mu = omega~^2``; damped, a divergence window's double real ``omega~``; its two FE ends
+    within ``2 GAP_SEARCH_RTOL p`` of each other), and any such boundary whose two-variable
+    Newton fails, are solved instead as the zeros of the coalescing pair's gap
     (:mod:`flutterfriction.analysis.rod_gap`; one variable, simple zeros): next to a window's
     opening or closing along tan(alpha) the two ends merge, the Newton on (p, mu) meets a
     singular Jacobian (it failed, or converged to the other end: an outside review,
-    tan(alpha) = 0.55278551 at p ~ 641.39), and the coarse twin's window is not eq. (118)'s
-    (the gap then has no zero: the twin's window is dropped). A window the FE twin has
+    tan(alpha) = 0.55278551 at p ~ 641.39; refused at 0.59325 with eta = 1e-6), and the
+    coarse twin's window is not eq. (118)'s (the gap then has no zero: the twin's window is
+    dropped). Undamped, a window the FE twin has
     already closed (at tan(alpha) = 0.98229-0.98235 a flutter window near p = 69.7, 12
     elements; an outside audit) leaves the twin a near miss, an indicator's extremum without
     a change of signature: where it comes within :data:`NEAR_MISS_CLOSE` of coalescing, the
@@ -1027,7 +1035,7 @@ def _solve_on(g: RodGroups, g_scan: RodGroups, n_el: int, p_max: float, step: fl
     while i < len(bounds):
         b = bounds[i]
         try:
-            if not g.damped and i + 1 < len(bounds) and _same_pair_near(b, bounds[i + 1]):
+            if i + 1 < len(bounds) and _same_pair_near(b, bounds[i + 1]):
                 # a narrow window: next to its opening the two-variable Newton may converge
                 # to the other end (an outside review: tan(alpha) = 0.55278551, p ~ 641.39,
                 # both ends 641.3928; the window is [641.3783, 641.3928])
@@ -1038,10 +1046,10 @@ def _solve_on(g: RodGroups, g_scan: RodGroups, n_el: int, p_max: float, step: fl
         except ConvergenceError as exc:
             if b.p > p_max and skip_failed_beyond:  # only the extended scan sees it
                 break
-            if g.damped:
+            if b.kind != "coalescence":  # (a damped crossing: no pair on the real axis)
                 raise
-            # undamped: a window opening or closing within the twin's error, solved on the
-            # pair's gap (one variable, simple zeros) instead
+            # a window opening or closing within the twin's error, solved on the pair's gap
+            # (one variable, simple zeros) instead
             solved, used = _boundaries_by_gap(g, bounds, i, exc)
             i += used
         # Beyond the asked range (the FE boundary may lie on either side), or so close to

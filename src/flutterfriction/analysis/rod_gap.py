@@ -51,52 +51,65 @@ GAP_NOISE_FACTOR = 1e3
 _EPS = float(np.finfo(float).eps)
 
 
-def _taylor(p: float, g: RodGroups, m: float, r: float) -> tuple[np.ndarray, float]:
-    """Taylor coefficients ``a0, a1, a2`` of ``G(mu) = f(p, sqrt(mu))`` (scaled by one
-    constant) at ``m``, and the round-off of each, ``eps max|G|`` on the circle."""
+def _taylor(p: float, g: RodGroups, m: float, r: float, variable: str
+            ) -> tuple[np.ndarray, float]:
+    """Taylor coefficients ``a0, a1, a2`` of ``G`` (scaled by one constant) at ``m``, and
+    their round-off, ``eps max|G|`` on the circle: ``G(mu) = f(p, sqrt(mu))`` (undamped,
+    ``variable`` "mu") or ``G(omega~) = f(p, omega~)`` ("omega": real on the real axis, damped
+    or not)."""
     theta = 2 * np.pi * np.arange(CIRCLE_POINTS) / CIRCLE_POINTS
     z = m + r * np.exp(1j * theta)
-    F, sigma = characteristic_function(p, np.sqrt(z + 0j), g, with_exponent=True)
+    w = np.sqrt(z + 0j) if variable == "mu" else z
+    F, sigma = characteristic_function(p, w, g, with_exponent=True)
     # one common scale: exp(sigma - max sigma) <= 1 (F is f exp(-sigma))
     v = F * np.exp(sigma - np.max(sigma.real))
     a = (np.fft.fft(v) / CIRCLE_POINTS)[:3] / r ** np.arange(3)
     return a.real, _EPS * float(np.max(np.abs(v)))
 
 
-def pair_gap(p: float, g: RodGroups, mu0: float) -> tuple[float, float, float]:
-    """Centre ``m``, gap and the gap's round-off bound of the pair of roots ``mu = omega~^2``
-    of eq. (118) (undamped) nearest ``mu0`` at load ``p``.
+def pair_gap(p: float, g: RodGroups, mu0: float, variable: str = "mu"
+             ) -> tuple[float, float, float]:
+    """Centre ``m``, gap and the gap's round-off bound of the pair of real-axis roots of eq.
+    (118) nearest ``mu0`` at load ``p``: in ``mu = omega~^2`` (``variable`` "mu", the
+    undamped rod) or in ``omega~`` itself ("omega": a damped rod's double real root, where a
+    divergence window opens or closes).
 
     The centre is Newton's root of ``G'`` from ``mu0`` (``G''`` from the same Cauchy sums);
     the gap is ``-a0/a2`` there (``((mu1 - mu2)/2)^2`` for a quadratic: > 0 two real roots,
     < 0 a complex pair). Raises :class:`ConvergenceError` where ``G''`` vanishes (three
     roots together) or the centre does not converge."""
-    if g.damped:
-        raise ParameterError("pair_gap is for the undamped rod (eq. 118 in mu = omega~^2): "
-                             f"eta and gamma must be 0, got {g.eta!r} and {g.gamma!r}")
+    if variable not in ("mu", "omega"):
+        raise ParameterError(f"variable must be 'mu' or 'omega', got {variable!r}")
+    if variable == "mu" and g.damped:
+        raise ParameterError("pair_gap in mu = omega~^2 is for the undamped rod: eta and "
+                             f"gamma must be 0, got {g.eta!r} and {g.gamma!r}")
     m = float(mu0)
     for _ in range(60):
         r = CIRCLE_RTOL * max(1.0, abs(m))
-        a, noise = _taylor(p, g, m, r)
+        if variable == "omega" and g.eta > 0 and not r < 0.5 * abs(m + 1 / g.eta):
+            # eq. (113)'s pole omega~ = -1/eta: the circle must stay clear of it
+            raise ConvergenceError(f"the pair near omega~ = {m:.6g} at p = {p:.10g} lies "
+                                   "next to the pole omega~ = -1/eta of eq. (113)")
+        a, noise = _taylor(p, g, m, r, variable)
         if not abs(a[2]) > 1e3 * noise / r**2:
-            raise ConvergenceError(f"no pair of roots near mu = {m:.6g} at p = {p:.10g} "
+            raise ConvergenceError(f"no pair of roots near {m:.6g} at p = {p:.10g} "
                                    "(G'' vanishes: three roots together, or none)")
         step = -a[1] / (2 * a[2])
         m += step
         if abs(step) <= CENTRE_RTOL * max(1.0, abs(m)):
             break
     else:
-        raise ConvergenceError(f"the centre of the pair near mu = {mu0:.6g} at p = {p:.10g} "
+        raise ConvergenceError(f"the centre of the pair near {mu0:.6g} at p = {p:.10g} "
                                "did not converge")
-    a, noise = _taylor(p, g, m, CIRCLE_RTOL * max(1.0, abs(m)))
+    a, noise = _taylor(p, g, m, CIRCLE_RTOL * max(1.0, abs(m)), variable)
     gap = -a[0] / a[2]
     # round-off of a0 (eps max|G|) over a2; the centre's own error d adds a1 d / a2 ~ 2 d^2
     # (a1 ~ 2 a2 d), below 1e-20 m^2: negligible
     return m, float(gap), float(noise / abs(a[2]))
 
 
-def gap_roots(g: RodGroups, lo: float, hi: float, mu0: float, n: int = 40
-              ) -> list[tuple[float, float]]:
+def gap_roots(g: RodGroups, lo: float, hi: float, mu0: float, n: int = 40,
+              variable: str = "mu") -> list[tuple[float, float]]:
     """Every load in ``[lo, hi]`` where the pair of roots near ``mu0`` coalesces, with its
     double root: ``[(p, mu), ...]`` in increasing ``p``.
 
@@ -109,7 +122,7 @@ def gap_roots(g: RodGroups, lo: float, hi: float, mu0: float, n: int = 40
     centres, gaps, noises = [], [], []
     m = mu0
     for p in ps:
-        m, gap, noise = pair_gap(float(p), g, m)
+        m, gap, noise = pair_gap(float(p), g, m, variable)
         centres.append(m)
         gaps.append(gap)
         noises.append(noise)
@@ -127,11 +140,11 @@ def gap_roots(g: RodGroups, lo: float, hi: float, mu0: float, n: int = 40
         checked(gaps[k], noises[k], float(ps[k]))
 
     def gap_at(p: float, k: int) -> float:
-        return pair_gap(p, g, centres[k])[1]
+        return pair_gap(p, g, centres[k], variable)[1]
 
     def root(a: float, b: float, k: int) -> tuple[float, float]:
         p = brentq(lambda x: gap_at(x, k), a, b, xtol=4 * _EPS * max(1.0, b), maxiter=200)
-        return float(p), pair_gap(float(p), g, centres[k])[0]
+        return float(p), pair_gap(float(p), g, centres[k], variable)[0]
 
     out: list[tuple[float, float]] = []
     for k in range(n):
@@ -147,7 +160,7 @@ def gap_roots(g: RodGroups, lo: float, hi: float, mu0: float, n: int = 40
                                   bounds=(float(ps[k - 1]), b), method="bounded",
                                   options={"xatol": 1e-10 * max(1.0, b)})
             x = float(res.x)
-            m_x, gap_x, noise_x = pair_gap(x, g, centres[k])
+            m_x, gap_x, noise_x = pair_gap(x, g, centres[k], variable)
             if sign * gap_x < 0:
                 if out and out[-1][0] > float(ps[k - 1]):
                     raise ConvergenceError(f"two coalescences of the pair near mu = "
