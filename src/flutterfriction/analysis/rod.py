@@ -755,23 +755,15 @@ def _exact_regime(p: float, g: RodGroups) -> Regime | None:
         # then gives Re omega~ = O(damping) to relative precision (from 1e-12 it would take
         # log2(log(1e-100)/log(1e-12)) ~ 3 steps more to fall to a damping of 1e-100).
         flat = np.abs(guesses.real) < 1e-8 * np.abs(guesses)
-        guesses = np.where(flat, 1j * guesses.imag, guesses)
-        roots = []
-        for z in np.unique(guesses):
-            try:
-                roots.append(refine_eigenvalues(p, g, np.array([z]))[0])
-            except ConvergenceError:
-                # Newton may fail next to the pole omega~ = -1/eta of eq. (113) (overdamped
-                # roots); a root that deep in the left half-plane (decay > 10 % of its
-                # modulus, far beyond the FE twin's error) decides no regime.
-                if not z.real < -0.1 * abs(z):
-                    raise
-        w = np.array(roots)
-        # Two more Newton steps: the stopping test (step <= 1e-13 |w|) leaves an error up to
-        # ~1e-16 |w|, above a growth rate O(damping) when the damping is tiny; each step
-        # squares it, down to the relative precision Re omega~ is computed with (see
-        # _damped_flutter).
-        w = refine_eigenvalues(p, g, refine_eigenvalues(p, g, w))
+        guesses = np.unique(np.where(flat, 1j * guesses.imag, guesses))
+        try:
+            w = _damped_roots(p, g, guesses)
+        except ConvergenceError:
+            # two roots nearly coincide on the real axis (next to a divergence window's
+            # end): the pair by its gap in omega~, the other roots alone
+            w = _damped_roots_by_gap(p, g, guesses)
+            if w is None:
+                return None
     if not g.damped:
         mu = w**2
         cx = np.abs(mu.imag) > 1e-8 * np.abs(mu)
@@ -787,6 +779,63 @@ def _exact_regime(p: float, g: RodGroups) -> Regime | None:
     if np.any(unstable & (np.abs(w.imag) > 1e-8 * np.abs(w))):
         return Regime.FLUTTER
     return Regime.DIVERGENCE if np.any(unstable) else Regime.STABLE
+
+
+def _damped_roots(p: float, g: RodGroups, guesses: NDArray) -> NDArray:
+    """The damped rod's roots ``omega~`` of eq. (118) from FE ``guesses``, each refined alone
+    (those deep in the left half-plane may fail: they decide no regime)."""
+    roots = []
+    for z in guesses:
+        try:
+            roots.append(refine_eigenvalues(p, g, np.array([z]))[0])
+        except ConvergenceError:
+            # Newton may fail next to the pole omega~ = -1/eta of eq. (113) (overdamped
+            # roots); a root that deep in the left half-plane (decay > 10 % of its
+            # modulus, far beyond the FE twin's error) decides no regime.
+            if not z.real < -0.1 * abs(z):
+                raise
+    w = np.array(roots, dtype=complex)
+    # Two more Newton steps: the stopping test (step <= 1e-13 |w|) leaves an error up to
+    # ~1e-16 |w|, above a growth rate O(damping) when the damping is tiny; each step
+    # squares it, down to the relative precision Re omega~ is computed with (see
+    # _damped_flutter). Not on the roots deep in the left half-plane: they decide nothing,
+    # and a nearly coincident pair there (the mirror -omega~ of a nearly undamped pair next
+    # to its coalescence) may jitter and fail (an outside review: tan(alpha) = 0.5932505,
+    # eta = 1e-6, p = 48.8495).
+    near = ~(w.real < -0.1 * np.abs(w))
+    w[near] = refine_eigenvalues(p, g, refine_eigenvalues(p, g, w[near]))
+    return w
+
+
+def _closest_pair_index(z: NDArray) -> tuple[int, int]:
+    """Indices of the two values of ``z`` nearest each other relative to their moduli."""
+    d = np.abs(z[:, None] - z[None, :]) / (np.abs(z[:, None]) + np.abs(z[None, :]) + 1e-300)
+    d[np.arange(z.size), np.arange(z.size)] = np.inf
+    i, j = np.unravel_index(int(np.argmin(d)), d.shape)
+    return int(i), int(j)
+
+
+def _damped_roots_by_gap(p: float, g: RodGroups, guesses: NDArray) -> NDArray | None:
+    """:func:`_damped_roots` where two roots nearly coincide and Newton on them fails: the
+    pair of guesses nearest each other (on or about the real axis) from its gap in
+    ``omega~`` (:func:`flutterfriction.analysis.rod_gap.pair_gap`: two real roots about its
+    centre, or a complex pair), every other root alone; ``None`` (no verdict) where the gap
+    is within its round-off."""
+    # among the roots that decide the regime (a pair deep in the left half-plane, e.g. the
+    # mirror -omega~ of a nearly undamped pair, is left to _damped_roots, which skips it)
+    deciding = np.flatnonzero(~(guesses.real < -0.1 * np.abs(guesses)))
+    if deciding.size < 2:
+        raise ConvergenceError(f"no pair of roots of eq. (118) to decide at p = {p:.10g}")
+    a, b = _closest_pair_index(guesses[deciding])
+    i, j = int(deciding[a]), int(deciding[b])
+    centre, gap, noise = pair_gap(p, g, float(0.5 * (guesses[i] + guesses[j]).real), "omega")
+    if abs(gap) <= GAP_NOISE_FACTOR * noise:
+        return None
+    others = _damped_roots(p, g, np.delete(guesses, [i, j]))
+    half = math.sqrt(abs(gap))
+    pair = ([complex(centre - half), complex(centre + half)] if gap > 0 else
+            [complex(centre, half), complex(centre, -half)])
+    return np.concatenate([others, np.array(pair)])
 
 
 def _regime_of(mu: NDArray) -> Regime:
@@ -807,9 +856,7 @@ def _undamped_regime_by_gap(p: float, g: RodGroups, n_modes: int, n_el: int
     round-off."""
     mu = -_FEScan(g, n_el).spectra(np.array([p]))[0]  # the pencil's Omega^2 = -mu
     mu = mu[np.argsort(np.abs(mu))][:n_modes]
-    d = np.abs(mu[:, None] - mu[None, :]) / (np.abs(mu[:, None]) + np.abs(mu[None, :]))
-    d[np.arange(mu.size), np.arange(mu.size)] = np.inf
-    i, j = np.unravel_index(int(np.argmin(d)), d.shape)
+    i, j = _closest_pair_index(mu)
     centre, gap, noise = pair_gap(p, g, float(0.5 * (mu[i] + mu[j]).real))
     if abs(gap) <= GAP_NOISE_FACTOR * noise:
         return None
@@ -868,22 +915,33 @@ def _boundaries_by_gap(g: RodGroups, bounds: list[_Boundary], i: int, error: Exc
 
 def _windows_at_near_misses(g: RodGroups, scan: _FEScan, exact: list[_Boundary],
                             first: Regime, p_max: float) -> list[_Boundary]:
-    """Undamped: ``exact`` with the windows eq. (118) opens where the FE twin only nearly
-    changed regime (its near misses closer than :data:`NEAR_MISS_CLOSE`): a window the twin
-    has just closed along tan(alpha) (within its error) is still open on eq. (118) there.
-    Each such near miss's pair is followed on its gap within :data:`GAP_SEARCH_RTOL` of it;
-    two zeros are a window, its regime decided on eq. (118) at its middle."""
+    """``exact`` with the windows eq. (118) opens where the FE twin only nearly changed
+    regime (its near misses closer than :data:`NEAR_MISS_CLOSE`): a window the twin has just
+    closed along tan(alpha) (within its error) is still open on eq. (118) there. Each such
+    near miss's pair (undamped in ``mu = omega~^2``; damped, the nearest pair on or right of
+    the imaginary axis, in ``omega~``) is followed on its gap within :data:`GAP_SEARCH_RTOL`
+    of it; two zeros are a window, its regime decided on eq. (118) at its middle."""
     out = list(exact)
     for p_nm, v in scan.near_misses:
         if v >= NEAR_MISS_CLOSE or p_nm >= p_max:
             continue
-        mu = -scan.spectra(np.array([p_nm]))[0]  # the pencil's Omega^2 = -mu
-        d = np.abs(mu[:, None] - mu[None, :]) / (np.abs(mu[:, None]) + np.abs(mu[None, :]))
-        d[np.arange(mu.size), np.arange(mu.size)] = np.inf
-        i, j = np.unravel_index(int(np.argmin(d)), d.shape)
+        if not g.damped:
+            z = -scan.spectra(np.array([p_nm]))[0]  # mu = -Omega^2, the pencil's
+        else:  # omega~ of the first-order spectrum, on or right of the imaginary axis
+            z = scan.spectra(np.array([p_nm]))[0]
+            z = z[z.real > -1e-9 * np.max(np.abs(z))]
+            if z.size < 2:
+                continue
+        i, j = _closest_pair_index(z)
+        if abs(z[i] - z[j]) > 0.05 * (abs(z[i]) + abs(z[j])):
+            continue  # no pair about to coalesce on the real axis here (the twin's error ~1e-3)
         radius = GAP_SEARCH_RTOL * max(1.0, p_nm)
-        roots = gap_roots(g, max(0.0, p_nm - radius), min(p_max, p_nm + radius),
-                          float(0.5 * (mu[i] + mu[j]).real))
+        try:
+            roots = gap_roots(g, max(0.0, p_nm - radius), min(p_max, p_nm + radius),
+                              float(0.5 * (z[i] + z[j]).real),
+                              variable="omega" if g.damped else "mu")
+        except ConvergenceError:
+            continue  # unresolved here: the near-miss regime check below decides, or refuses
         # (a zero that is a boundary already solved, within its round-off, is that one)
         roots = [(p, m) for p, m in roots
                  if all(abs(p - b.p) > 1e-9 * max(1.0, p) for b in out)]
@@ -906,8 +964,9 @@ def _windows_at_near_misses(g: RodGroups, scan: _FEScan, exact: list[_Boundary],
                                    " of eq. (118) that the FE twin has closed")
         if inside == outside:  # another pair keeps the regime: no change
             continue
-        out += [_Boundary(p1, math.sqrt(abs(m1)), outside, inside, "coalescence", m1),
-                _Boundary(p2, math.sqrt(abs(m2)), inside, outside, "coalescence", m2)]
+        w1, w2 = (m1, m2) if g.damped else (math.sqrt(abs(m1)), math.sqrt(abs(m2)))
+        out += [_Boundary(p1, w1, outside, inside, "coalescence", m1),
+                _Boundary(p2, w2, inside, outside, "coalescence", m2)]
         out.sort(key=lambda b: b.p)
     return out
 
@@ -1060,8 +1119,7 @@ def _solve_on(g: RodGroups, g_scan: RodGroups, n_el: int, p_max: float, step: fl
         exact += [s for s in solved if s not in beyond]
         if beyond:
             break
-    if not g.damped:
-        exact = _windows_at_near_misses(g, scan, exact, first, p_max)
+    exact = _windows_at_near_misses(g, scan, exact, first, p_max)
     ps = [0.0, *[b.p for b in exact], p_max]
     if np.any(np.diff(ps) <= 0):
         raise ConvergenceError(f"the exact regime boundaries are not ordered: {ps[1:-1]} "
