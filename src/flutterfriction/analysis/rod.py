@@ -1009,8 +1009,10 @@ def critical_loads(g: RodGroups, p_max: float = 80.0, n_elements: int | None = N
     failure is refused. Measured at p_max 80, without a refusal: the first divergence window
     of the Pflüger column on a 1e-10 grid of tan(alpha) through its opening at 0.5932502122
     (0.0009 wide 3e-10 past it), the flutter window near p = 69.7 on a 1e-7 grid through its
-    closing at ~0.9823494 (0.011 wide at 0.9823492); the ends agree with eq. (118)'s double
-    roots at 40 digits to 1e-12 (``tests/test_rod.py``). Not guaranteed, then: a window
+    closing at ~0.9823494 (0.011 wide at 0.9823492); damped (eta = 1.48e-4, gamma = 0.225)
+    a flutter window near p = 208.4 down to 0.012 wide at tan(alpha) = 1.528407, where the
+    FE twin's stays ~1 wide (refused before from 1.5284); the ends agree with eq. (118)'s
+    double roots at 40 digits to 1e-12 (``tests/test_rod.py``). Not guaranteed, then: a window
     narrower than its gap's round-off resolves (refused, naming the load).
 
     Parameters
