@@ -766,6 +766,44 @@ def test_a_damped_window_at_its_opening_is_solved_on_the_pairs_gap(tan_alpha, et
     _check_damped_window(RodGroups(tan_alpha=tan_alpha, eta=eta), 80.0, starts)
 
 
+def test_a_window_between_two_pairs_within_one_scan_step_is_found():
+    """Outside review: at tan a = 0.2265 eq. (118) diverges on [273.19530, 273.32665], where
+    one pair (mu ~ 5534) has turned real and another (mu ~ 14908) not yet complex; on the
+    22-element twin both changes fall within one 0.25 step in the other order (flutter
+    throughout, the signature equal at both scan points), and "flutter on [16.54, 300]" was
+    answered, silently. An indicator changing sign within a step now has its zeros solved and
+    the signature probed between them; two such coalescences close together are solved on eq.
+    (118) and the regime between checked. Ends against 40-digit double roots, 1e-10."""
+    c = ar.critical_loads(RodGroups(tan_alpha=0.2265), p_max=300.0)
+    window = [iv for iv in c.intervals if iv["regime"] == "divergence"]
+    assert len(window) == 1
+    assert window[0]["p_from"] == pytest.approx(_double_root_mp(0.2265, 273.195, 5534.0)[0],
+                                                rel=1e-10)
+    assert window[0]["p_to"] == pytest.approx(_double_root_mp(0.2265, 273.327, 14908.0)[0],
+                                              rel=1e-10)
+
+
+@pytest.mark.parametrize(("tan_alpha", "window"), [(0.2595186, False), (0.2595188, True)])
+def test_a_window_between_two_pairs_reversed_on_eq118_is_dropped(tan_alpha, window):
+    """Outside review: near p = 111.6706 one pair (mu ~ 1788) turns real and another
+    (mu ~ -722) complex; the twin puts them in the window's order, eq. (118) below
+    tan a = 0.2595187957 in the other (the 40-digit double roots: 111.670626 > 111.670578 at
+    0.2595186), and "boundaries not ordered" was refused. Reversed, one pair is complex at
+    every load: the twin's window is dropped (flutter). Just above, the window is there, its
+    ends the 40-digit double roots (1e-10)."""
+    c = ar.critical_loads(RodGroups(tan_alpha=tan_alpha), p_max=130.0)
+    real = _double_root_mp(tan_alpha, 111.67057, 1787.7)[0]
+    complex_ = _double_root_mp(tan_alpha, 111.67057, -722.0)[0]
+    assert (real < complex_) is window
+    if not window:
+        assert [iv["regime"] for iv in c.intervals] == ["stable", "flutter"]
+        return
+    div = [iv for iv in c.intervals if iv["regime"] == "divergence"]
+    assert len(div) == 1
+    assert div[0]["p_from"] == pytest.approx(real, rel=1e-10)
+    assert div[0]["p_to"] == pytest.approx(complex_, rel=1e-10)
+
+
 @pytest.mark.parametrize("tan_alpha", [0.59325019, 0.5932502122])
 def test_no_window_just_before_its_opening(tan_alpha):
     """Just before the first divergence window opens (0.5932502122 +- 2e-10, an outside

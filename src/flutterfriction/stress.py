@@ -685,7 +685,9 @@ def rod_window_cases() -> list[StressResult]:
             (0.5932502125, 60.0, 48.6, 49.1, [(48.8513, 170.256), (48.8522, 170.264)],
              "3e-10 after it opens (0.0009 wide)"),
             (0.9823492, 80.0, 69.3, 70.0, [(69.6632, 552.36), (69.6740, 552.65)],
-             "a flutter window 0.011 wide, about to close")):
+             "a flutter window 0.011 wide, about to close"),
+            (0.2265, 300.0, 273.0, 273.5, [(273.195, 5534.0), (273.327, 14908.0)],
+             "a divergence window between two pairs, missed by the FE twin")):
         def run(ta=ta, p_max=p_max, lo=lo, hi=hi):
             c = ar.critical_loads(RodGroups(tan_alpha=ta), p_max=p_max)
             return [iv["p_from"] for iv in c.intervals if lo < iv["p_from"] < hi]

@@ -334,6 +334,8 @@ class _FEScan:
             self.B1 = np.zeros((2 * n, 2 * n))
             self.B1[n:, :n] = -A1
 
+    #: Changes of the FE signature that change no regime (:func:`_fe_scan` fills it).
+    silent_events: tuple = ()
     #: Neighbouring pairs searched for hidden windows (undamped), see :func:`_modes_coupled`.
     coupled: int = 10**6
     #: ``(load, |indicator|)`` of the indicators' optimised extrema where the FE signature
@@ -449,6 +451,34 @@ def _events(scan: _FEScan, p_max: float, step: float) -> list[_Event]:
         # the real axis (a hidden real window?)
         up = ok & (v > 0) & (v <= vl) & (v <= vh) & ((v < vl) | (v < vh))
         down = ok & (v < 0) & (v >= vl) & (v >= vh) & ((v > vl) | (v > vh))
+    # Two events within one step (pair B turning complex, then pair A real, say): the
+    # signature is the same at both scan points but an indicator changes sign between them.
+    # Each sign change is solved (Brent) and the signature probed between the zeros; a
+    # different one there is bisected on both sides (an outside review: tan(alpha) = 0.2265
+    # has such a pair within 0.25 at p ~ 273.4 on 22 elements, and eq. 118 a window there).
+    with np.errstate(invalid="ignore"):
+        flips = (np.isfinite(ind[:, :-1]) & np.isfinite(ind[:, 1:])
+                 & (ind[:, :-1] * ind[:, 1:] < 0))
+    for i in np.flatnonzero(flips.any(axis=0)):
+        if sigs[i] != sigs[i + 1]:
+            continue  # bracketed above
+        a, b = float(grid[i]), float(grid[i + 1])
+        zeros = []
+        for row in np.flatnonzero(flips[:, i]):
+            def ind_at(p: float, row: int = int(row)) -> float:
+                return float(scan.indicators(scan.spectra(np.array([p])))[row, 0])
+
+            fa, fb = ind_at(a), ind_at(b)
+            if np.isfinite(fa) and np.isfinite(fb) and fa * fb < 0:
+                zeros.append(float(brentq(ind_at, a, b, xtol=_BRACKET_RTOL * max(1.0, b))))
+        zeros = sorted(zeros)
+        for z0, z1 in zip(zeros, zeros[1:], strict=False):
+            mid = 0.5 * (z0 + z1)
+            s_mid = sig_at(mid)
+            if s_mid != sigs[i]:
+                events += bisect(a, mid, sigs[i], s_mid)
+                events += bisect(mid, b, s_mid, sigs[i + 1])
+                break
     for row, i in zip(*np.nonzero(up | down), strict=True):
         sign = 1.0 if up[row, i] else -1.0
         a, b = float(grid[lo_i[i]]), float(grid[hi_i[i]])
@@ -621,6 +651,9 @@ def _fe_scan(g: RodGroups, n_elements: int, p_max: float, step: float,
     first = scan.regime(scan.signatures(scan.spectra(np.array([0.0])))[0])
     bounds = [_fe_boundary(scan, e, full) for e in events
               if scan.regime(e.before) != scan.regime(e.after)]
+    # pairs coalescing without a change of regime (another pair keeps it): two of them close
+    # together may bound a window on eq. (118) that the twin's error closed
+    scan.silent_events = tuple(e for e in events if scan.regime(e.before) == scan.regime(e.after))
     return scan, first, bounds
 
 
@@ -913,6 +946,57 @@ def _boundaries_by_gap(g: RodGroups, bounds: list[_Boundary], i: int, error: Exc
     raise error
 
 
+def _drop_reversed_windows(exact: list[_Boundary]) -> list[_Boundary]:
+    """``exact`` without the windows whose exact ends came out reversed: two changes of
+    regime of different pairs (pair A turns real at ``a``, pair B complex at ``b``; the FE twin
+    has ``a < b``, a window) whose exact loads are ``b < a``: on eq. (118) one of the pairs is
+    complex at every load, so the regime outside the twin's window (the same on both sides)
+    holds throughout (an outside review: tan(alpha) = 0.2595186 near p = 111.6706 was refused
+    as "boundaries not ordered")."""
+    out: list[_Boundary] = []
+    for b in exact:
+        if out and b.p <= out[-1].p and out[-1].before == b.after:
+            out.pop()
+            continue
+        out.append(b)
+    return out
+
+
+def _windows_between_two_pairs(g: RodGroups, scan: _FEScan, exact: list[_Boundary],
+                               first: Regime, p_max: float) -> list[_Boundary]:
+    """Undamped: ``exact`` with the windows bounded by two different pairs that the FE twin
+    misses. Pair A turning real at ``a`` and pair B turning complex at ``b`` change no regime
+    on the twin when its ``b < a`` (one pair is always complex: flutter), while eq. (118) may
+    have ``a < b`` and a divergence window between (an outside review: tan(alpha) = 0.2265,
+    [273.1953, 273.3266] missed, the twin's error ~0.2 there). Every two such silent
+    coalescences of the twin within ``2 GAP_SEARCH_RTOL p`` of each other are solved on eq.
+    (118) and the regime between their exact loads checked at its middle."""
+    events = [e for e in scan.silent_events if e.a < p_max]
+    out = list(exact)
+    for e1, e2 in zip(events, events[1:], strict=False):
+        if e2.a - e1.b > 2 * GAP_SEARCH_RTOL * max(1.0, e1.b):
+            continue
+        try:
+            roots = sorted(_undamped_double_root(g, b.p, b.guess)
+                           for b in (_fe_boundary(scan, e) for e in (e1, e2)))
+        except ConvergenceError:
+            continue  # (the regime checks below still see what lies there)
+        (lo, mu_lo), (hi, mu_hi) = roots
+        if not 0.0 < lo < hi < p_max or any(lo <= b.p <= hi for b in out):
+            continue
+        outside = first
+        for b in out:
+            if b.p < lo:
+                outside = b.after
+        inside = _exact_regime(0.5 * (lo + hi), g)
+        if inside is None or inside == outside:
+            continue
+        out += [_Boundary(lo, math.sqrt(abs(mu_lo)), outside, inside, "coalescence", mu_lo),
+                _Boundary(hi, math.sqrt(abs(mu_hi)), inside, outside, "coalescence", mu_hi)]
+        out.sort(key=lambda b: b.p)
+    return out
+
+
 def _windows_at_near_misses(g: RodGroups, scan: _FEScan, exact: list[_Boundary],
                             first: Regime, p_max: float) -> list[_Boundary]:
     """``exact`` with the windows eq. (118) opens where the FE twin only nearly changed
@@ -1006,7 +1090,13 @@ def critical_loads(g: RodGroups, p_max: float = 80.0, n_elements: int | None = N
     pair's gap is followed there too and a window it finds is added; the exact regime is
     also checked at every near miss (and at :data:`NEAR_MISS_PROBES` on either side), and a
     disagreement, or no verdict there, sends the scan to the finer twin below, and a second
-    failure is refused. Measured at p_max 80, without a refusal: the first divergence window
+    failure is refused. Undamped, a divergence window bounded by two different pairs (one
+    turning real, the other complex) that the twin misses, its two changes falling in the
+    other order or within one scan step (an outside review: tan(alpha) = 0.2265, [273.1953,
+    273.3266]), is found by solving every two such nearby coalescences on eq. (118) and
+    checking the regime between; two such ends reversed on eq. (118) drop the twin's window
+    (tan(alpha) = 0.2595186 near p = 111.6706 was refused). Measured at p_max 80, without a
+    refusal: the first divergence window
     of the Pflüger column on a 1e-10 grid of tan(alpha) through its opening at 0.5932502122
     (0.0009 wide 3e-10 past it), the flutter window near p = 69.7 on a 1e-7 grid through its
     closing at ~0.9823494 (0.011 wide at 0.9823492); damped (eta = 1.48e-4, gamma = 0.225)
@@ -1121,6 +1211,9 @@ def _solve_on(g: RodGroups, g_scan: RodGroups, n_el: int, p_max: float, step: fl
         exact += [s for s in solved if s not in beyond]
         if beyond:
             break
+    exact = _drop_reversed_windows(exact)
+    if not g.damped:
+        exact = _windows_between_two_pairs(g, scan, exact, first, p_max)
     exact = _windows_at_near_misses(g, scan, exact, first, p_max)
     ps = [0.0, *[b.p for b in exact], p_max]
     if np.any(np.diff(ps) <= 0):
