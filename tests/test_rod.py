@@ -804,6 +804,19 @@ def test_a_window_between_two_pairs_reversed_on_eq118_is_dropped(tan_alpha, wind
     assert div[0]["p_to"] == pytest.approx(complex_, rel=1e-10)
 
 
+def test_two_nearly_coincident_pairs_at_one_load_are_decided():
+    """Outside review: tan a = 0.2166 at p_max 1000: two pairs (mu ~ 20150 and 75147) nearly
+    coincide at p ~ 847.08, where the ends of a two-pair window swap order; the exact regime
+    there decided one pair by its gap and refused the other, and the call was refused after
+    50 s (the retry's finer twin). Each failing root is now paired with its neighbour and
+    decided by their gap: flutter throughout, as the 40-digit double roots say (pair B
+    complex at 847.05407 before pair A real at 847.11245: reversed, no window)."""
+    c = ar.critical_loads(RodGroups(tan_alpha=0.2166), p_max=1000.0)
+    assert [iv["regime"] for iv in c.intervals] == ["stable", "flutter"]
+    assert _double_root_mp(0.2166, 847.11, 75147.0)[0] > _double_root_mp(
+        0.2166, 847.05, 20150.0)[0]
+
+
 @pytest.mark.parametrize("tan_alpha", [0.59325019, 0.5932502122])
 def test_no_window_just_before_its_opening(tan_alpha):
     """Just before the first divergence window opens (0.5932502122 +- 2e-10, an outside
