@@ -804,6 +804,37 @@ def test_a_window_between_two_pairs_reversed_on_eq118_is_dropped(tan_alpha, wind
     assert div[0]["p_to"] == pytest.approx(complex_, rel=1e-10)
 
 
+def _crossing_mp(tan_alpha: float, eta: float, gamma: float, p0: float, W0: float) -> float:
+    """The load where a root of the damped eq. (118) crosses the imaginary axis,
+    ``f(p, i W) = 0`` for real ``(p, W)``, at 40 digits."""
+    with mp.workdps(40):
+        def F(p, W):
+            v = f_mp(p, mp.mpc(0, W), mp.mpf(tan_alpha), mp.mpf(gamma), mp.mpf(eta))
+            return [mp.re(v), mp.im(v)]
+
+        return float(mp.findroot(F, (mp.mpf(p0), mp.mpf(W0)), tol=1e-18, maxsteps=100)[0])
+
+
+@pytest.mark.parametrize(("tan_alpha", "eta", "gamma", "ends"), [
+    (0.2769, 1e-5, 0.05, ((108.1197, 40.7), (108.1375, 19.76))),
+    (0.2645, 1e-6, 0.01, ((110.507, 41.7), (110.5249, 22.59)))])
+def test_a_damped_window_between_a_coalescence_and_a_crossing_is_found(tan_alpha, eta, gamma,
+                                                                       ends):
+    """Outside review: one pair turns real (unstable: divergence) before another pair crosses
+    back to stability, on eq. (118); the FE twin has them the other way round (flutter
+    throughout) and "flutter on [16.3, 130]" was answered, silently. The twin's two nearby
+    silent changes are solved on eq. (118) and the regime between checked: the window's ends
+    against a 40-digit double real root and a 40-digit crossing, 1e-10."""
+    c = ar.critical_loads(RodGroups(tan_alpha=tan_alpha, eta=eta, gamma=gamma), p_max=130.0)
+    div = [iv for iv in c.intervals if iv["regime"] == "divergence"]
+    assert len(div) == 1
+    (p_real, w_real), (p_cross, W_cross) = ends
+    assert div[0]["p_from"] == pytest.approx(
+        _damped_double_root_mp(tan_alpha, eta, p_real, w_real, gamma).real, rel=1e-10)
+    assert div[0]["p_to"] == pytest.approx(
+        _crossing_mp(tan_alpha, eta, gamma, p_cross, W_cross), rel=1e-10)
+
+
 def test_two_nearly_coincident_pairs_at_one_load_are_decided():
     """Outside review: tan a = 0.2166 at p_max 1000: two pairs (mu ~ 20150 and 75147) nearly
     coincide at p ~ 847.08, where the ends of a two-pair window swap order; the exact regime

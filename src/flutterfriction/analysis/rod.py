@@ -974,24 +974,26 @@ def _drop_reversed_windows(exact: list[_Boundary]) -> list[_Boundary]:
 
 def _windows_between_two_pairs(g: RodGroups, scan: _FEScan, exact: list[_Boundary],
                                first: Regime, p_max: float) -> list[_Boundary]:
-    """Undamped: ``exact`` with the windows bounded by two different pairs that the FE twin
-    misses. Pair A turning real at ``a`` and pair B turning complex at ``b`` change no regime
-    on the twin when its ``b < a`` (one pair is always complex: flutter), while eq. (118) may
-    have ``a < b`` and a divergence window between (an outside review: tan(alpha) = 0.2265,
-    [273.1953, 273.3266] missed, the twin's error ~0.2 there). Every two such silent
-    coalescences of the twin within ``2 GAP_SEARCH_RTOL p`` of each other are solved on eq.
-    (118) and the regime between their exact loads checked at its middle."""
+    """``exact`` with the windows bounded by two different pairs that the FE twin misses.
+    Pair A turning real at ``a`` and pair B turning complex at ``b`` change no regime on the
+    twin when its ``b < a`` (one pair is always complex: flutter), while eq. (118) may have
+    ``a < b`` and a divergence window between (an outside review: tan(alpha) = 0.2265,
+    [273.1953, 273.3266] missed, the twin's error ~0.2 there). Damped, the same with B's
+    crossing of the imaginary axis (an outside review: tan(alpha) = 0.2769, eta = 1e-5,
+    gamma = 0.05, divergence on [108.1197, 108.1375] missed). Every two such silent changes
+    of the twin within ``2 GAP_SEARCH_RTOL p`` of each other are solved on eq. (118) and the
+    regime between their exact loads checked at its middle."""
     events = [e for e in scan.silent_events if e.a < p_max]
     out = list(exact)
     for e1, e2 in zip(events, events[1:], strict=False):
         if e2.a - e1.b > 2 * GAP_SEARCH_RTOL * max(1.0, e1.b):
             continue
         try:
-            roots = sorted(_undamped_double_root(g, b.p, b.guess)
-                           for b in (_fe_boundary(scan, e) for e in (e1, e2)))
+            fe = [_fe_boundary(scan, e) for e in (e1, e2)]
+            roots = sorted((*_exact_boundary(g, b), b) for b in fe)
         except ConvergenceError:
             continue  # (the regime checks below still see what lies there)
-        (lo, mu_lo), (hi, mu_hi) = roots
+        (lo, w_lo, b_lo), (hi, w_hi, b_hi) = roots
         if not 0.0 < lo < hi < p_max or any(lo <= b.p <= hi for b in out):
             continue
         outside = first
@@ -1004,8 +1006,8 @@ def _windows_between_two_pairs(g: RodGroups, scan: _FEScan, exact: list[_Boundar
             continue  # no verdict between them: as before, the interval checks decide
         if inside is None or inside == outside:
             continue
-        out += [_Boundary(lo, math.sqrt(abs(mu_lo)), outside, inside, "coalescence", mu_lo),
-                _Boundary(hi, math.sqrt(abs(mu_hi)), inside, outside, "coalescence", mu_hi)]
+        out += [_Boundary(lo, w_lo, outside, inside, b_lo.kind, b_lo.guess),
+                _Boundary(hi, w_hi, inside, outside, b_hi.kind, b_hi.guess)]
         out.sort(key=lambda b: b.p)
     return out
 
@@ -1108,7 +1110,9 @@ def critical_loads(g: RodGroups, p_max: float = 80.0, n_elements: int | None = N
     other order or within one scan step (an outside review: tan(alpha) = 0.2265, [273.1953,
     273.3266]), is found by solving every two such nearby coalescences on eq. (118) and
     checking the regime between; two such ends reversed on eq. (118) drop the twin's window
-    (tan(alpha) = 0.2595186 near p = 111.6706 was refused). Measured at p_max 80, without a
+    (tan(alpha) = 0.2595186 near p = 111.6706 was refused); damped, the same with a pair's
+    crossing of the imaginary axis as one end (tan(alpha) = 0.2769, eta = 1e-5,
+    gamma = 0.05: divergence on [108.1197, 108.1375] was missed). Measured at p_max 80, without a
     refusal: the first divergence window
     of the Pflüger column on a 1e-10 grid of tan(alpha) through its opening at 0.5932502122
     (0.0009 wide 3e-10 past it), the flutter window near p = 69.7 on a 1e-7 grid through its
@@ -1225,8 +1229,7 @@ def _solve_on(g: RodGroups, g_scan: RodGroups, n_el: int, p_max: float, step: fl
         if beyond:
             break
     exact = _drop_reversed_windows(exact)
-    if not g.damped:
-        exact = _windows_between_two_pairs(g, scan, exact, first, p_max)
+    exact = _windows_between_two_pairs(g, scan, exact, first, p_max)
     exact = _windows_at_near_misses(g, scan, exact, first, p_max)
     ps = [0.0, *[b.p for b in exact], p_max]
     if np.any(np.diff(ps) <= 0):
