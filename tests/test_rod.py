@@ -835,6 +835,31 @@ def test_a_damped_window_between_a_coalescence_and_a_crossing_is_found(tan_alpha
         _crossing_mp(tan_alpha, eta, gamma, p_cross, W_cross), rel=1e-10)
 
 
+@pytest.mark.parametrize(("kw", "p_max", "where", "exact"), [
+    # pair A's double real root (omega~ 36.84) turns complex and unstable before pair B's
+    # crossing, which the twin has first
+    (dict(tan_alpha=0.7141, eta=1e-2, gamma=1.0), 300.0, (240.0, 260.0),
+     lambda: _damped_double_root_mp(0.7141, 1e-2, 250.0586, 36.836, 1.0).real),
+    # the other way round: a crossing (W 16.41) before the twin's coalescence
+    (dict(tan_alpha=1.42, eta=3e-3, gamma=0.5), 500.0, (470.0, 490.0),
+     lambda: _crossing_mp(1.42, 3e-3, 0.5, 483.2188, 16.413)),
+    # undamped: pair B (mu -2300) turns complex before pair A (mu 16729) does
+    (dict(tan_alpha=0.252937), 500.0, (280.0, 290.0),
+     lambda: _double_root_mp(0.252937, 287.042, -2299.64)[0])])
+def test_a_boundary_next_to_another_pairs_change_is_put_where_eq118_has_it(kw, p_max, where,
+                                                                           exact):
+    """Outside review: a change of regime with another pair's change (silent on the FE twin)
+    within ~0.1 of it, in the other order on eq. (118): the flutter started at the twin's
+    pair's exact load, 0.006-0.14 too late, silently ("divergence" on a flutter sliver the
+    seven regime checks of a 60-140-wide interval never visit). The silent change is solved
+    on eq. (118) and the regime between checked: flutter from the first change, against the
+    40-digit double root or crossing (1e-10)."""
+    c = ar.critical_loads(RodGroups(**kw), p_max=p_max)
+    starts = [iv for iv in c.intervals if where[0] < iv["p_from"] < where[1]]
+    assert [iv["regime"] for iv in starts] == ["flutter"]
+    assert starts[0]["p_from"] == pytest.approx(exact(), rel=1e-10)
+
+
 def test_two_nearly_coincident_pairs_at_one_load_are_decided():
     """Outside review: tan a = 0.2166 at p_max 1000: two pairs (mu ~ 20150 and 75147) nearly
     coincide at p ~ 847.08, where the ends of a two-pair window swap order; the exact regime

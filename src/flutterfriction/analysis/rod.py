@@ -1012,6 +1012,55 @@ def _windows_between_two_pairs(g: RodGroups, scan: _FEScan, exact: list[_Boundar
     return out
 
 
+def _changes_next_to_boundaries(g: RodGroups, scan: _FEScan, exact: list[_Boundary],
+                                first: Regime, p_max: float) -> list[_Boundary]:
+    """``exact`` with the change of regime moved or added where a silent change of the FE
+    twin (another pair's, changing no regime there) lies next to a boundary and eq. (118) has
+    the two in the other order. Pair B crossing at ``b`` (divergence -> flutter on the twin)
+    and pair A turning complex at ``a``: with ``a < b`` on eq. (118) the flutter starts at
+    ``a`` (an outside review: tan(alpha) = 0.7141, eta = 1e-2, gamma = 1, p_max 300 reported
+    divergence up to 250.0927 where eq. 118 flutters from 250.0586; also tan(alpha) = 1.42,
+    eta = 3e-3, gamma = 0.5 at p ~ 483.2, and undamped 0.252937 at p ~ 287.04). Each silent
+    change within ``2 GAP_SEARCH_RTOL p`` of a boundary is solved on eq. (118), the regime
+    between it and the boundary checked at the middle, and the boundaries on either side of
+    that piece kept only where the regime changes."""
+    out = list(exact)
+    for e in scan.silent_events:
+        if not e.a < p_max:
+            continue
+        radius = 2 * GAP_SEARCH_RTOL * max(1.0, e.a)
+        near = [k for k, b in enumerate(out) if abs(b.p - e.a) <= radius]
+        if len(near) != 1:
+            continue  # none, or a cluster: the pairings above and the checks below decide
+        k = near[0]
+        b = out[k]
+        try:
+            fe = _fe_boundary(scan, e)
+            s_p, s_omega = _exact_boundary(g, fe)
+        except ConvergenceError:
+            continue
+        if not 0.0 < s_p < p_max or abs(s_p - b.p) <= 1e-9 * max(1.0, b.p):
+            continue
+        lo, hi = min(s_p, b.p), max(s_p, b.p)
+        if any(lo < c.p < hi for c in out):
+            continue
+        try:
+            middle = _exact_regime(0.5 * (lo + hi), g)
+        except ConvergenceError:
+            continue
+        if middle is None:
+            continue
+        left, right = (b.before, b.after)
+        if s_p < b.p:  # [s_p, b.p] was claimed b.before
+            new = [_Boundary(s_p, s_omega, left, middle, fe.kind, fe.guess),
+                   _Boundary(b.p, b.omega, middle, right, b.kind, b.guess)]
+        else:  # [b.p, s_p] was claimed b.after
+            new = [_Boundary(b.p, b.omega, left, middle, b.kind, b.guess),
+                   _Boundary(s_p, s_omega, middle, right, fe.kind, fe.guess)]
+        out[k:k + 1] = [c for c in new if c.before != c.after]
+    return out
+
+
 def _windows_at_near_misses(g: RodGroups, scan: _FEScan, exact: list[_Boundary],
                             first: Regime, p_max: float) -> list[_Boundary]:
     """``exact`` with the windows eq. (118) opens where the FE twin only nearly changed
@@ -1112,7 +1161,10 @@ def critical_loads(g: RodGroups, p_max: float = 80.0, n_elements: int | None = N
     checking the regime between; two such ends reversed on eq. (118) drop the twin's window
     (tan(alpha) = 0.2595186 near p = 111.6706 was refused); damped, the same with a pair's
     crossing of the imaginary axis as one end (tan(alpha) = 0.2769, eta = 1e-5,
-    gamma = 0.05: divergence on [108.1197, 108.1375] was missed). Measured at p_max 80, without a
+    gamma = 0.05: divergence on [108.1197, 108.1375] was missed); and a boundary with
+    another pair's silent change next to it is moved to where eq. (118) has the first of the
+    two (tan(alpha) = 0.7141, eta = 1e-2, gamma = 1: flutter from 250.0586, reported from
+    250.0927). Measured at p_max 80, without a
     refusal: the first divergence window
     of the Pflüger column on a 1e-10 grid of tan(alpha) through its opening at 0.5932502122
     (0.0009 wide 3e-10 past it), the flutter window near p = 69.7 on a 1e-7 grid through its
@@ -1230,6 +1282,7 @@ def _solve_on(g: RodGroups, g_scan: RodGroups, n_el: int, p_max: float, step: fl
             break
     exact = _drop_reversed_windows(exact)
     exact = _windows_between_two_pairs(g, scan, exact, first, p_max)
+    exact = _changes_next_to_boundaries(g, scan, exact, first, p_max)
     exact = _windows_at_near_misses(g, scan, exact, first, p_max)
     ps = [0.0, *[b.p for b in exact], p_max]
     if np.any(np.diff(ps) <= 0):
