@@ -956,6 +956,15 @@ def _boundaries_by_gap(g: RodGroups, bounds: list[_Boundary], i: int, error: Exc
     raise error
 
 
+def _regime_below(boundaries: list[_Boundary], first: Regime, p: float) -> Regime:
+    """The regime just below load ``p`` given the sorted ``boundaries`` and the regime at 0."""
+    regime = first
+    for b in boundaries:
+        if b.p < p:
+            regime = b.after
+    return regime
+
+
 def _drop_reversed_windows(exact: list[_Boundary]) -> list[_Boundary]:
     """``exact`` without the windows whose exact ends came out reversed: two changes of
     regime of different pairs (pair A turns real at ``a``, pair B complex at ``b``; the FE twin
@@ -996,10 +1005,7 @@ def _windows_between_two_pairs(g: RodGroups, scan: _FEScan, exact: list[_Boundar
         (lo, w_lo, b_lo), (hi, w_hi, b_hi) = roots
         if not 0.0 < lo < hi < p_max or any(lo <= b.p <= hi for b in out):
             continue
-        outside = first
-        for b in out:
-            if b.p < lo:
-                outside = b.after
+        outside = _regime_below(out, first, lo)
         try:
             inside = _exact_regime(0.5 * (lo + hi), g)
         except ConvergenceError:
@@ -1102,10 +1108,7 @@ def _windows_at_near_misses(g: RodGroups, scan: _FEScan, exact: list[_Boundary],
         if any(p1 < b.p < p2 for b in out):
             raise ConvergenceError(f"a window of eq. (118) near p = {p_nm:.6g} that the FE "
                                    "twin has closed straddles another change of regime")
-        outside = first
-        for b in out:
-            if b.p < p1:
-                outside = b.after
+        outside = _regime_below(out, first, p1)
         inside = _exact_regime(0.5 * (p1 + p2), g)
         if inside is None:
             raise ConvergenceError(f"no exact regime inside the window [{p1:.10g}, {p2:.10g}]"
