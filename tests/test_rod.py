@@ -13,6 +13,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from flutterfriction.analysis import rod as ar
+from flutterfriction.analysis import rod_scan
 from flutterfriction.analysis.rod import fe_eigenvalues
 from flutterfriction.errors import ParameterError
 from flutterfriction.models.rod import Rod, RodGroups, characteristic_function
@@ -536,11 +537,11 @@ def test_the_regime_scan_is_bounded_in_memory_and_size(monkeypatch):
     with pytest.raises(ParameterError, match=r"step must be in .* = \[0.01, 0.25\]"):
         ar.critical_loads(RodGroups(tan_alpha=1.0), p_max=1000.0, step=1e-3)
     rows = []
-    spectra = ar._FEScan.spectra
-    monkeypatch.setattr(ar._FEScan, "spectra",
+    spectra = rod_scan._FEScan.spectra
+    monkeypatch.setattr(rod_scan._FEScan, "spectra",
                         lambda self, p: rows.append(np.size(p)) or spectra(self, p))
     c = ar.critical_loads(RodGroups(), p_max=300.0)
-    assert max(rows) <= ar._SCAN_BLOCK and sum(r for r in rows if r > 1) >= 1201
+    assert max(rows) <= rod_scan._SCAN_BLOCK and sum(r for r in rows if r > 1) >= 1201
     assert c.p_flu == pytest.approx(20.050953618973761, rel=1e-13)  # the audit's mpmath
 
 

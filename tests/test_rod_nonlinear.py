@@ -10,6 +10,7 @@ import pytest
 from scipy.integrate import solve_ivp
 
 from flutterfriction.analysis import rod as ar
+from flutterfriction.analysis import rod_cycles as rc
 from flutterfriction.analysis import rod_dynamics as rdyn
 from flutterfriction.analysis.stability import discriminant, pencil_eigenvalues, refine_roots
 from flutterfriction.errors import ConvergenceError, ParameterError
@@ -69,7 +70,7 @@ def test_damped_linearised_flutter_load_converges_past_the_spectrum_round_off():
     elements, 3.6e-7 at 64: finer was worse); polished on the quadratic eigenproblem it goes
     on converging at h^4 (5.8e-10, 1.8e-10; measured) to eq. (118)'s exact load."""
     exact = ar.critical_loads(ROD.groups()).p_flu * ROD.load_unit
-    errors = [abs(rdyn.linearised_flutter_load(ROD, n) - exact) / exact for n in (48, 64)]
+    errors = [abs(rc.linearised_flutter_load(ROD, n) - exact) / exact for n in (48, 64)]
     assert errors[1] < errors[0] < 2e-9, errors
 
 
@@ -248,7 +249,7 @@ def test_implicit_integrators_get_the_exact_jacobian():
 def test_prolongation_is_exact_for_the_coarse_fields():
     """Coarse P2 fields are P2 on the finer mesh too: interpolation loses nothing, and the
     pseudo-inverse takes them back."""
-    from flutterfriction.analysis.rod_dynamics import prolongation
+    from flutterfriction.models.rod_nonlinear import prolongation
 
     coarse, fine = NonlinearRod(ROD, 2), NonlinearRod(ROD, 3)
     Pm = prolongation(coarse, fine)
@@ -311,7 +312,8 @@ def test_fixed_load_shooting_is_periodic_orbit_newton(cycle_2):
 def test_secant_shooting_on_a_finer_mesh_from_the_prolongated_monodromy(cycle_2):
     """On 3 elements, the chord/secant iteration started from the 2-element cycle and its
     monodromy converges to the cycle that exact Newton finds there."""
-    from flutterfriction.analysis.rod_dynamics import prolongation, shoot_cycle
+    from flutterfriction.analysis.rod_dynamics import shoot_cycle
+    from flutterfriction.models.rod_nonlinear import prolongation
 
     _, c2 = cycle_2
     m3 = NonlinearRod(ROD, 3)
@@ -516,8 +518,6 @@ def test_the_nonlinear_rods_public_functions_refuse_bad_input_before_any_work():
     LinAlgError), dt = 0, NaN or > t_end and rho_inf = -1 (ZeroDivisionError, ValueError, the
     initial state returned alone), A_max = inf (LinAlgError), max_points = 2.5, abscissae
     beyond the rod (extrapolated), and 30 N on list (119) (minutes of integration)."""
-    from flutterfriction.analysis import rod_cycles as rc
-
     m = NonlinearRod(ROD, 2)
     y = np.zeros(2 * m.n_dof)
     cases = [

@@ -308,11 +308,8 @@ def _limit_cycle_beck(args: argparse.Namespace) -> dict:
     import numpy as np
     from scipy.optimize import brentq
 
-    from flutterfriction.analysis.rod_dynamics import (
-        beck_limit_cycle,
-        check_cycle_load,
-        linearised_flutter_load,
-    )
+    from flutterfriction.analysis.rod_cycles import linearised_flutter_load
+    from flutterfriction.analysis.rod_dynamics import beck_limit_cycle, check_cycle_load
     from flutterfriction.models.rod import Rod
     from flutterfriction.models.rod_nonlinear import NonlinearRod
 

@@ -25,6 +25,7 @@ from flutterfriction.analysis.rod_cycles import (
     Floquet,
     _gradient,
     floquet,
+    linearised_flutter_load,
     section_value,
     tip_lateral,
     variational_flow,
@@ -43,7 +44,7 @@ from flutterfriction.models.rod import (
     CYCLE_T_MAX_SCALES,
     Rod,
 )
-from flutterfriction.models.rod_nonlinear import NonlinearRod
+from flutterfriction.models.rod_nonlinear import NonlinearRod, prolongation
 
 
 @dataclass
@@ -561,15 +562,6 @@ def shoot_cycle(model: NonlinearRod, y: NDArray, T: float, P: float,
                            f"{', '.join(f'{c:.1e}' for c in corrections)})")
 
 
-def prolongation(coarse: NonlinearRod, fine: NonlinearRod) -> NDArray:
-    """The linear map of states ``(q, v)`` of ``coarse`` to ``fine`` (the P2 fields evaluated
-    at the fine nodes)."""
-    nodes = np.linspace(0.0, fine.rod.length, fine.n_dof + 1)[1:]
-    Pq = np.column_stack([coarse.nodal_values_at(e, nodes) for e in np.eye(coarse.n_dof)])
-    Z = np.zeros_like(Pq)
-    return np.block([[Pq, Z], [Z, Pq]])
-
-
 def section_crossings(model: NonlinearRod, sol) -> tuple[NDArray, NDArray]:
     """Times and states of the section crossings on the positive side (``sol`` integrated
     with ``section_value`` as its first event, direction -1)."""
@@ -658,31 +650,6 @@ def rod_shapes(model: NonlinearRod, orbit, T: float, frames: int = 41) -> list:
         x_q, x_tip = model._cumint(np.stack([np.cos(theta), np.sin(theta)], axis=-1))
         shapes.append(np.vstack([[0.0, 0.0], x_q, x_tip]).round(6).tolist())
     return shapes
-
-
-def linearised_flutter_load(rod: Rod, n_elements: int) -> float:
-    """The damped flutter load [N] of the rod linearised about the straight configuration on
-    ``n_elements`` P2 elements (where a cycle can start); refused
-    (:class:`ParameterError`) if the rod does not flutter below ``40 * 2^8`` load units."""
-    from flutterfriction.analysis.damped import flutter_onset, polish_flutter_crossing
-
-    M, C, K, K1 = NonlinearRod(rod, n_elements).linear_matrices()
-    try:
-        P = float(flutter_onset(M, C, K, K1, load_max=40 * rod.load_unit, max_doublings=8))
-    except ConvergenceError:
-        raise ParameterError(f"the linearised rod does not flutter below "
-                             f"{40 * 2**8 * rod.load_unit:.4g} N, so no cycle is sought") from None
-    # The scan's load carries the first-order spectrum's round-off, eps max|s| (the stiff
-    # Kelvin-Voigt modes): on list 119's rod its error against eq. (118)'s exact load is 8e-10
-    # at 32 elements, 1.1e-8 at 48, 3.6e-7 at 64 (finer is worse), while polished by Newton
-    # on the quadratic eigenproblem (as the FE twin's boundaries, analysis.rod._fe_boundary)
-    # it converges at h^4: 3.1e-9, 5.8e-10, 1.8e-10. Accepted within 1e-3 of the scan's load
-    # (the scan's error reached 3.9e-5 on rods with D ~ 1e-10 and a tip mass, a review; the
-    # polished load was right there to ~1e-12), else the scan's load stands.
-    try:
-        return float(polish_flutter_crossing(M, C, K, K1, P, rtol=1e-3)[0])
-    except ConvergenceError:
-        return P
 
 
 def check_cycle_load(rod: Rod, P: float, n_elements: int, name: str = "P",

@@ -343,3 +343,12 @@ def compile_kernels() -> dict[str, float]:
     dop853_orbit(y, 1e-3, 1e-6, 1e-9, True, *DOP853_COEFFICIENTS, *rod.kernel_args(1.0))
     seconds["dop853_orbit"] = time.perf_counter() - start
     return seconds
+
+
+def prolongation(coarse: NonlinearRod, fine: NonlinearRod) -> NDArray:
+    """The linear map of states ``(q, v)`` of ``coarse`` to ``fine`` (the P2 fields evaluated
+    at the fine nodes)."""
+    nodes = np.linspace(0.0, fine.rod.length, fine.n_dof + 1)[1:]
+    Pq = np.column_stack([coarse.nodal_values_at(e, nodes) for e in np.eye(coarse.n_dof)])
+    Z = np.zeros_like(Pq)
+    return np.block([[Pq, Z], [Z, Pq]])

@@ -58,7 +58,7 @@ def _branch_settings(params: dict[str, Any]) -> tuple[Rod, int, float, float, fl
     eigenproblems), refused before the branch is computed: ``P_max`` not above the flutter
     load, a check load or ``P_cycle`` off the branch (an outside audit: ``P_cycle`` beyond
     ``P_max`` was skipped silently, a check load beyond it failed after the branch)."""
-    from flutterfriction.analysis.rod_dynamics import linearised_flutter_load
+    from flutterfriction.analysis.rod_cycles import linearised_flutter_load
 
     take(params, ALLOWED)
     rod = _rod(params)

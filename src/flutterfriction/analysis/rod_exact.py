@@ -1,0 +1,368 @@
+"""The rod's exact characteristic function, eq. (118), at one load and at its critical
+points: eigenvalues (FE guesses refined by Newton), the regime at a load, and the critical
+loads as the conditions themselves, by Newton's method on two real equations in two real
+unknowns:
+
+- undamped (eta = gamma = 0), ``f`` depends on ``mu = omega~^2`` only; flutter and divergence are
+  double roots in ``mu``: ``f = df/dmu = 0`` for ``(p, mu)`` (flutter: ``mu < 0`` merging
+  oscillations; divergence: ``mu > 0``, the complex pair returning to the real axis);
+- damped flutter: a root on the imaginary axis, ``f(p, i Omega) = 0`` for ``(p, Omega)``;
+- damped divergence: a double real root, ``f = df/domega~ = 0`` for real ``(p, omega~)``.
+
+Derivatives of ``f`` (analytic in ``p`` and ``omega~``) use a four-point complex difference
+``f'(z) = [f(z+h) - f(z-h) - i f(z+ih) + i f(z-ih)] / (4h) + O(h^4)``. Where two roots
+nearly coincide (Newton on them fails) the pair is decided by its gap
+(:mod:`flutterfriction.analysis.rod_gap`).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+
+import numpy as np
+from numpy.typing import NDArray
+
+from flutterfriction.analysis.rod_gap import GAP_NOISE_FACTOR, pair_gap
+from flutterfriction.analysis.rod_scan import P_MAX_LIMIT, _FEScan
+from flutterfriction.analysis.stability import Regime, state_eigenvalues
+from flutterfriction.errors import ConvergenceError, ParameterError, check_integer, check_real
+from flutterfriction.models.rod import GROUP_RANGES, RodGroups, characteristic_function
+from flutterfriction.models.rod_fe import assemble
+
+
+def _fixed_scale(p: float, w: complex, g: RodGroups) -> float:
+    return float(np.real(characteristic_function(p, w, g, with_exponent=True)[1]))
+
+
+def _f(p, w, g: RodGroups, sigma0: float):
+    """``f exp(-sigma0)``: analytic in (p, w) since the scaling is a constant."""
+    F, sigma = characteristic_function(p, w, g, with_exponent=True)
+    return F * np.exp(sigma - sigma0)
+
+
+def _with_derivative(fun: Callable, z, h):
+    """``fun(z)`` and its derivative (four points, error O(h^4) for an analytic ``fun``), from
+    one call of the vectorised ``fun`` on the five points: the arrays are short, so a call
+    costs its overhead, and one call instead of five gives the same numbers 3x faster."""
+    z = np.asarray(z)
+    v = fun(np.stack([z, z + h, z - h, z + 1j * h, z - 1j * h]))
+    return v[0], (v[1] - v[2] - 1j * v[3] + 1j * v[4]) / (4 * h)
+
+
+def _newton2(residual: Callable[[NDArray], NDArray], x0: NDArray, tol: float = 1e-14,
+             max_iter: int = 60) -> NDArray:
+    """Newton's method for two real equations, Jacobian by central differences, with step
+    halving when the residual does not decrease."""
+    x = np.asarray(x0, dtype=float)
+    r = residual(x)
+    for _ in range(max_iter):
+        J = np.empty((2, 2))
+        for j in range(2):
+            h = 1e-6 * max(1.0, abs(x[j]))
+            e = np.zeros(2)
+            e[j] = h
+            J[:, j] = (residual(x + e) - residual(x - e)) / (2 * h)
+        try:
+            dx = np.linalg.solve(J, -r)
+        except np.linalg.LinAlgError as exc:
+            raise ConvergenceError("singular Jacobian in the critical-load Newton solve") from exc
+        step = 1.0
+        for _ in range(30):
+            xn = x + step * dx
+            rn = residual(xn)
+            if np.linalg.norm(rn) < np.linalg.norm(r) or step < 1e-6:
+                break
+            step /= 2
+        x, r = xn, rn
+        if np.all(np.abs(step * dx) <= tol * np.maximum(1.0, np.abs(x))):
+            return x
+    raise ConvergenceError(f"Newton did not converge from {x0} (last {x}, residual {r})")
+
+
+def refine_eigenvalues(p: float, g: RodGroups, guesses: NDArray, tol: float = 1e-13,
+                       max_iter: int = 50) -> NDArray:
+    """Newton on the exact ``f(p, omega~) = 0`` from each guess (vectorised over guesses).
+
+    A step onto the pole ``omega~ = -1/eta`` of eq. (113) or a flat point (``f' = 0``) is a
+    :class:`ConvergenceError` at once, without numpy's warnings (the callers treat it as any
+    failed Newton: an outside audit saw divide-by-zero warnings printed for answers that
+    were right)."""
+    w = np.asarray(guesses, dtype=complex).copy()
+    h = 1e-4 * np.maximum(1.0, np.abs(w))
+    # A root counts as converged once its step has met the tolerance: next to a double root
+    # the steps of two nearly coincident roots jitter at ~1e-13 |w| (f' is small there), and
+    # requiring every step small at the same iteration refused them (tan(alpha) = 0.5932505,
+    # p = 48.85: every root converged alone; an outside audit). Elsewhere a converged step
+    # stays converged, so the iterations and the roots are those of "all at once".
+    met = np.zeros(w.shape, dtype=bool)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        sigma0 = np.real(characteristic_function(p, w, g, with_exponent=True)[1])
+        for _ in range(max_iter):
+            F, dF = _with_derivative(lambda z: _f(p, z, g, sigma0), w, h)
+            step = F / dF
+            if not np.all(np.isfinite(step)):
+                break
+            w = w - step
+            met |= np.abs(step) <= tol * np.maximum(1.0, np.abs(w))
+            if np.all(met):
+                return w
+    # one line a reader can act on (the guesses' array, printed whole, was a screenful)
+    raise ConvergenceError(f"Newton on eq. (118) did not converge at p = {p:.10g} from "
+                           f"{np.size(guesses)} guesses: nearly coincident roots (next to a "
+                           f"double root, where a regime changes) or a flat point of eq. "
+                           f"(118); a slightly different p_max or step moves the loads "
+                           f"tried")
+
+
+#: Largest FE mesh of the eigenvalue helpers (:func:`eigenvalues`, :func:`branches`,
+#: :func:`fe_eigenvalues`): the figures use 16, the convergence study 48; beyond 200 the dense
+#: eigensolver's cost (~n^3) is minutes per load and nothing gains.
+MAX_ELEMENTS = 200
+
+
+def _check_mesh(n_elements: object, n_modes: object = None) -> None:
+    """Refuse a mesh or a mode count (at most n_elements) outside its range."""
+    n_elements = check_integer("n_elements", n_elements, 1, MAX_ELEMENTS)
+    if n_modes is not None:
+        check_integer("n_modes", n_modes, 1, n_elements)
+
+
+def _check_load(p: object, name: str = "p") -> float:
+    """A finite load within the solver's range, |p| <= :data:`P_MAX_LIMIT`."""
+    p = check_real(name, p)
+    if abs(p) > P_MAX_LIMIT:
+        raise ParameterError(f"{name} must be in [-{P_MAX_LIMIT:g}, {P_MAX_LIMIT:g}] (the rod "
+                             f"solver's range, analysis.rod.P_MAX_LIMIT), got {p!r}")
+    return p
+
+
+def check_groups(g: RodGroups) -> RodGroups:
+    """Refuse groups outside :data:`GROUP_RANGES` with a :class:`ParameterError` naming the
+    group and its allowed range."""
+    if not isinstance(g, RodGroups):
+        raise ParameterError(f"g must be a RodGroups (eq. 106's groups), got {type(g).__name__}")
+    for name, (low, high) in GROUP_RANGES.items():
+        v = getattr(g, name)
+        if v > high or 0 < v < low:
+            allowed = f"in [0, {high:g}]" if low == 0 else f"0 or in [{low:g}, {high:g}]"
+            # (all digits where %g would print a bound: "got 1" for eta = 1.0000001; an audit)
+            shown = f"{v:g}" if float(f"{v:g}") not in (low, high) else repr(v)
+            raise ParameterError(f"{name} must be {allowed} (the rod solver's numerical range,"
+                                 f" analysis.rod.GROUP_RANGES), got {shown}")
+    return g
+
+
+def eigenvalues(p: float, g: RodGroups, n_modes: int = 3, n_elements: int = 16) -> NDArray:
+    """The ``2 n_modes`` eigenvalues ``omega~`` of smallest modulus at load ``p``: FE guesses
+    refined on the exact characteristic function; sorted by imaginary, then real part."""
+    _check_mesh(n_elements, n_modes)
+    fe = fe_eigenvalues(g, p, n_elements)
+    guesses = fe[np.argsort(np.abs(fe))][: 2 * n_modes]
+    w = refine_eigenvalues(p, g, guesses)
+    return w[np.lexsort((w.real, w.imag))]
+
+
+def fe_eigenvalues(g: RodGroups, p: float, n_elements: int, follower: bool = True) -> NDArray:
+    """All eigenvalues ``omega~`` of the discretised rod at load ``p`` (first-order form)."""
+    p = _check_load(p)
+    _check_mesh(n_elements)
+    check_groups(g)
+    fe = assemble(g, n_elements)
+    return state_eigenvalues(fe.M, fe.K_B + p * fe.load_matrix(follower), fe.C)
+
+
+def _damping(g: RodGroups) -> float:
+    return max(g.eta, g.gamma)
+
+
+def _undamped_double_root(g: RodGroups, p0: float, mu0: float) -> tuple[float, float]:
+    sigma0 = _fixed_scale(p0, np.sqrt(complex(mu0)), g)
+
+    def G(p, mu):
+        return _f(p, np.sqrt(mu + 0j), g, sigma0)
+
+    def residual(x):
+        p, mu = x
+        h = 1e-3 * max(1.0, abs(mu))
+        val, dval = _with_derivative(lambda m: G(p, m), mu + 0j, h)
+        return np.array([np.real(val), np.real(dval)])
+
+    p, mu = _newton2(residual, np.array([p0, mu0]))
+    return float(p), float(mu)
+
+
+def _damped_flutter(g: RodGroups, p0: float, W0: float) -> tuple[float, float]:
+    """Root ``omega~ = i Omega`` of eq. (118): ``Re f = 0`` and ``Im f / delta = 0`` with
+    ``delta = max(eta, gamma)``. On the imaginary axis the imaginary parts of eq. (118)'s terms
+    all carry a factor ``eta`` or ``gamma`` and are computed to relative precision, so the
+    scaled equation keeps its digits as the damping vanishes (the chapter's paradox: the limit
+    is not the undamped load) instead of drowning in the ``Re f`` round-off."""
+    sigma0 = _fixed_scale(p0, 1j * W0, g)
+    delta = max(g.eta, g.gamma)
+
+    def residual(x):
+        v = _f(x[0], 1j * x[1], g, sigma0)
+        return np.array([np.real(v), np.imag(v) / delta])
+
+    p, W = _newton2(residual, np.array([p0, abs(W0)]))
+    return float(p), float(abs(W))
+
+
+def _damped_divergence(g: RodGroups, p0: float, w0: float) -> tuple[float, float]:
+    sigma0 = _fixed_scale(p0, w0, g)
+
+    def residual(x):
+        p, w = x
+        h = 1e-3 * max(1.0, abs(w))
+        val, dval = _with_derivative(lambda z: _f(p, z, g, sigma0), w + 0j, h)
+        return np.array([np.real(val), np.real(dval)])
+
+    p, w = _newton2(residual, np.array([p0, w0]))
+    return float(p), float(w)
+
+
+def _exact_regime(p: float, g: RodGroups) -> Regime | None:
+    """Regime from the exact roots of eq. (118) (FE guesses refined by Newton), ``None`` if a
+    growth rate is below what the roots resolve. Modes with wavenumber^2 up to 3p + 40 (the
+    load only couples modes with k^2 <~ p)."""
+    n_modes = int(math.ceil(math.sqrt(3 * p + 40) / math.pi)) + 1
+    if not g.damped:
+        try:
+            w = eigenvalues(p, g, n_modes=n_modes, n_elements=max(16, 3 * n_modes))
+        except ConvergenceError:
+            # two roots nearly coincide (next to a coalescence): the pair by its gap
+            return _undamped_regime_by_gap(p, g, n_modes, max(16, 3 * n_modes))
+    else:
+        # The rightmost FE roots (with strong Kelvin-Voigt damping many overdamped roots lie
+        # nearer the origin than an unstable pair) and those of smallest modulus (with tiny
+        # damping the FE growth rates are round-off, ~1e-12, and "rightmost" is random).
+        fe = fe_eigenvalues(g, p, max(16, 3 * n_modes))
+        guesses = np.concatenate([fe[np.argsort(-fe.real)][: 2 * n_modes],
+                                  fe[np.argsort(np.abs(fe))][: 2 * n_modes]])
+        # Growth rates at round-off level start on the imaginary axis: Newton's first step
+        # then gives Re omega~ = O(damping) to relative precision (from 1e-12 it would take
+        # log2(log(1e-100)/log(1e-12)) ~ 3 steps more to fall to a damping of 1e-100).
+        flat = np.abs(guesses.real) < 1e-8 * np.abs(guesses)
+        guesses = np.unique(np.where(flat, 1j * guesses.imag, guesses))
+        try:
+            w = _damped_roots(p, g, guesses)
+        except ConvergenceError:
+            # two roots nearly coincide on the real axis (next to a divergence window's
+            # end): the pair by its gap in omega~, the other roots alone
+            w = _damped_roots_by_gap(p, g, guesses)
+            if w is None:
+                return None
+    if not g.damped:
+        mu = w**2
+        cx = np.abs(mu.imag) > 1e-8 * np.abs(mu)
+        if np.any(cx):
+            return Regime.FLUTTER
+        return Regime.DIVERGENCE if np.any(mu.real > 0) else Regime.STABLE
+    # With damping the growth rates are resolved relative to the damping (the imaginary parts
+    # of eq. 118's terms are O(damping) and carried with relative precision).
+    tol = 1e-10 * np.abs(w) * min(1.0, _damping(g))
+    unstable = w.real > tol
+    if np.any(np.abs(w.real) <= tol):
+        return None
+    if np.any(unstable & (np.abs(w.imag) > 1e-8 * np.abs(w))):
+        return Regime.FLUTTER
+    return Regime.DIVERGENCE if np.any(unstable) else Regime.STABLE
+
+
+def _damped_roots(p: float, g: RodGroups, guesses: NDArray) -> NDArray:
+    """The damped rod's roots ``omega~`` of eq. (118) from FE ``guesses``, each refined alone
+    (those deep in the left half-plane may fail: they decide no regime)."""
+    roots = []
+    for z in guesses:
+        try:
+            roots.append(refine_eigenvalues(p, g, np.array([z]))[0])
+        except ConvergenceError:
+            # Newton may fail next to the pole omega~ = -1/eta of eq. (113) (overdamped
+            # roots); a root that deep in the left half-plane (decay > 10 % of its
+            # modulus, far beyond the FE twin's error) decides no regime.
+            if not z.real < -0.1 * abs(z):
+                raise
+    w = np.array(roots, dtype=complex)
+    # Two more Newton steps: the stopping test (step <= 1e-13 |w|) leaves an error up to
+    # ~1e-16 |w|, above a growth rate O(damping) when the damping is tiny; each step
+    # squares it, down to the relative precision Re omega~ is computed with (see
+    # _damped_flutter). Not on the roots deep in the left half-plane: they decide nothing,
+    # and a nearly coincident pair there (the mirror -omega~ of a nearly undamped pair next
+    # to its coalescence) may jitter and fail (an outside review: tan(alpha) = 0.5932505,
+    # eta = 1e-6, p = 48.8495).
+    near = ~(w.real < -0.1 * np.abs(w))
+    w[near] = refine_eigenvalues(p, g, refine_eigenvalues(p, g, w[near]))
+    return w
+
+
+def _closest_pair_index(z: NDArray) -> tuple[int, int]:
+    """Indices of the two values of ``z`` nearest each other relative to their moduli."""
+    d = np.abs(z[:, None] - z[None, :]) / (np.abs(z[:, None]) + np.abs(z[None, :]) + 1e-300)
+    d[np.arange(z.size), np.arange(z.size)] = np.inf
+    i, j = np.unravel_index(int(np.argmin(d)), d.shape)
+    return int(i), int(j)
+
+
+def _damped_roots_by_gap(p: float, g: RodGroups, guesses: NDArray) -> NDArray | None:
+    """:func:`_damped_roots` where two roots nearly coincide and Newton on them fails: the
+    pair of guesses nearest each other (on or about the real axis) from its gap in
+    ``omega~`` (:func:`flutterfriction.analysis.rod_gap.pair_gap`: two real roots about its
+    centre, or a complex pair), every other root alone; ``None`` (no verdict) where the gap
+    is within its round-off."""
+    # among the roots that decide the regime (a pair deep in the left half-plane, e.g. the
+    # mirror -omega~ of a nearly undamped pair, is left to _damped_roots, which skips it)
+    deciding = np.flatnonzero(~(guesses.real < -0.1 * np.abs(guesses)))
+    if deciding.size < 2:
+        raise ConvergenceError(f"no pair of roots of eq. (118) to decide at p = {p:.10g}")
+    a, b = _closest_pair_index(guesses[deciding])
+    i, j = int(deciding[a]), int(deciding[b])
+    centre, gap, noise = pair_gap(p, g, float(0.5 * (guesses[i] + guesses[j]).real), "omega")
+    if abs(gap) <= GAP_NOISE_FACTOR * noise:
+        return None
+    others = _damped_roots(p, g, np.delete(guesses, [i, j]))
+    half = math.sqrt(abs(gap))
+    pair = ([complex(centre - half), complex(centre + half)] if gap > 0 else
+            [complex(centre, half), complex(centre, -half)])
+    return np.concatenate([others, np.array(pair)])
+
+
+def _regime_of(mu: NDArray) -> Regime:
+    """Undamped regime of the roots ``mu = omega~^2``: flutter if one is complex, else
+    divergence if one is positive (a real growing ``omega~``), else stable."""
+    if np.any(np.abs(mu.imag) > 1e-8 * np.abs(mu)):
+        return Regime.FLUTTER
+    return Regime.DIVERGENCE if np.any(mu.real > 0) else Regime.STABLE
+
+
+def _undamped_regime_by_gap(p: float, g: RodGroups, n_modes: int, n_el: int
+                            ) -> Regime | None:
+    """Undamped regime at ``p`` where roots of eq. (118) nearly coincide and Newton on them
+    fails: every root is refined alone from its FE guess; one whose Newton fails is decided
+    with its nearest neighbour by their gap (:func:`flutterfriction.analysis.rod_gap.
+    pair_gap`: a complex pair if negative, else two real roots about its centre). Two such
+    pairs at one load happen (an outside review: tan(alpha) = 0.2166, p = 847.08, mu ~ 20150
+    and 75147). ``None`` (no verdict) where a gap is within
+    :data:`~flutterfriction.analysis.rod_gap.GAP_NOISE_FACTOR` times its round-off."""
+    mu = -_FEScan(g, n_el).spectra(np.array([p]))[0]  # the pencil's Omega^2 = -mu
+    mu = mu[np.argsort(np.abs(mu))][:n_modes]
+    roots: list[complex] = []
+    pending = list(range(mu.size))
+    while pending:
+        k = pending.pop(0)
+        try:
+            roots.append(complex(refine_eigenvalues(p, g, np.array([np.sqrt(complex(mu[k]))]))
+                                 [0] ** 2))
+            continue
+        except ConvergenceError:
+            if not pending:
+                raise
+        j = min(pending, key=lambda q: abs(mu[q] - mu[k]))
+        pending.remove(j)
+        centre, gap, noise = pair_gap(p, g, float(0.5 * (mu[k] + mu[j]).real))
+        if abs(gap) <= GAP_NOISE_FACTOR * noise:
+            return None
+        half = math.sqrt(abs(gap))
+        roots += ([complex(centre, half), complex(centre, -half)] if gap < 0 else
+                  [complex(centre - half), complex(centre + half)])
+    return _regime_of(np.array(roots, dtype=complex))
