@@ -155,6 +155,13 @@ def _with_tolerance(reference):
      "needs atol > 0 or rtol > 0"),
     (lambda r: r["errata"][0].pop("key"), r"errata\[0\] \(id erratum_eq1\w+\): 'key'"),
     (lambda r: r["quantities"].append(dict(r["quantities"][0])), "duplicate id"),
+    (lambda r: r["quantities"][0].pop("origin"), r"quantities\[0\] \(id \w+\): 'origin' is a "
+     "required property"),
+    (lambda r: r["quantities"][0].update(origin="chapter"),
+     r"quantities\[0\] \(id \w+\): origin: 'chapter' is not one of"),
+    (lambda r: next(q for q in r["quantities"] if q["origin"] == "ours"
+                    and "beyond" in q["source"]).update(origin="printed"),
+     r"origin must be 'ours' for a source beyond the chapter"),
 ])
 def test_reference_file_errors_name_the_entry(reference, edit, match):
     import copy
@@ -222,7 +229,8 @@ def test_the_workflow_refuses_bad_reference_coverage_and_scatter_before_any_job(
 
 
 def _one_quantity(key="k", scene="sc"):
-    return {"id": "x", "source": "s", "scene": scene, "key": key, "quoted": 1.0,
+    return {"id": "x", "source": "s", "origin": "printed", "scene": scene, "key": key,
+            "quoted": 1.0,
             "tolerance": {"atol": 0.0, "rtol": 1e-4, "why": "w"},
             "agreement": {"atol": 0.0, "rtol": 1e-4, "why": "w"}}
 
@@ -262,14 +270,14 @@ def test_a_key_given_twice_in_the_reference_file_is_refused(tmp_path):
     from flutterfriction.reference import reference_file_problems
 
     path = tmp_path / "reference.yaml"
-    path.write_text("quantities:\n  - id: x\n    source: s\n    scene: eq25\n    key: k\n"
-                    "    quoted: 1.0\n    quoted: 2.0\n"
+    path.write_text("quantities:\n  - id: x\n    source: s\n    origin: ours\n"
+                    "    scene: eq25\n    key: k\n    quoted: 1.0\n    quoted: 2.0\n"
                     "    tolerance: {atol: 0, rtol: 1.0e-4, why: w}\n"
                     "    agreement: {atol: 0, rtol: 1.0e-4, why: w}\nerrata: []\n")
     assert reference_file_problems(path) == [
-        f"{path}: quantities.0: key 'quoted' given twice at line 7 (first at line 6; YAML "
+        f"{path}: quantities.0: key 'quoted' given twice at line 8 (first at line 7; YAML "
         "would keep the last silently)"]
-    with pytest.raises(ValueError, match="key 'quoted' given twice at line 7"):
+    with pytest.raises(ValueError, match="key 'quoted' given twice at line 8"):
         load_reference(path)
 
 
@@ -513,3 +521,29 @@ def test_wrap_items_breaks_between_items_only():
     assert len(lines) == 3 and all(len(line) <= 40 for line in lines)
     assert ", ".join(line.rstrip(",") for line in lines) == text
     assert wrap_items("a, " + "b" * 50 + ", c", 10).split("\n") == ["a,", "b" * 50 + ",", "c"]
+
+
+def test_every_quantity_names_the_origin_of_its_value_and_the_summaries_count_them(reference):
+    """``origin`` (printed / formula / stated / ours) is one of ORIGINS, as the schema lists
+    them; a categorical word is never "printed" or "formula" (no digits to compare); and the
+    check's summary and the report count the quantities by origin."""
+    from flutterfriction.config import safe_load
+    from flutterfriction.reference import ORIGINS, REFERENCE_SCHEMA, CheckRow, origins_sentence
+
+    with open(REFERENCE_SCHEMA, encoding="utf-8") as fh:
+        enum = safe_load(fh)["$defs"]["quantity"]["properties"]["origin"]["enum"]
+    assert enum == list(ORIGINS)
+    origins = [q["origin"] for q in reference["quantities"]]
+    assert set(origins) == set(ORIGINS)
+    for q in reference["quantities"]:
+        if isinstance(q["quoted"], str):
+            assert q["origin"] in ("stated", "ours"), q["id"]
+    rows = [CheckRow(id=q["id"], kind="quantity", source=q["source"], quoted=q["quoted"],
+                     unit="", reproduced=None, independent=None, method="",
+                     independent_method="", error=None, agreement=None, status="pass",
+                     origin=q["origin"]) for q in reference["quantities"]]
+    sentence = origins_sentence(rows)
+    assert sentence.startswith(f"The {len(rows)} quantities by the origin")
+    for key, words in ORIGINS.items():
+        assert f"{origins.count(key)} {words}" in sentence
+    assert sentence in summary_markdown(rows)

@@ -58,12 +58,22 @@ class CheckRow:
     agreement: float | None  # normalised error primary vs independent (or corrected vs indep.)
     status: str  # "pass" | "FAIL" | "verified erratum" | "UNVERIFIED erratum" | NOT_APPLICABLE
     note: str = ""
+    origin: str = ""  # a quantity's: a key of ORIGINS ("" for an erratum)
 
     @property
     def shown_status(self) -> str:
         """The status as tables show it, with the note (e.g. a quick-preset tolerance)."""
         return f"{self.status} ({self.note})" if self.note else self.status
 
+
+#: Where a quantity's reference value comes from (``origin`` in ``workflow/reference.yaml``;
+#: its schema lists the same keys), with the words the summaries use for each.
+ORIGINS = {
+    "printed": "printed in the chapter",
+    "formula": "the chapter's closed form evaluated where it prints no number",
+    "stated": "a statement or identity of the chapter, as the value it implies",
+    "ours": "beyond the chapter: our own values",
+}
 
 QUICK_NOTE = "quick-preset tolerance"
 NOT_APPLICABLE = "not applicable"
@@ -149,7 +159,7 @@ def _not_applicable(entry: dict[str, Any], changes: list[str],
                     reproduced=value, independent=independent, method=q.get("method", ""),
                     independent_method=q.get("independent_method", ""), error=None,
                     agreement=agreement, status=NOT_APPLICABLE if agrees else "FAIL",
-                    note=note)
+                    note=note, origin=entry.get("origin", ""))
 
 
 def normalised_error(x: float, ref: float, tol: Mapping[str, float]) -> float:
@@ -180,7 +190,8 @@ def reference_problems(ref: Any, schema_path: str | Path = REFERENCE_SCHEMA,
     """Every problem of a reference file, one line each naming the entry by its id: the schema
     (required keys, no unknown or misspelled key, tolerances with atol, rtol, why), finite
     non-negative tolerances that are not both zero and rtol below :data:`MAX_RTOL`, a finite
-    quoted number, unique ids and, given ``scenes`` (names), a registered scene."""
+    quoted number, unique ids, ``origin`` "ours" where the source says "beyond" the chapter
+    and, given ``scenes`` (names), a registered scene."""
     import jsonschema
 
     with open(schema_path, encoding="utf-8") as fh:
@@ -233,6 +244,13 @@ def reference_problems(ref: Any, schema_path: str | Path = REFERENCE_SCHEMA,
             if isinstance(quoted, float) and not math.isfinite(quoted):
                 problems.append(f"{name((section, i))}: quoted must be a finite number, "
                                 f"got {quoted}")
+            source, origin = entry.get("source"), entry.get("origin")
+            if section == "quantities" and isinstance(source, str) and "beyond" in source \
+                    and origin in ORIGINS and origin != "ours":
+                # (the source's own words say the chapter gives no value: the summaries must
+                # not count it among the chapter's)
+                problems.append(f"{name((section, i))}: origin must be 'ours' for a source "
+                                f"beyond the chapter ({source!r}), got {origin!r}")
             for field in ("scene", "key"):  # an empty key would name no quantity
                 if isinstance(entry.get(field), str) and not entry[field].strip():
                     problems.append(f"{name((section, i))}: {field} must be a non-empty string")
@@ -340,7 +358,7 @@ def _missing(entry: dict[str, Any], data: Mapping[str, Any], kind: str) -> Check
                     source=entry["source"], quoted=entry.get("quoted", entry.get("printed")),
                     unit=entry.get("unit", ""), reproduced=None, independent=None, method="",
                     independent_method="", error=None, agreement=None, status="FAIL",
-                    note=note)
+                    note=note, origin=entry.get("origin", ""))
 
 
 def _check_quantity(entry: dict[str, Any], data: Mapping[str, Any],
@@ -351,6 +369,7 @@ def _check_quantity(entry: dict[str, Any], data: Mapping[str, Any],
     q = data[entry["scene"]]["quantities"][entry["key"]]
     quoted = entry["quoted"]
     common = dict(id=entry["id"], kind="quantity", source=entry["source"], quoted=quoted,
+                  origin=entry.get("origin", ""),
                   unit=entry.get("unit", q.get("unit", "")), reproduced=q["value"],
                   independent=q["independent"], method=q["method"],
                   independent_method=q["independent_method"])
@@ -527,6 +546,18 @@ def _fmt(x: Any) -> str:
     return str(x)
 
 
+def origins_sentence(rows: list[CheckRow]) -> str:
+    """One sentence counting the applicable quantities by the origin of their reference value
+    (:data:`ORIGINS`), e.g. "24 printed in the chapter, ...", or ``""`` if none has one."""
+    shown = [r for r in rows if r.kind == "quantity" and r.status != NOT_APPLICABLE]
+    counts = {k: sum(r.origin == k for r in shown) for k in ORIGINS}
+    if not any(counts.values()):
+        return ""
+    parts = [f"{counts[k]} {words}" for k, words in ORIGINS.items() if counts[k]]
+    return (f"The {sum(counts.values())} quantities by the origin of their reference value: "
+            + "; ".join(parts) + ".")
+
+
 def summary_markdown(rows: list[CheckRow]) -> str:
     bad = failed(rows)
     loose = sum(r.note == QUICK_NOTE for r in rows)
@@ -540,6 +571,7 @@ def summary_markdown(rows: list[CheckRow]) -> str:
         "verified against an independent computation)." if not bad
         else f"**{len(bad)} of {checked} entries FAIL.**",
         "",
+        *([origins_sentence(rows), ""] if origins_sentence(rows) else []),
         *([f"{len(skipped)} entries are not applicable: their scenes ran with other "
            "parameters than the chapter's (your own; the rows name the changed keys), so the "
            "chapter's values do not apply to them.", ""] if skipped else []),
@@ -552,9 +584,10 @@ def summary_markdown(rows: list[CheckRow]) -> str:
            "run at paper fidelity for the stated digits.", ""] if loose else []),
     ]
     lines += markdown_table(
-        ["id", "source", "quoted", "unit", "reproduced", "independent",
+        ["id", "source", "origin", "quoted", "unit", "reproduced", "independent",
          "method / independent method", "error", "agreement", "status"],
-        [[r.id, r.source, _fmt(r.quoted), r.unit, _fmt(r.reproduced), _fmt(r.independent),
+        [[r.id, r.source, r.origin or r.kind, _fmt(r.quoted), r.unit, _fmt(r.reproduced),
+          _fmt(r.independent),
           f"{r.method} / {r.independent_method}",
           "" if r.error is None else f"{r.error:.2e}",
           "" if r.agreement is None else f"{r.agreement:.2e}", r.shown_status] for r in rows])

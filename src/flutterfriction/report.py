@@ -27,7 +27,7 @@ from flutterfriction.errors import ParameterError
 from flutterfriction.figure_offences import RULES as FIGURE_RULES
 from flutterfriction.figure_offences import Offence
 from flutterfriction.notebook_export import math_to_mathml
-from flutterfriction.reference import NOT_APPLICABLE, CheckRow
+from flutterfriction.reference import NOT_APPLICABLE, CheckRow, origins_sentence
 
 STYLE = """
 body { font-family: system-ui, sans-serif; max-width: 1200px; margin: 2em auto; padding: 0 1em;
@@ -134,7 +134,8 @@ def _row_class(r: CheckRow) -> str:
 
 
 def _check_table(rows: Iterable[CheckRow], errata: Mapping[str, Mapping[str, Any]]) -> str:
-    out = ['<div class="wide"><table><thead><tr><th>id</th><th>source</th><th>reference</th>'
+    out = ['<div class="wide"><table><thead><tr><th>id</th><th>source</th><th>origin</th>'
+           "<th>reference</th>"
            "<th>reproduced</th>"
            "<th>method</th><th>independent</th><th>independent method</th>"
            "<th>error / agreement</th><th>status</th></tr></thead><tbody>"]
@@ -153,6 +154,7 @@ def _check_table(rows: Iterable[CheckRow], errata: Mapping[str, Mapping[str, Any
         unit = f" {r.unit}" if r.unit and r.kind == "quantity" else ""
         out.append(
             f'<tr class="{cls}"><td>{ident}</td><td>{html.escape(r.source)}</td>'
+            f"<td>{html.escape(r.origin or r.kind)}</td>"
             f"{_cell(r.quoted, unit)}{_cell(r.reproduced)}"
             f"<td>{method}</td>{_cell(r.independent)}"
             f"<td>{html.escape(r.independent_method)}</td><td class=\"num\">{err} / {agr}</td>"
@@ -545,6 +547,7 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
     n_err = sum(r.kind == "erratum" for r in applicable)
     n_ver = sum(r.status == "verified erratum" for r in applicable)
     ok = n_pass == n_q and n_ver == n_err
+    origins = origins_sentence(rows)
     title = html.escape(layout.get("title", "flutterfriction"))
     parts = [f"<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\"><title>{title}"
              f"</title><style>{STYLE}</style></head><body><h1>{title}</h1>",
@@ -554,9 +557,9 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
                 + "</ul></div>"] if problems else []),
              f'<p class="summary{"" if ok else " bad"}"><b>Check</b>: {n_pass} of {n_q} '
              f"checked values (the chapter's quoted numbers, and values beyond it: each row "
-             f"names its source) reproduced within tolerance; {n_ver} of {n_err} errata "
-             "verified by "
-             'an independent computation. <a href="#check">Check table</a> · '
+             f"names its source and origin) reproduced within tolerance; {n_ver} of {n_err} "
+             f"errata verified by an independent computation. {html.escape(origins)} "
+             '<a href="#check">Check table</a> · '
              '<a href="../checks/summary.md">summary.md</a> · '
              '<a href="../checks/summary.json">summary.json</a></p>',
              *([f'<p class="summary na"><b>{n_na} checked values are not applicable</b>: '
