@@ -69,10 +69,10 @@ class CheckRow:
 #: Where a quantity's reference value comes from (``origin`` in ``workflow/reference.yaml``;
 #: its schema lists the same keys), with the words the summaries use for each.
 ORIGINS = {
-    "printed": "printed in the chapter",
-    "formula": "the chapter's closed form evaluated where it prints no number",
-    "stated": "a statement or identity of the chapter, as the value it implies",
-    "ours": "beyond the chapter: our own values",
+    "printed": "numbers printed in the chapter",
+    "formula": "closed forms of the chapter evaluated where it prints no number",
+    "stated": "statements or identities of the chapter (the value each implies)",
+    "ours": "values of our own beyond the chapter",
 }
 
 QUICK_NOTE = "quick-preset tolerance"
@@ -548,7 +548,8 @@ def _fmt(x: Any) -> str:
 
 def origins_sentence(rows: list[CheckRow]) -> str:
     """One sentence counting the applicable quantities by the origin of their reference value
-    (:data:`ORIGINS`), e.g. "24 printed in the chapter, ...", or ``""`` if none has one."""
+    (:data:`ORIGINS`), e.g. "24 numbers printed in the chapter; ...", or ``""`` if none has
+    one."""
     shown = [r for r in rows if r.kind == "quantity" and r.status != NOT_APPLICABLE]
     counts = {k: sum(r.origin == k for r in shown) for k in ORIGINS}
     if not any(counts.values()):
