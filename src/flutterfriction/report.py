@@ -658,10 +658,12 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
                 "</figcaption></figure>")
         parts.append("</div>")
     parts.append('<h2 id="check">The check: every quoted number, every erratum</h2>'
-                 "<p>reference: the chapter's printed number where it prints one; where it "
-                 "prints none (the row's source or description says so: 'beyond', 'our own', "
-                 "'our choice') our own exact or by-hand value. For an erratum: the printed "
-                 "form's value. "
+                 "<p>origin: where the reference value comes from: <i>printed</i> (a number "
+                 "the chapter prints), <i>formula</i> (the chapter's closed form, evaluated "
+                 "where it prints no number), <i>stated</i> (a statement or identity of the "
+                 "chapter, as the value it implies: a sign, a regime, a zero residual) or "
+                 "<i>ours</i> (beyond the chapter: our own exact, by-hand or computed value). "
+                 "reference: that value; for an erratum, the printed form's value. "
                  "error: normalised error against the reference (for an erratum: printed "
                  "form against the independent computation, must exceed 1); agreement: primary "
                  "against independent method (must be at most 1). Errata rows are yellow; open "
