@@ -252,10 +252,9 @@ def test_limit_cycle_api_refuses_outside_interval():
 @pytest.mark.parametrize("over", [{"k2": 1e3, "l1": 1e3}, {"l1": 7.3e4}])
 def test_flutter_interval_at_the_eigenvalues_noise_floor_is_resolved(over):
     """Flutter intervals 1.6e-6 wide (relative), where the eigenvalues' discriminant is at its
-    round-off floor (found by the CLI fuzz suite): the coalescences as roots of the
-    discriminant's quadratic, against the chapter's closed forms (eqs. 39, 41). Agreement
-    measured 4.5e-11; the bound 1e-8 is the quadratic's conditioning (its discriminant keeps
-    ~3 digits: 1.6e-6 x 1e-3) with a margin."""
+    round-off floor (found by the CLI fuzz suite): the coalescences from the discriminant's
+    factors, against the chapter's closed forms (eqs. 39, 41). The bound 1e-8 is the old
+    quadratic's conditioning (measured 4.5e-11 then; the factors agree to ~1e-16)."""
     from flutterfriction.analysis.ziegler import follower_critical_loads
     from flutterfriction.closed_forms.ziegler import critical_loads_closed_form
 
@@ -477,3 +476,45 @@ def test_damped_closed_form_in_doubles_refuses_where_its_terms_cancel():
         answered += 1
         assert gamma == pytest.approx(cfd.damped_flutter_gamma_exact(p), rel=1e-8)
     assert answered > 100 and refused > 10  # both sides of the bound are exercised
+
+
+#: Pendulums within the model's range (ratios <= 1e6) that were refused (an outside review:
+#: 34 of 280 random ones): flutter intervals 2e-10 .. 1.3e-6 wide (relative), where the old
+#: quadratic's discriminant lost every digit, or no scan window bracketed the pair.
+NARROW_INTERVALS = [
+    dict(l1=4544.169338427897, l2=0.014782310182144948, d=4544.169338427897,
+         h=0.014399004706288349, m1=4.94532722520496, m2=0.08775669862970814, m3=0.0,
+         k1=0.02317070567458608, k2=0.056941897879802986, c1=1.9426107342453116e-07,
+         c2=1.253647532277005e-05),
+    dict(l1=6.591435860297098e-09, l2=0.006332655304786403, d=6.591435860297098e-09,
+         h=0.005299309261569733, m1=1.8489260828087456e-07, m2=0.01819148404177449, m3=0.0,
+         k1=36997.919652884506, k2=16.68780436521009),
+    dict(l1=2558305.4972234787, l2=7.088470659665546, d=2558305.4972234787,
+         h=3.7219045317796433, m1=10.516494496619218, m2=0.018823416505262907,
+         m3=0.17685368950216165, k1=44.0740018814994, k2=275.0274615494725),
+]
+
+
+@pytest.mark.parametrize("params", NARROW_INTERVALS)
+def test_a_flutter_interval_narrower_than_the_scan_resolves_is_solved_not_refused(params):
+    """The two coalescences as the simple roots of the discriminant's two factors
+    ``b -/+ 2 sqrt(det M c)``: against the 50-digit flutter load (the discriminant's root in
+    mpmath, from the matrices) and the chapter's closed forms (eqs. 39, 41; exact to ~1e-15 in
+    doubles here, the review's 60-digit check). Measured agreement <= 7e-16; 1e-12 leaves
+    the margin of a loss of three digits."""
+    from flutterfriction.analysis.ziegler import (
+        critical_loads,
+        flutter_load_multiprecision,
+        follower_critical_loads,
+    )
+    from flutterfriction.closed_forms.ziegler import critical_loads_closed_form
+
+    p = ZieglerPendulum(**params)
+    P_flu, P_div = follower_critical_loads(p)
+    ref = critical_loads_closed_form(p.with_(c1=0.0, c2=0.0))
+    assert 0 < P_div / P_flu - 1 < 2e-6  # the narrow interval itself
+    assert P_flu == pytest.approx(float(flutter_load_multiprecision(p)), rel=1e-12)
+    assert P_flu == pytest.approx(ref.P_flu, rel=1e-12)
+    assert P_div == pytest.approx(ref.P_div, rel=1e-12)
+    loads = critical_loads(p)  # and the whole answer (damped loads too, where damped)
+    assert loads.P_flu_undamped == P_flu and loads.P_div_undamped == P_div

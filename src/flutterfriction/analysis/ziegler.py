@@ -60,8 +60,10 @@ def follower_critical_gammas(pendulum: ZieglerPendulum, n_scan: int = 512,
     The scan window starts at ``4 max(1, k1/k2)``; where it brackets nothing, it shrinks
     (:data:`ZOOMS` times by 8), then doubles at most ``max_doublings - 1`` times
     (to ``2e12`` load units with 40: far above any coalescence in the model's numerical range,
-    where ``gamma_div`` stays below ``~1e8``). A discriminant at its round-off floor is refused
-    (:class:`ConvergenceError`), never minimised."""
+    where ``gamma_div`` stays below ``~1e8``). A discriminant at its round-off floor is never
+    minimised: there, and where no window brackets the pair (a flutter interval narrower than
+    the scan's step at every zoom), the two loads are solved from the discriminant's factors
+    (:func:`_coalescences_by_factors`)."""
     n_scan = check_integer("n_scan", n_scan, 8, 10**6)
     max_doublings = check_integer("max_doublings", max_doublings, 1, 1000)
     m = _dimensionless(pendulum)
@@ -77,32 +79,38 @@ def follower_critical_gammas(pendulum: ZieglerPendulum, n_scan: int = 512,
                                       noise_floor=True)
         except ConvergenceError as exc:
             # The eigenvalues' discriminant is at its round-off floor (a flutter interval
-            # ~1e-6 wide): the same coalescences as roots of a quadratic, which resolves them.
-            return _coalescence_quadratic(m.K, m.G_follower, m.M, f"{exc}; the load unit is "
+            # ~1e-6 wide): the same coalescences from the discriminant's factors.
+            return _coalescences_by_factors(m.K, m.G_follower, m.M, f"{exc}; the load unit is "
                                           f"k2/l1 = {pendulum.load_unit:.4g} N")
         if len(roots) >= 2:
             if len(roots) > 2:
                 raise ConvergenceError(f"expected two coalescence loads, found {roots} "
                                        f"(in units of k2/l1)")
             return roots[0], roots[1]
-    raise ConvergenceError(
+    # No window brackets the pair (a flutter interval narrower than the scan's step at every
+    # zoom, the discriminant never at its floor either: an outside review, relative gaps down
+    # to 2e-10): the same coalescences from the discriminant's factors.
+    return _coalescences_by_factors(
+        m.K, m.G_follower, m.M,
         f"no flutter/divergence coalescence bracketed from P = {windows[ZOOMS]:.3g} to "
-        f"{windows[-1]:g} k2/l1 (a flutter "
-        f"interval narrower than the scan resolves: this combination of ratios is beyond what "
-        f"double precision separates)")
+        f"{windows[-1]:g} k2/l1 (a flutter interval narrower than the scan resolves)")
 
 
-def _coalescence_quadratic(K: NDArray, G: NDArray, M: NDArray, why: str = ""
+def _coalescences_by_factors(K: NDArray, G: NDArray, M: NDArray, why: str = ""
                            ) -> tuple[float, float]:
-    """The two coalescence loads of a two-degree-of-freedom pencil as roots of a quadratic.
+    """The two coalescence loads of a two-degree-of-freedom pencil, each as the simple root of
+    its own factor of the discriminant.
 
     ``det(K + g G - mu M) = det(M) mu^2 - b(g) mu + c(g)`` with ``b = b0 + g b1`` (the
     cofactor-weighted trace) and ``c = det(K + g G) = c0 + g c1 + g^2 c2``; ``mu`` is double
-    where ``D(g) = b^2 - 4 det(M) c = A2 g^2 + A1 g + A0`` vanishes. Generic 2x2 algebra on the
-    matrices (no formula of the chapter), used where the eigenvalues' discriminant is at its
-    round-off floor: the coefficients carry the rounding of a few products, so the roots are
-    resolved while ``A1^2 - 4 A2 A0`` stays above ``1e3 eps`` of its terms (measured: loads
-    1.6e-6 apart at l1/l2 = 1e4 agree with 50-digit arithmetic to 1e-9). Refused below that."""
+    where ``D(g) = b^2 - 4 det(M) c`` vanishes, and ``D = f_+ f_-`` with
+    ``f_(+/-)(g) = b(g) -/+ 2 sqrt(det(M) c(g))``: the flutter and the divergence load are the
+    roots of different factors, each simple however close the two loads are (where ``D``'s
+    own roots, as a quadratic's, cancel: its discriminant ``A1^2 - 4 A2 A0`` loses every digit
+    at a relative gap ~1e-8, an outside review refused pendulums with gaps of 2e-10..1.3e-6).
+    Each factor's root by Newton from the root with ``c`` frozen at ``c0`` (exact for a
+    follower load, whose ``c`` is constant). Generic 2x2 algebra on the matrices (no formula
+    of the chapter), used where the eigenvalues' discriminant is at its round-off floor."""
     dM = float(np.linalg.det(M))
 
     def cofactor_trace(A: NDArray, B: NDArray) -> float:
@@ -111,21 +119,32 @@ def _coalescence_quadratic(K: NDArray, G: NDArray, M: NDArray, why: str = ""
 
     b0, b1 = cofactor_trace(K, M), cofactor_trace(G, M)
     c0, c1, c2 = float(np.linalg.det(K)), cofactor_trace(K, G), float(np.linalg.det(G))
-    A2, A1, A0 = b1**2 - 4 * dM * c2, 2 * b0 * b1 - 4 * dM * c1, b0**2 - 4 * dM * c0
-    disc = A1**2 - 4 * A2 * A0
-    scale = A1**2 + abs(4 * A2 * A0)
-    if not (A2 != 0 and disc > 1e3 * np.finfo(float).eps * scale):
-        raise ConvergenceError(
-            f"{why}; nor as roots of the discriminant's quadratic: its discriminant, "
-            f"{disc / scale if scale else 0.0:.3g} of its terms, is below 1e3 eps, so the two "
-            f"coalescence loads (relative gap ~1e-6 or less) are not resolved from the rounded "
-            f"matrices")
-    q = -0.5 * (A1 + math.copysign(math.sqrt(disc), A1))
-    roots = sorted((q / A2, A0 / q))
-    if not roots[0] > 0:
-        raise ConvergenceError(f"{why}; the quadratic's coalescence loads {roots} are not both "
-                               "positive")
-    return float(roots[0]), float(roots[1])
+    if not (dM > 0 and c0 > 0 and b1 != 0):
+        raise ConvergenceError(f"{why}; nor from the discriminant's factors: det M = {dM:.3g}, "
+                               f"det K = {c0:.3g} and the load's trace {b1:.3g} leave none")
+    roots = []
+    for sign in (1.0, -1.0):
+        g = (-b0 + sign * 2 * math.sqrt(dM * c0)) / b1
+        for _ in range(60):
+            c = c0 + g * (c1 + g * c2)
+            if not c > 0:
+                g = math.nan
+                break
+            root = math.sqrt(dM * c)
+            f = b0 + g * b1 - sign * 2 * root
+            df = b1 - sign * dM * (c1 + 2 * g * c2) / root
+            step = f / df if df != 0 else math.inf
+            g -= step
+            if abs(step) <= 1e-14 * abs(g):
+                break
+        else:
+            g = math.nan
+        if not (math.isfinite(g) and g > 0):
+            raise ConvergenceError(f"{why}; nor from the discriminant's factors: no positive "
+                                   f"coalescence load of the factor b {'-' if sign > 0 else '+'}"
+                                   f" 2 sqrt(det M c)")
+        roots.append(g)
+    return float(min(roots)), float(max(roots))
 
 
 def follower_critical_loads(pendulum: ZieglerPendulum, n_scan: int = 512,
