@@ -17,7 +17,7 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 from snakemake.utils import min_version
 
 from flutterfriction.config import (
-    duplicate_key_problems,
+    yaml_file_problems,
     expand_parameter_lists,
     validate_config,
 )
@@ -47,11 +47,11 @@ _problems = (
     + [
         line
         for path in dict.fromkeys(map(str, workflow.configfiles))
-        for line in duplicate_key_problems(path)
+        for line in yaml_file_problems(path)
     ]
     + validate_config(config, "workflow/schemas/config.schema.yaml", scenes=SCENES)
     + reference_file_problems("workflow/reference.yaml", scenes=SCENES)
-    + duplicate_key_problems("workflow/coverage.yaml")
+    + yaml_file_problems("workflow/coverage.yaml")
 )
 try:
     load_coverage("workflow/coverage.yaml")

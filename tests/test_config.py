@@ -352,21 +352,36 @@ def test_a_number_given_as_a_string_says_why(value, extra):
 def test_a_key_given_twice_is_refused(tmp_path):
     """Outside audit: YAML kept the last of two keys silently (`fidelity: quick` then
     `fidelity: paper` ran the paper preset; a pendulum section given twice)."""
-    from flutterfriction.config import duplicate_key_problems
+    from flutterfriction.config import yaml_file_problems
 
     path = tmp_path / "c.yaml"
     path.write_text("fidelity: quick\nfidelity: paper\nscenes:\n  eq25:\n"
                     "    pendulum: {l1: 1.0}\n    n_points: 11\n    pendulum: {l1: 2.0}\n"
                     "base: &b {x: 1}\nmerged: {<<: *b, x: 2}\n")  # an override is no duplicate
-    assert duplicate_key_problems(path) == [
+    assert yaml_file_problems(path) == [
         f"{path}: (top level): key 'fidelity' given twice at line 2 (first at line 1; YAML "
         "would keep the last silently)",
         f"{path}: scenes.eq25: key 'pendulum' given twice at line 7 (first at line 5; YAML "
         "would keep the last silently)"]
     with pytest.raises(ParameterError, match="key 'fidelity' given twice at line 2"):
         load_config(path)
-    assert duplicate_key_problems(ROOT / "workflow" / "config.yaml") == []
-    assert duplicate_key_problems(ROOT / "workflow" / "coverage.yaml") == []
+    assert yaml_file_problems(ROOT / "workflow" / "config.yaml") == []
+    assert yaml_file_problems(ROOT / "workflow" / "coverage.yaml") == []
+
+
+def test_a_number_that_underflows_to_zero_is_refused(tmp_path):
+    """An outside review: a damping written 1.0e-400 is read by YAML as 0.0 (no damping: the
+    chapter's paradox turned into a silent wrong answer). Refused with its place and line."""
+    from flutterfriction.config import yaml_file_problems
+
+    path = tmp_path / "c.yaml"
+    path.write_text("scenes:\n  fig19:\n    pendulum: {c1: 1.0e-400, c2: 0.0}\n"
+                    "    n_points: 11\n")
+    assert yaml_file_problems(path) == [
+        f"{path}: scenes.fig19.pendulum.c1: 1.0e-400 (line 3) underflows to 0 in double "
+        "precision (below 2.5e-324): give a value in the parameter's range"]
+    with pytest.raises(ParameterError, match="underflows to 0"):
+        load_config(path)
 
 
 def _scratch_workflow(tmp_path):

@@ -407,6 +407,35 @@ def test_subnormal_input_is_refused_and_tiny_scales_keep_their_viscosity(capsys)
         damped_flutter_load(unit) / unit.load_unit, rel=1e-12)
 
 
+@pytest.mark.parametrize(("command", "option"), [
+    (["ziegler", "--l1", "1", "--l2", "1", "--d", "1", "--h", "0", "--m1", "1", "--m2", "1",
+      "--m3", "0", "--k1", "1", "--k2", "1", "--c1", "1e-400", "--c2", "1e-400"], "--c1"),
+    (["ziegler", "--l1", "1", "--l2", "1", "--d", "1", "--h", "0", "--m1", "1.5e-330",
+      "--m2", "1", "--m3", "0", "--k1", "1", "--k2", "1"], "--m1"),
+    (["acoustic", "--lam", "1", "--mu", "1", "--P", "1", "0", "0", "0", "0", "0", "--Q",
+      "1e-400", "0", "0", "0", "0", "1", "--n", "1", "0", "0"], "--Q"),
+    (["rod", "--mass-ratio", "1", "--eta", "-1e-999"], "--eta"),
+])
+def test_a_number_that_underflows_to_zero_is_refused_not_taken_as_zero(capsys, command, option):
+    """An outside review: ``--c1 1e-400 --c2 1e-400`` was read as 0 and answered the undamped
+    2.0 (the chapter's paradox: the damped limit is 4/3); ``--m1 1e-400`` said "must be > 0,
+    got 0.0", which the user did not type. Refused by name, exit 2, one line."""
+    with pytest.raises(SystemExit) as exit_:
+        main(command)
+    assert exit_.value.code == 2
+    err = capsys.readouterr().err
+    assert f"argument {option}:" in err and "underflows to 0 in double precision" in err
+    assert err.count("\n") == 1
+
+
+def test_only_a_non_zero_significand_underflows():
+    from flutterfriction.errors import underflows
+
+    assert underflows("1e-400") and underflows("-2.5E-330") and underflows(".1e-330")
+    for word in ("0", "0.0", "0e-400", "-0.000e5", "1e-300", "5e-324", "1.5"):
+        assert not underflows(word), word  # a zero typed as such, and a representable value
+
+
 def test_linear_response_refuses_where_its_matrix_misses_the_spectrum():
     """An outside audit: for a pendulum whose spectrum spans 1e10 the rounded first-order
     matrix grows at the wrong rate (its slow pair 6.8e-14 +- 1704i instead of the exact
@@ -518,3 +547,21 @@ def test_a_flutter_interval_narrower_than_the_scan_resolves_is_solved_not_refuse
     assert P_div == pytest.approx(ref.P_div, rel=1e-12)
     loads = critical_loads(p)  # and the whole answer (damped loads too, where damped)
     assert loads.P_flu_undamped == P_flu and loads.P_div_undamped == P_div
+
+
+def test_a_refusal_never_shows_the_value_as_the_bound_it_violates(capsys):
+    """An outside review: "got lam/mu = 1e+08" against "<= 1e+08" (100000001), and
+    "det M/(M11 M22) = 1e-12 must be >= 1e-12" (9.99999999999e-13)."""
+    from flutterfriction.errors import shown_beside
+
+    assert shown_beside(100000001.0, (1e8,), ".6g") == "100000001.0"
+    assert shown_beside(2e8, (1e8,), ".6g") == "2e+08"  # short where it differs
+    cases = [(["acoustic", "--lam", "100000001", "--mu", "1", "--P", "1", "0", "0", "0", "0",
+               "0", "--Q", "1", "0", "0", "0", "0", "0", "--n", "1", "0", "0"],
+              "got lam/mu = 100000001.0"),
+             (["ziegler", "--l1", "1e-6", "--l2", "1", "--d", "1e-12", "--h", "0", "--m1", "1",
+               "--m2", "1", "--m3", "0", "--k1", "1", "--k2", "1"],
+              "det M/(M11 M22) = 9.99999999999e-13 must be >= 1e-12")]
+    for command, shown in cases:
+        assert main(command) == 2
+        assert shown in capsys.readouterr().err

@@ -42,6 +42,7 @@ from flutterfriction.errors import (
     ConvergenceError,
     ParameterError,
     check_nonnegative,
+    underflows,
 )
 from flutterfriction.models.rod import (
     CYCLE_ATTRACTION_SCALES,
@@ -141,6 +142,10 @@ def _number(text: str) -> float:
     value = float(word)
     if not math.isfinite(value):
         raise argparse.ArgumentTypeError(f"must be finite, got {text!r}")
+    if underflows(word):
+        raise argparse.ArgumentTypeError(f"{text!r} underflows to 0 in double precision "
+                                         "(below 2.5e-324): give a value in the "
+                                         "parameter's range")
     return value + 0.0  # -0 is 0 (it was echoed as -0.0; an outside audit)
 
 

@@ -12,11 +12,18 @@ from typing import Any
 
 import yaml
 
-from flutterfriction.errors import PLAIN_INTEGER, PLAIN_NUMBER, ConvergenceError, ParameterError
+from flutterfriction.errors import (
+    PLAIN_INTEGER,
+    PLAIN_NUMBER,
+    ConvergenceError,
+    ParameterError,
+    underflows,
+)
 
 TOP_LEVEL_KEYS = {"fidelity", "fidelity_presets", "scenes", "sweep_parts"}
 
 _MERGE_TAG = "tag:yaml.org,2002:merge"
+_FLOAT_TAG = "tag:yaml.org,2002:float"
 
 #: PyYAML's libyaml-backed safe loader where the installation has it, else the pure-Python
 #: one: the same documents (the same SafeConstructor and resolver), ~10x faster on the
@@ -29,12 +36,14 @@ def safe_load(stream: Any) -> Any:
     return yaml.load(stream, Loader=SAFE_LOADER)  # noqa: S506 (a safe loader)
 
 
-def duplicate_key_problems(path: str | Path) -> list[str]:
-    """One line per mapping key written twice in the YAML (or JSON) file at ``path``, naming
-    the key, where it sits and both lines: PyYAML and Snakemake keep the last value silently
-    (``fidelity: quick`` then ``fidelity: paper`` would run the paper preset). A key that
-    overrides one merged in by ``<<: *anchor`` is not a duplicate. A file that does not parse
-    gives no line here (its parser reports it)."""
+def yaml_file_problems(path: str | Path) -> list[str]:
+    """What the YAML (or JSON) file at ``path`` says that its parsed values no longer show,
+    one line each naming where it sits: a mapping key written twice (PyYAML and Snakemake
+    keep the last value silently: ``fidelity: quick`` then ``fidelity: paper`` would run the
+    paper preset; a key that overrides one merged in by ``<<: *anchor`` is not a duplicate),
+    and a number that underflows to 0 (``1.0e-400`` is read as 0.0: a damping taken as none;
+    :func:`flutterfriction.errors.underflows`). A file that does not parse gives no line here
+    (its parser reports it)."""
     try:
         with open(path, encoding="utf-8") as fh:
             root = yaml.compose(fh, Loader=SAFE_LOADER)
@@ -67,6 +76,11 @@ def duplicate_key_problems(path: str | Path) -> list[str]:
         elif isinstance(node, yaml.SequenceNode):
             for i, item in enumerate(node.value):
                 walk(item, (*where, i))
+        elif isinstance(node, yaml.ScalarNode) and node.tag == _FLOAT_TAG \
+                and PLAIN_NUMBER.fullmatch(node.value.strip()) and underflows(node.value):
+            lines.append(f"{path}: {_where(where)}: {node.value} (line "
+                         f"{node.start_mark.line + 1}) underflows to 0 in double precision "
+                         f"(below 2.5e-324): give a value in the parameter's range")
 
     walk(root, ())
     return lines
@@ -74,8 +88,9 @@ def duplicate_key_problems(path: str | Path) -> list[str]:
 
 def load_yaml(path: str | Path) -> Any:
     """``yaml.safe_load`` of the file at ``path``, refusing a key written twice in a mapping
-    (:func:`duplicate_key_problems`; :class:`ParameterError` listing them, one line each)."""
-    problems = duplicate_key_problems(path)
+    and an underflowing number (:func:`yaml_file_problems`; :class:`ParameterError` listing
+    them, one line each)."""
+    problems = yaml_file_problems(path)
     if problems:
         raise ParameterError("\n".join(problems))
     with open(path, encoding="utf-8") as fh:

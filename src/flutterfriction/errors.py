@@ -15,6 +15,26 @@ PLAIN_NUMBER = re.compile(r"[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)
 PLAIN_INTEGER = re.compile(r"[+-]?[0-9]+")
 
 
+def underflows(word: str) -> bool:
+    """Whether the decimal ``word`` (:data:`PLAIN_NUMBER`) has a non-zero significand yet
+    rounds to 0.0 in double precision (below 2.5e-324): ``float`` takes ``1e-400`` as 0 with
+    no word, and a damping of 1e-400 computed as none is the chapter's paradox turned into a
+    silent wrong answer (an outside review: the undamped 2.0 for the damped limit 4/3)."""
+    significand = re.split(r"[eE]", word.strip(), maxsplit=1)[0]
+    return bool(re.search(r"[1-9]", significand)) and float(word) == 0.0
+
+
+def shown_beside(value: float, bounds: tuple[float, ...], spec: str = "g") -> str:
+    """``value`` formatted with ``spec`` for a refusal's "got ...", with all its digits
+    (``repr``) where the short form would read as one of the ``bounds`` it violates (outside
+    reviews: "got 1" for eta = 1.0000001 against 1; "det M/(M11 M22) = 1e-12 must be
+    >= 1e-12" for 9.99999999999e-13)."""
+    short = format(value, spec)
+    if any(short == format(b, spec) or float(short) == b for b in bounds):
+        return repr(float(value))
+    return short
+
+
 class ParameterError(ValueError):
     """A parameter is outside its allowed range; the message names the parameter."""
 

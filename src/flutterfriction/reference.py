@@ -292,28 +292,28 @@ def reference_problems(ref: Any, schema_path: str | Path = REFERENCE_SCHEMA,
 def reference_file_problems(path: str | Path, scenes: Any = None) -> list[str]:
     """:func:`reference_problems` of the file at ``path`` (a YAML error is one problem; so is
     each key written twice in a mapping, which YAML would resolve silently to the last)."""
-    from flutterfriction.config import duplicate_key_problems
+    from flutterfriction.config import yaml_file_problems
 
     try:
         with open(path, encoding="utf-8") as fh:
             ref = safe_load(fh)
     except (OSError, yaml.YAMLError) as exc:
         return [f"{path}: {' '.join(str(exc).split())}"]
-    return duplicate_key_problems(path) + [f"{path}: {p}"
+    return yaml_file_problems(path) + [f"{path}: {p}"
                                            for p in reference_problems(ref, scenes=scenes)]
 
 
 def load_reference(path: str | Path) -> dict[str, Any]:
     """Read and validate a reference file (see :func:`reference_problems`; a key written twice
     is refused too); raises :class:`ParameterError` listing every problem, one line each."""
-    from flutterfriction.config import duplicate_key_problems
+    from flutterfriction.config import yaml_file_problems
 
     try:
         with open(path, encoding="utf-8") as fh:
             ref = safe_load(fh)
     except yaml.YAMLError as exc:  # one line naming the file and the line, not a yaml trace
         raise ParameterError(f"{path}: invalid reference file: {_yaml_error(exc)}") from None
-    problems = duplicate_key_problems(path) + reference_problems(ref)
+    problems = yaml_file_problems(path) + reference_problems(ref)
     if problems:
         raise ParameterError(f"{path}: invalid reference file:\n  " + "\n  ".join(problems))
     return ref

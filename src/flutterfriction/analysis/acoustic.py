@@ -21,6 +21,7 @@ from flutterfriction.errors import (
     check_finite_array,
     check_integer,
     check_real,
+    shown_beside,
 )
 from flutterfriction.models.solid import (
     AMBIGUOUS_RTOL,
@@ -561,7 +562,7 @@ def isotropic_acoustic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike, n: Arr
         raise ParameterError(
             f"{nm['lam']} must satisfy -2/3 < lam/mu <= {LAM_OVER_MU_MAX:g} (positive definite "
             f"elasticity; beyond, the near-incompressible terms lose their digits), got "
-            f"lam/mu = {lr:.6g}")
+            f"lam/mu = {shown_beside(lr, (-2.0 / 3.0, LAM_OVER_MU_MAX), '.6g')}")
     arrays = {}
     for key, value, size in (("P", P, 6), ("Q", Q, 6), ("n", n, 3)):
         # real numbers only (an audit: a complex entry raised a bare TypeError, a string or a

@@ -26,7 +26,13 @@ from numpy.typing import NDArray
 from flutterfriction.analysis.rod_gap import GAP_NOISE_FACTOR, pair_gap
 from flutterfriction.analysis.rod_scan import P_MAX_LIMIT, _FEScan
 from flutterfriction.analysis.stability import Regime, state_eigenvalues
-from flutterfriction.errors import ConvergenceError, ParameterError, check_integer, check_real
+from flutterfriction.errors import (
+    ConvergenceError,
+    ParameterError,
+    check_integer,
+    check_real,
+    shown_beside,
+)
 from flutterfriction.models.rod import GROUP_RANGES, RodGroups, characteristic_function
 from flutterfriction.models.rod_fe import assemble
 
@@ -146,10 +152,9 @@ def check_groups(g: RodGroups) -> RodGroups:
         v = getattr(g, name)
         if v > high or 0 < v < low:
             allowed = f"in [0, {high:g}]" if low == 0 else f"0 or in [{low:g}, {high:g}]"
-            # (all digits where %g would print a bound: "got 1" for eta = 1.0000001; an audit)
-            shown = f"{v:g}" if float(f"{v:g}") not in (low, high) else repr(v)
             raise ParameterError(f"{name} must be {allowed} (the rod solver's numerical range,"
-                                 f" analysis.rod.GROUP_RANGES), got {shown}")
+                                 f" analysis.rod.GROUP_RANGES), got "
+                                 f"{shown_beside(v, (low, high))}")
     return g
 
 

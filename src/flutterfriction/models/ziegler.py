@@ -23,7 +23,13 @@ from typing import Any, NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from flutterfriction.errors import ParameterError, check_nonnegative, check_positive, check_real
+from flutterfriction.errors import (
+    ParameterError,
+    check_nonnegative,
+    check_positive,
+    check_real,
+    shown_beside,
+)
 
 Matrix = NDArray[np.float64]
 
@@ -190,7 +196,8 @@ class ZieglerPendulum:
         if not rel >= MIN_RELATIVE_MASS_DET:
             raise ParameterError(
                 f"m1, d: the mass matrix is singular to double precision, det M/(M11 M22) = "
-                f"{rel:.3g} must be >= {MIN_RELATIVE_MASS_DET:g} (inertia m1 d^2 at D or "
+                f"{shown_beside(rel, (MIN_RELATIVE_MASS_DET,), '.3g')} must be >= "
+                f"{MIN_RELATIVE_MASS_DET:g} (inertia m1 d^2 at D or "
                 f"m3 (l2 - h)^2 at E too small against m2 l1^2)")
         log_unit = math.log10(self.k2) - math.log10(self.l1)
         ulo, uhi = (math.log10(x) for x in LOAD_UNIT_RANGE)
