@@ -911,3 +911,34 @@ def test_a_damped_window_the_reduced_twin_loses_is_found_by_the_retry_on_more_mo
     assert window[0]["p_from"] == pytest.approx(ref[-2]["p_from"], rel=1e-9)
     assert window[0]["p_to"] == pytest.approx(ref[-2]["p_to"], rel=1e-9)
     assert str(ar._exact_regime(208.4, g)) == "flutter"
+
+
+@pytest.mark.parametrize("p_max", [785.30, 785.4])
+def test_a_window_whose_twin_lies_beyond_p_max_is_found(p_max):
+    """Outside review: at tan a = 0.3014 eq. (118) diverges on [785.28466, 785.31623] (pair
+    mu ~ 16110 turned real, pair mu ~ 57038 not yet complex), while the twin's two changes lie
+    at 785.64, beyond p_max; for p_max 785.30-785.6 "flutter from 541.67 to p_max" was
+    answered, silently. Every change the scan saw (up to p_max (1 + SCAN_BEYOND)) is now
+    paired, and a window open at p_max ends there. And the exact regime there: both FE guesses
+    of a pair the twin has real and eq. (118) complex had converged to one real root (or a far
+    one), and "divergence" was found inside the flutter beyond the window (refused after a
+    retry, 105 s); a root outside its guess's basin now sends the pair to its gap. Ends
+    against 40-digit double roots, 1e-10."""
+    c = ar.critical_loads(RodGroups(tan_alpha=0.3014), p_max=p_max)
+    lo = _double_root_mp(0.3014, 785.2847, 16110.0)[0]
+    hi = _double_root_mp(0.3014, 785.3162, 57038.0)[0]
+    assert lo < p_max < hi or hi < p_max
+    div = [iv for iv in c.intervals if iv["regime"] == "divergence" and iv["p_from"] > 700]
+    assert len(div) == 1
+    assert div[0]["p_from"] == pytest.approx(lo, rel=1e-10)
+    assert div[0]["p_to"] == pytest.approx(min(hi, p_max), rel=1e-10)
+    assert c.intervals[-1]["regime"] == ("divergence" if p_max < hi else "flutter")
+
+
+def test_a_damped_window_between_two_pairs_with_both_pairs_near_coincidence_is_checked():
+    """The same window with eta = 1e-8 (ends the double real roots in omega~ of the two
+    pairs): p_max 785.4 was refused ("regime check failed at p = 785.359": two damped pairs
+    whose Newton from the FE guesses reached other roots); each pair is now decided by its gap.
+    Ends against 40-digit double real roots, 1e-10."""
+    _check_damped_window(RodGroups(tan_alpha=0.3014, eta=1e-8), 785.4,
+                         [(785.2857, 126.9), (785.3181, 238.8)])

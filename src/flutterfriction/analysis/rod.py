@@ -37,6 +37,7 @@ from flutterfriction.analysis.rod_exact import (
     refine_eigenvalues,
 )
 from flutterfriction.analysis.rod_scan import (
+    LAST_INTERVAL_RTOL,
     P_MAX_LIMIT,
     SCAN_BEYOND,
     SCAN_POINTS_MAX,
@@ -93,12 +94,6 @@ class RodCriticalLoads:
         return asdict(self)
 
 
-#: A change of regime within ``LAST_INTERVAL_RTOL p_max`` below ``p_max`` is not reported: the
-#: last interval would be narrower than the exact regime check resolves (its check points sit
-#: on the coalescence, where Newton on eq. (118) meets nearly coincident roots; measured by
-#: outside reviews: widths of 1e-8 p_max and below failed, and the midpoint alone failed up
-#: to 1.5e-5 before the other check points could answer for it).
-LAST_INTERVAL_RTOL = 1e-6
 #: Damping (max(eta, gamma)) below which the FE bracketing scan is run at this damping instead
 #: (same eta:gamma ratio; the exact Newton solves and the final regime checks use the true
 #: one). Where it comes from: the FE eigensolver resolves growth rates down to

@@ -233,10 +233,16 @@ def _exact_regime(p: float, g: RodGroups) -> Regime | None:
     load only couples modes with k^2 <~ p)."""
     n_modes = int(math.ceil(math.sqrt(3 * p + 40) / math.pi)) + 1
     if not g.damped:
+        fe = fe_eigenvalues(g, p, max(16, 3 * n_modes))
+        guesses = fe[np.argsort(np.abs(fe))][: 2 * n_modes]
         try:
-            w = eigenvalues(p, g, n_modes=n_modes, n_elements=max(16, 3 * n_modes))
+            w = refine_eigenvalues(p, g, guesses)
         except ConvergenceError:
-            # two roots nearly coincide (next to a coalescence): the pair by its gap
+            w = None  # two roots nearly coincide (next to a coalescence)
+        if w is None or not np.all(_in_basins(guesses, w)):
+            # the pair by its gap (a root that left its guess's basin is another's: two FE
+            # guesses of a pair the twin has real, and eq. 118 complex, both converge to one
+            # real root; an outside review, tan(alpha) = 0.3014 at p = 785.3267)
             return _undamped_regime_by_gap(p, g, n_modes, max(16, 3 * n_modes))
     else:
         # The rightmost FE roots (with strong Kelvin-Voigt damping many overdamped roots lie
@@ -275,30 +281,52 @@ def _exact_regime(p: float, g: RodGroups) -> Regime | None:
     return Regime.DIVERGENCE if np.any(unstable) else Regime.STABLE
 
 
-def _damped_roots(p: float, g: RodGroups, guesses: NDArray) -> NDArray:
-    """The damped rod's roots ``omega~`` of eq. (118) from FE ``guesses``, each refined alone
-    (those deep in the left half-plane may fail: they decide no regime)."""
-    roots = []
-    for z in guesses:
+def _deciding(guesses: NDArray) -> NDArray:
+    """The guesses whose roots decide the regime: all but those deep in the left half-plane
+    (decay > 10 % of the modulus, far beyond the FE twin's error), whose Newton may fail next
+    to the pole omega~ = -1/eta of eq. (113) (overdamped roots), or jitter on the mirror
+    -omega~ of a nearly undamped pair next to its coalescence (an outside review:
+    tan(alpha) = 0.5932505, eta = 1e-6, p = 48.8495)."""
+    return ~(guesses.real < -0.1 * np.abs(guesses))
+
+
+def _refined_alone(p: float, g: RodGroups, guesses: NDArray, which: NDArray) -> NDArray:
+    """Newton on eq. (118) from each of ``guesses[which]`` alone; NaN where it fails or was
+    not asked."""
+    out = np.full(guesses.shape, np.nan + 0j)
+    for k in np.flatnonzero(which):
         try:
-            roots.append(refine_eigenvalues(p, g, np.array([z]))[0])
+            out[k] = refine_eigenvalues(p, g, guesses[k:k + 1])[0]
         except ConvergenceError:
-            # Newton may fail next to the pole omega~ = -1/eta of eq. (113) (overdamped
-            # roots); a root that deep in the left half-plane (decay > 10 % of its
-            # modulus, far beyond the FE twin's error) decides no regime.
-            if not z.real < -0.1 * abs(z):
-                raise
-    w = np.array(roots, dtype=complex)
-    # Two more Newton steps: the stopping test (step <= 1e-13 |w|) leaves an error up to
-    # ~1e-16 |w|, above a growth rate O(damping) when the damping is tiny; each step
-    # squares it, down to the relative precision Re omega~ is computed with (see
-    # _damped_flutter). Not on the roots deep in the left half-plane: they decide nothing,
-    # and a nearly coincident pair there (the mirror -omega~ of a nearly undamped pair next
-    # to its coalescence) may jitter and fail (an outside review: tan(alpha) = 0.5932505,
-    # eta = 1e-6, p = 48.8495).
-    near = ~(w.real < -0.1 * np.abs(w))
+            pass
+    return out
+
+
+def _polished(p: float, g: RodGroups, w: NDArray) -> NDArray:
+    """Two more Newton steps on the deciding roots: the stopping test (step <= 1e-13 |w|)
+    leaves an error up to ~1e-16 |w|, above a growth rate O(damping) when the damping is
+    tiny; each step squares it, down to the relative precision Re omega~ is computed with
+    (see _damped_flutter). Not on the roots deep in the left half-plane (see
+    :func:`_deciding`)."""
+    near = _deciding(w)
+    w = w.copy()
     w[near] = refine_eigenvalues(p, g, refine_eigenvalues(p, g, w[near]))
     return w
+
+
+def _damped_roots(p: float, g: RodGroups, guesses: NDArray) -> NDArray:
+    """The damped rod's roots ``omega~`` of eq. (118) from FE ``guesses``, each refined alone
+    (those deep in the left half-plane may fail: they decide no regime). Raises
+    :class:`ConvergenceError` where a deciding root fails or leaves its guess's basin
+    (:func:`_in_basins`: the set has lost a root)."""
+    deciding = _deciding(guesses)
+    refined = _refined_alone(p, g, guesses, np.ones(guesses.shape, dtype=bool))
+    lost = deciding & ~(np.isfinite(refined) & _in_basins(guesses, refined))
+    if np.any(lost):
+        k = int(np.flatnonzero(lost)[0])
+        raise ConvergenceError(f"Newton on eq. (118) from {complex(guesses[k]):.6g} at "
+                               f"p = {p:.10g} failed or reached another guess's root")
+    return _polished(p, g, refined[np.isfinite(refined)])
 
 
 def _closest_pair_index(z: NDArray) -> tuple[int, int]:
@@ -310,26 +338,49 @@ def _closest_pair_index(z: NDArray) -> tuple[int, int]:
 
 
 def _damped_roots_by_gap(p: float, g: RodGroups, guesses: NDArray) -> NDArray | None:
-    """:func:`_damped_roots` where two roots nearly coincide and Newton on them fails: the
-    pair of guesses nearest each other (on or about the real axis) from its gap in
-    ``omega~`` (:func:`flutterfriction.analysis.rod_gap.pair_gap`: two real roots about its
-    centre, or a complex pair), every other root alone; ``None`` (no verdict) where the gap
-    is within its round-off."""
-    # among the roots that decide the regime (a pair deep in the left half-plane, e.g. the
-    # mirror -omega~ of a nearly undamped pair, is left to _damped_roots, which skips it)
-    deciding = np.flatnonzero(~(guesses.real < -0.1 * np.abs(guesses)))
-    if deciding.size < 2:
+    """:func:`_damped_roots` where two roots nearly coincide: every deciding guess refined
+    alone, and one whose Newton fails or leaves its basin (:func:`_in_basins`) decided with
+    its nearest deciding neighbour by their gap in ``omega~``
+    (:func:`flutterfriction.analysis.rod_gap.pair_gap`: two real roots about its centre, or
+    a complex pair); such a pair lies on or about the real axis (a divergence window's end;
+    an outside review: tan(alpha) = 0.3014, eta = 1e-8 at p = 785.36, two pairs at once).
+    ``None`` (no verdict) where a gap is within its round-off, the pair lies off the real
+    axis, or three guesses crowd together."""
+    deciding = _deciding(guesses)
+    idx = np.flatnonzero(deciding)
+    if idx.size < 2:
         raise ConvergenceError(f"no pair of roots of eq. (118) to decide at p = {p:.10g}")
-    a, b = _closest_pair_index(guesses[deciding])
-    i, j = int(deciding[a]), int(deciding[b])
-    centre, gap, noise = pair_gap(p, g, float(0.5 * (guesses[i] + guesses[j]).real), "omega")
-    if abs(gap) <= GAP_NOISE_FACTOR * noise:
-        return None
-    others = _damped_roots(p, g, np.delete(guesses, [i, j]))
-    half = math.sqrt(abs(gap))
-    pair = ([complex(centre - half), complex(centre + half)] if gap > 0 else
-            [complex(centre, half), complex(centre, -half)])
-    return np.concatenate([others, np.array(pair)])
+    refined = _refined_alone(p, g, guesses, deciding)
+    accepted = deciding & np.isfinite(refined) & _in_basins(guesses, refined)
+    # and always the pair nearest each other (even where each Newton converged alone, their
+    # polishing steps jitter: tan(alpha) = 0.5932505, eta = 1e-6, p = 48.8642)
+    a, b = _closest_pair_index(guesses[idx])
+    accepted[[idx[a], idx[b]]] = False
+    keep = accepted.copy()
+    left = [int(k) for k in idx if not accepted[k]]
+    taken = set(left)
+    pairs = []
+    while left:
+        k = left.pop(0)
+        j = min((int(q) for q in idx if q != k), key=lambda q: abs(guesses[q] - guesses[k])
+                / (abs(guesses[q]) + abs(guesses[k]) + 1e-300))
+        if j in left:
+            left.remove(j)
+        elif accepted[j] and j not in taken:
+            keep[j] = False
+            taken.add(j)
+        else:
+            return None  # three crowded guesses: no verdict here
+        mid = 0.5 * (guesses[k] + guesses[j])
+        if abs(mid.imag) > 0.05 * abs(mid):
+            return None  # not a pair about the real axis: no verdict here
+        centre, gap, noise = pair_gap(p, g, float(mid.real), "omega")
+        if abs(gap) <= GAP_NOISE_FACTOR * noise:
+            return None
+        half = math.sqrt(abs(gap))
+        pairs += ([complex(centre - half), complex(centre + half)] if gap > 0 else
+                  [complex(centre, half), complex(centre, -half)])
+    return np.concatenate([_polished(p, g, refined[keep]), np.array(pairs, dtype=complex)])
 
 
 def _regime_of(mu: NDArray) -> Regime:
@@ -340,30 +391,57 @@ def _regime_of(mu: NDArray) -> Regime:
     return Regime.DIVERGENCE if np.any(mu.real > 0) else Regime.STABLE
 
 
+def _in_basins(guesses: NDArray, roots: NDArray) -> NDArray:
+    """Which Newton ``roots`` are their own ``guesses``' (elementwise): closer to their guess
+    than half the distance to the nearest other guess, and no two the same root. A root
+    outside its basin belongs to another guess: the set of roots has lost one (Newton on a
+    real guess cannot leave the real axis, so the two real FE guesses of a pair that eq. 118
+    has complex converge to one real root, or to a far one)."""
+    z, r = np.asarray(guesses), np.asarray(roots)
+    d = np.abs(z[:, None] - z[None, :])
+    d[np.arange(z.size), np.arange(z.size)] = np.inf
+    ok = np.abs(r - z) < 0.5 * d.min(axis=1)
+    same = np.abs(r[:, None] - r[None, :]) <= 1e-9 * np.abs(r)[:, None]
+    same[np.arange(r.size), np.arange(r.size)] = False
+    return ok & ~same.any(axis=1)
+
+
 def _undamped_regime_by_gap(p: float, g: RodGroups, n_modes: int, n_el: int
                             ) -> Regime | None:
     """Undamped regime at ``p`` where roots of eq. (118) nearly coincide and Newton on them
-    fails: every root is refined alone from its FE guess; one whose Newton fails is decided
-    with its nearest neighbour by their gap (:func:`flutterfriction.analysis.rod_gap.
-    pair_gap`: a complex pair if negative, else two real roots about its centre). Two such
-    pairs at one load happen (an outside review: tan(alpha) = 0.2166, p = 847.08, mu ~ 20150
-    and 75147). ``None`` (no verdict) where a gap is within
-    :data:`~flutterfriction.analysis.rod_gap.GAP_NOISE_FACTOR` times its round-off."""
+    fails: every root is refined alone from its FE guess; one whose Newton fails, or leaves
+    its guess's basin (:func:`_in_basins`), is decided with its nearest neighbour by their gap
+    (:func:`flutterfriction.analysis.rod_gap.pair_gap`: a complex pair if negative, else two
+    real roots about its centre). Two such pairs at one load happen (outside reviews:
+    tan(alpha) = 0.2166, p = 847.08, mu ~ 20150 and 75147; tan(alpha) = 0.3014, p = 785.33,
+    mu ~ 15900 and 57040, both of whose guesses had left their basins). ``None`` (no verdict)
+    where a gap is within :data:`~flutterfriction.analysis.rod_gap.GAP_NOISE_FACTOR` times
+    its round-off, or three guesses crowd together."""
     mu = -_FEScan(g, n_el).spectra(np.array([p]))[0]  # the pencil's Omega^2 = -mu
     mu = mu[np.argsort(np.abs(mu))][:n_modes]
-    roots: list[complex] = []
-    pending = list(range(mu.size))
-    while pending:
-        k = pending.pop(0)
+    if mu.size < 2:
+        raise ConvergenceError(f"no pair of roots of eq. (118) to decide at p = {p:.10g}")
+    refined = np.full(mu.size, np.nan + 0j)
+    for k in range(mu.size):
         try:
-            roots.append(complex(refine_eigenvalues(p, g, np.array([np.sqrt(complex(mu[k]))]))
-                                 [0] ** 2))
-            continue
+            refined[k] = complex(refine_eigenvalues(p, g, np.array([np.sqrt(complex(mu[k]))]))
+                                 [0] ** 2)
         except ConvergenceError:
-            if not pending:
-                raise
-        j = min(pending, key=lambda q: abs(mu[q] - mu[k]))
-        pending.remove(j)
+            pass
+    accepted = np.isfinite(refined) & _in_basins(mu, refined)
+    roots = [complex(r) for r in refined[accepted]]
+    left = [int(k) for k in np.flatnonzero(~accepted)]
+    taken = set(left)
+    while left:
+        k = left.pop(0)
+        j = min((q for q in range(mu.size) if q != k), key=lambda q: abs(mu[q] - mu[k]))
+        if j in left:
+            left.remove(j)
+        elif accepted[j] and j not in taken:  # its root is the pair's: decided with it
+            roots.remove(complex(refined[j]))
+            taken.add(j)
+        else:
+            return None  # three crowded guesses: no verdict here
         centre, gap, noise = pair_gap(p, g, float(0.5 * (mu[k] + mu[j]).real))
         if abs(gap) <= GAP_NOISE_FACTOR * noise:
             return None

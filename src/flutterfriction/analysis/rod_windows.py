@@ -28,7 +28,12 @@ from flutterfriction.analysis.rod_exact import (
     _undamped_double_root,
 )
 from flutterfriction.analysis.rod_gap import gap_roots
-from flutterfriction.analysis.rod_scan import _Boundary, _fe_boundary, _FEScan
+from flutterfriction.analysis.rod_scan import (
+    LAST_INTERVAL_RTOL,
+    _Boundary,
+    _fe_boundary,
+    _FEScan,
+)
 from flutterfriction.analysis.stability import Regime
 from flutterfriction.errors import ConvergenceError
 from flutterfriction.models.rod import RodGroups
@@ -130,8 +135,13 @@ def _windows_between_two_pairs(g: RodGroups, scan: _FEScan, exact: list[_Boundar
     crossing of the imaginary axis (an outside review: tan(alpha) = 0.2769, eta = 1e-5,
     gamma = 0.05, divergence on [108.1197, 108.1375] missed). Every two such silent changes
     of the twin within ``2 GAP_SEARCH_RTOL p`` of each other are solved on eq. (118) and the
-    regime between their exact loads checked at its middle."""
-    events = [e for e in scan.silent_events if e.a < p_max]
+    regime between their exact loads checked at its middle. Every change the scan saw counts,
+    up to ``p_max (1 + SCAN_BEYOND)``: the twin's may lie beyond ``p_max`` where eq. (118)'s
+    lie below it (an outside review: tan(alpha) = 0.3014, the window [785.2847, 785.3162]
+    whose twin is at 785.64 was missed for p_max 785.32-785.6); a window open at ``p_max``
+    changes the regime at its first end only."""
+    events = list(scan.silent_events)
+    top = p_max * (1 - LAST_INTERVAL_RTOL)
     out = list(exact)
     for e1, e2 in zip(events, events[1:], strict=False):
         if e2.a - e1.b > 2 * GAP_SEARCH_RTOL * max(1.0, e1.b):
@@ -142,17 +152,18 @@ def _windows_between_two_pairs(g: RodGroups, scan: _FEScan, exact: list[_Boundar
         except ConvergenceError:
             continue  # (the regime checks below still see what lies there)
         (lo, w_lo, b_lo), (hi, w_hi, b_hi) = roots
-        if not 0.0 < lo < hi < p_max or any(lo <= b.p <= hi for b in out):
+        if not (0.0 < lo < hi and lo < top) or any(lo <= b.p <= hi for b in out):
             continue
         outside = _regime_below(out, first, lo)
         try:
-            inside = _exact_regime(0.5 * (lo + hi), g)
+            inside = _exact_regime(0.5 * (lo + min(hi, p_max)), g)
         except ConvergenceError:
             continue  # no verdict between them: as before, the interval checks decide
         if inside is None or inside == outside:
             continue
-        out += [_Boundary(lo, w_lo, outside, inside, b_lo.kind, b_lo.guess),
-                _Boundary(hi, w_hi, inside, outside, b_hi.kind, b_hi.guess)]
+        out.append(_Boundary(lo, w_lo, outside, inside, b_lo.kind, b_lo.guess))
+        if hi < top:  # (else the window is open at p_max)
+            out.append(_Boundary(hi, w_hi, inside, outside, b_hi.kind, b_hi.guess))
         out.sort(key=lambda b: b.p)
     return out
 
@@ -170,9 +181,7 @@ def _changes_next_to_boundaries(g: RodGroups, scan: _FEScan, exact: list[_Bounda
     between it and the boundary checked at the middle, and the boundaries on either side of
     that piece kept only where the regime changes."""
     out = list(exact)
-    for e in scan.silent_events:
-        if not e.a < p_max:
-            continue
+    for e in scan.silent_events:  # (beyond p_max too: eq. 118's load may lie below it)
         radius = 2 * GAP_SEARCH_RTOL * max(1.0, e.a)
         near = [k for k, b in enumerate(out) if abs(b.p - e.a) <= radius]
         if len(near) != 1:
@@ -184,7 +193,8 @@ def _changes_next_to_boundaries(g: RodGroups, scan: _FEScan, exact: list[_Bounda
             s_p, s_omega = _exact_boundary(g, fe)
         except ConvergenceError:
             continue
-        if not 0.0 < s_p < p_max or abs(s_p - b.p) <= 1e-9 * max(1.0, b.p):
+        if not 0.0 < s_p < p_max * (1 - LAST_INTERVAL_RTOL) \
+                or abs(s_p - b.p) <= 1e-9 * max(1.0, b.p):
             continue
         lo, hi = min(s_p, b.p), max(s_p, b.p)
         if any(lo < c.p < hi for c in out):
