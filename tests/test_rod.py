@@ -942,3 +942,19 @@ def test_a_damped_window_between_two_pairs_with_both_pairs_near_coincidence_is_c
     Ends against 40-digit double real roots, 1e-10."""
     _check_damped_window(RodGroups(tan_alpha=0.3014, eta=1e-8), 785.4,
                          [(785.2857, 126.9), (785.3181, 238.8)])
+
+
+@pytest.mark.parametrize("p_max", [69.665, 69.68])
+def test_a_closed_twin_window_just_below_p_max_is_found(p_max):
+    """The twin has closed the flutter window [69.6591, 69.6781] of tan a = 0.982349 and
+    nearly changes regime at 69.685: beyond p_max 69.665-69.68, so its near miss was not
+    followed and "divergence" was answered up to p_max, silently (before today too). Near
+    misses beyond p_max (within the scan's SCAN_BEYOND) are followed now, and a window the
+    search finds open at p_max ends there. Ends against 40-digit double roots, 1e-10."""
+    c = ar.critical_loads(RodGroups(tan_alpha=0.982349), p_max=p_max)
+    lo = _double_root_mp(0.982349, 69.6591, 552.25)[0]
+    hi = _double_root_mp(0.982349, 69.6781, 552.76)[0]
+    flutter = [iv for iv in c.intervals if iv["regime"] == "flutter" and iv["p_from"] > 60]
+    assert len(flutter) == 1
+    assert flutter[0]["p_from"] == pytest.approx(lo, rel=1e-10)
+    assert flutter[0]["p_to"] == pytest.approx(min(hi, p_max), rel=1e-10)

@@ -223,10 +223,15 @@ def _windows_at_near_misses(g: RodGroups, scan: _FEScan, exact: list[_Boundary],
     closed along tan(alpha) (within its error) is still open on eq. (118) there. Each such
     near miss's pair (undamped in ``mu = omega~^2``; damped, the nearest pair on or right of
     the imaginary axis, in ``omega~``) is followed on its gap within :data:`GAP_SEARCH_RTOL`
-    of it; two zeros are a window, its regime decided on eq. (118) at its middle."""
+    of it; two zeros are a window, its regime decided on eq. (118) at its middle. Near misses
+    beyond ``p_max`` count (the scan's, up to ``p_max (1 + SCAN_BEYOND)``: eq. 118's window
+    may lie below it), and one zero where the search reaches ``p_max`` is a window open
+    there."""
     out = list(exact)
+    top = p_max * (1 - LAST_INTERVAL_RTOL)
     for p_nm, v in scan.near_misses:
-        if v >= NEAR_MISS_CLOSE or p_nm >= p_max:
+        radius = GAP_SEARCH_RTOL * max(1.0, p_nm)
+        if v >= NEAR_MISS_CLOSE or p_nm - radius >= p_max:
             continue
         if not g.damped:
             z = -scan.spectra(np.array([p_nm]))[0]  # mu = -Omega^2, the pencil's
@@ -238,34 +243,37 @@ def _windows_at_near_misses(g: RodGroups, scan: _FEScan, exact: list[_Boundary],
         i, j = _closest_pair_index(z)
         if abs(z[i] - z[j]) > 0.05 * (abs(z[i]) + abs(z[j])):
             continue  # no pair about to coalesce on the real axis here (the twin's error ~1e-3)
-        radius = GAP_SEARCH_RTOL * max(1.0, p_nm)
         try:
             roots = gap_roots(g, max(0.0, p_nm - radius), min(p_max, p_nm + radius),
                               float(0.5 * (z[i] + z[j]).real),
                               variable="omega" if g.damped else "mu")
         except ConvergenceError:
             continue  # unresolved here: the near-miss regime check below decides, or refuses
-        # (a zero that is a boundary already solved, within its round-off, is that one)
-        roots = [(p, m) for p, m in roots
-                 if all(abs(p - b.p) > 1e-9 * max(1.0, p) for b in out)]
+        # (a zero that is a boundary already solved, within its round-off, is that one; one
+        # within LAST_INTERVAL_RTOL of p_max is not reported)
+        roots = [(p, m) for p, m in roots if p < top
+                 and all(abs(p - b.p) > 1e-9 * max(1.0, p) for b in out)]
         if not roots:
             continue
-        if len(roots) != 2:
+        open_at_top = len(roots) == 1 and p_nm + radius > top
+        if len(roots) != 2 and not open_at_top:
             raise ConvergenceError(f"{len(roots)} changes of regime of eq. (118) near "
                                    f"p = {p_nm:.6g}, where the FE twin has none")
-        (p1, m1), (p2, m2) = roots
-        if any(p1 < b.p < p2 for b in out):
+        (p1, m1), (p2, m2) = roots[0], roots[-1]
+        end = p_max if open_at_top else p2
+        if any(p1 < b.p < end for b in out):
             raise ConvergenceError(f"a window of eq. (118) near p = {p_nm:.6g} that the FE "
                                    "twin has closed straddles another change of regime")
         outside = _regime_below(out, first, p1)
-        inside = _exact_regime(0.5 * (p1 + p2), g)
+        inside = _exact_regime(0.5 * (p1 + end), g)
         if inside is None:
-            raise ConvergenceError(f"no exact regime inside the window [{p1:.10g}, {p2:.10g}]"
+            raise ConvergenceError(f"no exact regime inside the window [{p1:.10g}, {end:.10g}]"
                                    " of eq. (118) that the FE twin has closed")
         if inside == outside:  # another pair keeps the regime: no change
             continue
         w1, w2 = (m1, m2) if g.damped else (math.sqrt(abs(m1)), math.sqrt(abs(m2)))
-        out += [_Boundary(p1, w1, outside, inside, "coalescence", m1),
-                _Boundary(p2, w2, inside, outside, "coalescence", m2)]
+        out.append(_Boundary(p1, w1, outside, inside, "coalescence", m1))
+        if not open_at_top:
+            out.append(_Boundary(p2, w2, inside, outside, "coalescence", m2))
         out.sort(key=lambda b: b.p)
     return out
