@@ -238,7 +238,13 @@ def critical_loads(g: RodGroups, p_max: float = 80.0, n_elements: int | None = N
     gamma = 0.05: divergence on [108.1197, 108.1375] was missed); and a boundary with
     another pair's silent change next to it is moved to where eq. (118) has the first of the
     two (tan(alpha) = 0.7141, eta = 1e-2, gamma = 1: flutter from 250.0586, reported from
-    250.0927). Measured at p_max 80, without a
+    250.0927). The twin's changes and near misses beyond ``p_max`` (up to
+    ``p_max (1 + SCAN_BEYOND)``) count too, and a window open at ``p_max`` ends there
+    (tan(alpha) = 0.3014: divergence on [785.2847, 785.3162] was missed for p_max
+    785.32-785.6; 0.982349: flutter on [69.6591, 69.6781] for p_max 69.665-69.68); the
+    exact regime at a load decides a pair by its gap also where a root's Newton left its
+    guess's basin (two FE guesses of a pair the twin has real and eq. 118 complex converge
+    to one real root). Measured at p_max 80, without a
     refusal: the first divergence window
     of the Pflüger column on a 1e-10 grid of tan(alpha) through its opening at 0.5932502122
     (0.0009 wide 3e-10 past it), the flutter window near p = 69.7 on a 1e-7 grid through its
