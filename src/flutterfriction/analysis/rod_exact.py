@@ -337,6 +337,13 @@ def _closest_pair_index(z: NDArray) -> tuple[int, int]:
     return int(i), int(j)
 
 
+def _about_real_axis(z1: complex, z2: complex) -> bool:
+    """Whether two guesses' mean lies within 5 % of its modulus of the real axis: a pair
+    whose gap in ``omega~`` (about a real centre) decides it (the FE twin's error ~1e-3)."""
+    mid = 0.5 * (z1 + z2)
+    return abs(mid.imag) <= 0.05 * abs(mid)
+
+
 def _damped_roots_by_gap(p: float, g: RodGroups, guesses: NDArray) -> NDArray | None:
     """:func:`_damped_roots` where two roots nearly coincide: every deciding guess refined
     alone, and one whose Newton fails or leaves its basin (:func:`_in_basins`) decided with
@@ -355,7 +362,8 @@ def _damped_roots_by_gap(p: float, g: RodGroups, guesses: NDArray) -> NDArray | 
     # and always the pair nearest each other (even where each Newton converged alone, their
     # polishing steps jitter: tan(alpha) = 0.5932505, eta = 1e-6, p = 48.8642)
     a, b = _closest_pair_index(guesses[idx])
-    accepted[[idx[a], idx[b]]] = False
+    if _about_real_axis(guesses[idx[a]], guesses[idx[b]]):
+        accepted[[idx[a], idx[b]]] = False
     keep = accepted.copy()
     left = [int(k) for k in idx if not accepted[k]]
     taken = set(left)
@@ -371,10 +379,10 @@ def _damped_roots_by_gap(p: float, g: RodGroups, guesses: NDArray) -> NDArray | 
             taken.add(j)
         else:
             return None  # three crowded guesses: no verdict here
-        mid = 0.5 * (guesses[k] + guesses[j])
-        if abs(mid.imag) > 0.05 * abs(mid):
-            return None  # not a pair about the real axis: no verdict here
-        centre, gap, noise = pair_gap(p, g, float(mid.real), "omega")
+        if not _about_real_axis(guesses[k], guesses[j]):
+            return None  # not a pair the gap in omega~ decides: no verdict here
+        centre, gap, noise = pair_gap(p, g, float(0.5 * (guesses[k] + guesses[j]).real),
+                                      "omega")
         if abs(gap) <= GAP_NOISE_FACTOR * noise:
             return None
         half = math.sqrt(abs(gap))
