@@ -79,3 +79,25 @@ def test_branch_panels_draw_a_rod_without_flutter():
         shaded = [patch for patch in a.patches]
         assert len(shaded) == 1 + (crit["p_div"] is not None)
         plt.close(fig)
+
+
+def test_a_researchers_own_parameters_are_named_wrapped_and_with_units():
+    """An outside review: one changed spring put all of a pendulum's values on Fig. 4's title
+    line (the figure 1585 px wide, 51 text-size offences: the run failed), rods' values had no
+    units, and Fig. 5, eqs. (25), (46), (48) and the paradox map kept the chapter's special
+    case in their titles for another pendulum."""
+    from flutterfriction.plotting import OWN_VALUES_WIDTH, chapter_list, pendulum_case
+
+    rod = {"length": 0.5, "B": 0.05, "rho": 0.08, "D": 2e-5}
+    text = chapter_list({"params": {"rod": rod}}, "rod", "list119", "list (119)")
+    assert text.startswith("your own rod (length = 0.5 m, B = 0.05 N m^2, rho = 0.08 kg/m,")
+    assert "D = 2e-05 N m^2 s" in text
+    assert all(len(line) <= OWN_VALUES_WIDTH + len("your own rod (") for line in
+               text.splitlines())
+    symmetric = {"l1": 1.0, "l2": 1.0, "d": 1.0, "h": 0.0, "m1": 1.0, "m2": 1.0, "m3": 0.0,
+                 "k1": 1.0, "k2": 1.0}
+    mine = dict(symmetric, l1=0.15, d=0.1)
+    assert pendulum_case({"params": {"pendulum": symmetric}}, lambda g: g.symmetric,
+                         "eq. 46") == "eq. 46"
+    assert pendulum_case({"params": {"pendulum": mine}}, lambda g: g.symmetric,
+                         "eq. 46").startswith("your own pendulum (l1 = 0.15 m, l2 = 1 m")

@@ -547,3 +547,39 @@ def test_every_quantity_names_the_origin_of_its_value_and_the_summaries_count_th
     for key, words in ORIGINS.items():
         assert f"{origins.count(key)} {words}" in sentence
     assert sentence in summary_markdown(rows)
+
+
+def test_the_chapters_special_case_formulas_are_not_applied_to_a_researchers_pendulum():
+    """An outside review: with its own (unequal-rod, unsymmetric) pendulum the run failed on
+    correct numbers: eq. (25)'s (3 - sqrt 5)/2 (the equal rods') was eq25's independent
+    method, and eq. (54)'s 4/3 + eps^2/2 (the symmetric pendulum's) fig05's primary. The
+    scenes now compute those quantities only where the chapter's formula holds, so the
+    entries are not applicable (not failed) for another pendulum and still checked for the
+    chapter's."""
+    from flutterfriction.reference import (
+        NOT_APPLICABLE,
+        failed,
+        load_parameters,
+        load_reference,
+        run_check,
+    )
+
+    recorded = load_parameters(ROOT / "workflow" / "reference_parameters.json")
+    reference = load_reference(ROOT / "workflow" / "reference.yaml")
+    config = load_config(ROOT / "workflow" / "config.yaml")
+    mine = {"l1": 0.15, "l2": 0.12, "d": 0.1, "h": 0.05, "m1": 0.4, "m2": 0.08, "m3": 0.1,
+            "k1": 0.3, "k2": 0.2}
+    ids = {"eq25": ["eq25_H_cr_exact", "eq25_H_cr_approx"],
+           "fig05": ["eq54_closed_form_eps0.1", "eq54_closed_form_eps0.5"]}
+    for scene, names in ids.items():
+        entries = [e for e in reference["quantities"] if e["id"] in names]
+        chapter = scene_params(config, scene)
+        data = {scene: build_scene(scene, chapter)}
+        rows = run_check({"quantities": entries, "errata": []}, data, "paper", recorded)
+        assert [r.status for r in rows] == ["pass"] * len(names)
+        own = dict(chapter, pendulum=mine)
+        data = {scene: build_scene(scene, own)}
+        assert not any(e["key"] in data[scene]["quantities"] for e in entries
+                       if e["id"] != "eq25_H_cr_approx")  # (its key is eq. 22's, general)
+        rows = run_check({"quantities": entries, "errata": []}, data, "paper", recorded)
+        assert [r.status for r in rows] == [NOT_APPLICABLE] * len(names) and not failed(rows)

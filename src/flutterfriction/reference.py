@@ -152,7 +152,9 @@ def _not_applicable(entry: dict[str, Any], changes: list[str],
     note = f"scene {entry['scene']!r} ran with other parameters than the chapter's: {shown}"
     if not agrees:
         note += (f"; its two methods disagree: {value!r} against the independent "
-                 f"{independent!r}")
+                 f"{independent!r} (where one is a coarser discretisation, your parameters "
+                 f"may need the scene's finer resolution: its elements, meshes or "
+                 f"tolerances)")
     return CheckRow(id=entry["id"], kind="quantity" if kind == "quantities" else "erratum",
                     source=entry["source"], quoted=entry.get("quoted", entry.get("printed")),
                     unit=entry.get("unit", q.get("unit", "")),

@@ -62,6 +62,11 @@ GROUP_RANGES: dict[str, tuple[float, float]] = {
     "tan_alpha": (0.0, 1e4), "eta": (1e-100, 1.0), "gamma": (1e-100, 1e4)}
 
 
+#: The SI units of a rod's parameters (:class:`Rod`), in its fields' order.
+ROD_UNITS = {"length": "m", "B": "N m^2", "rho": "kg/m", "D": "N m^2 s", "kappa": "N s/m^2",
+             "tip_mass": "kg"}
+
+
 @dataclass(frozen=True)
 class RodGroups:
     """Dimensionless parameters of eq. (106) (the load ``p`` varies and is not stored)."""
@@ -107,11 +112,10 @@ class Rod:
     tip_mass: float = 0.0
 
     def __post_init__(self) -> None:
-        units = {"length": "m", "B": "N m^2", "rho": "kg/m", "D": "N m^2 s",
-                 "kappa": "N s/m^2", "tip_mass": "kg"}
         for f in fields(self):
             check = check_positive if f.name in ("length", "B", "rho") else check_nonnegative
-            object.__setattr__(self, f.name, check(f.name, getattr(self, f.name), units[f.name]))
+            object.__setattr__(self, f.name, check(f.name, getattr(self, f.name),
+                                                   ROD_UNITS[f.name]))
 
     @property
     def time_scale(self) -> float:

@@ -94,6 +94,17 @@ class PendulumGroups:
     lam: float
     k: float
 
+    @property
+    def equal_rods(self) -> bool:
+        """l1 = l2 = L and k1 = k2 = K: the pendulum of eq. (25)'s H_cr = (3 - sqrt 5)/2 K/L."""
+        return self.lam == 1.0 and self.k == 1.0
+
+    @property
+    def symmetric(self) -> bool:
+        """The pendulum of eqs. (46) and (50)-(54): equal rods, m1 = m2, d = l1, m3 = 0 (with
+        c1 = c2, eq. 54's 4/3 + eps^2/2); a user's other pendulum has its own loads."""
+        return self.equal_rods and self.rho1 == 1.0 and self.y1 == 1.0 and self.rho2 == 0.0
+
 
 @dataclass(frozen=True)
 class ZieglerPendulum:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import os
 import time
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
@@ -59,6 +59,15 @@ def pendulum_text(pendulum: dict[str, float] | None) -> str:
     return ", ".join(parts)
 
 
+def rod_text(rod: dict[str, float] | None) -> str:
+    """The rod a figure was computed for, in one line with units (``length = 0.35 m,
+    B = 0.0135 N m^2, ...``); empty without parameters."""
+    from flutterfriction.models.rod import ROD_UNITS
+
+    return ", ".join(f"{k} = {rod[k]:g} {unit}" for k, unit in ROD_UNITS.items()
+                     if k in (rod or {}))
+
+
 def wrap_items(text: str, width: int, sep: str = ", ") -> str:
     """``text``, a list of items joined by ``sep``, on lines of at most ``width`` characters
     broken between items only (never between a value and its unit); an item longer than
@@ -86,6 +95,10 @@ def own_parameters_note(data: dict[str, Any], key: str, name: str, width: int = 
     return textwrap.fill(f"{kind}: {values.removesuffix(')')}", width)
 
 
+#: Longest line of a researcher's own parameters in a figure's text (characters).
+OWN_VALUES_WIDTH = 60
+
+
 def chapter_list(data: dict[str, Any], key: str, name: str, shown: str,
                  short: bool = False) -> str:
     """``shown`` (e.g. ``"list (47)"``) when the data's parameters ``key`` are the chapter's
@@ -106,10 +119,28 @@ def chapter_list(data: dict[str, Any], key: str, name: str, shown: str,
     kind = LISTS[name].kind
     if short:
         return f"your own {kind}"
-    values = (pendulum_text(used) if kind == "pendulum"
-              else ", ".join(f"{k} = {v:g}" for k, v in sorted(used.items())
-                             if isinstance(v, int | float)))
-    return f"your own {kind} ({values})"
+    values = pendulum_text(used) if kind == "pendulum" else rod_text(used)
+    # on lines of at most OWN_VALUES_WIDTH characters: a title holding them in one line
+    # widened its figure until the figure check's text sizes failed (an outside review:
+    # Fig. 4 at 1585 px for one changed spring, 51 offences; beck_branch, beck_hopf)
+    return f"your own {kind} ({wrap_items(values, OWN_VALUES_WIDTH)})"
+
+
+def pendulum_case(data: dict[str, Any], holds: Callable[[Any], bool], stated: str,
+                  short: bool = False) -> str:
+    """``stated`` (the chapter's conditions of a figure, e.g. "l1 = l2 = L, ...") where the
+    data's pendulum satisfies them (``holds`` of its groups, eq. 17), else "your own pendulum
+    (l1 = ...)": a title must not claim the chapter's special case for a researcher's other
+    pendulum (an outside review: eqs. 25, 46, 48, Fig. 5 and the paradox map did). ``short``:
+    "your own pendulum" alone (:func:`own_parameters_note` gives the values)."""
+    from flutterfriction.models.ziegler import ZieglerPendulum
+
+    used = (data.get("params") or {}).get("pendulum")
+    if not isinstance(used, dict) or holds(ZieglerPendulum(**used).groups()):
+        return stated
+    if short:
+        return "your own pendulum"
+    return f"your own pendulum ({wrap_items(pendulum_text(used), OWN_VALUES_WIDTH)})"
 
 
 def list47(data: dict[str, Any], shown: str = "list (47)", short: bool = False) -> str:

@@ -11,7 +11,14 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.patches import Arc, Patch
 
-from flutterfriction.plotting import REGIME_COLOURS, list47, pendulum_text, wrap_items
+from flutterfriction.plotting import (
+    REGIME_COLOURS,
+    list47,
+    own_parameters_note,
+    pendulum_case,
+    pendulum_text,
+    wrap_items,
+)
 from flutterfriction.plotting.labels import declutter, label_at
 from flutterfriction.plotting.pendulum import MASS, ROD, draw_pendulum
 
@@ -286,8 +293,11 @@ def plot_fig04(data: dict[str, Any]) -> Figure:
                  f"α1 = α2 = {alpha[0, 0]:+.1f}°; every {dt:.2f} s (α1, α2 at the lower "
                  "left of each frame)", fontsize=8, va="bottom")
     fig.suptitle("Linear eq. (11) solved exactly (matrix exponential), "
-                 f"{list47(data)}; "
+                 f"{list47(data, short=True)}; "
                  "drawn as in Fig. 2 with the follower load P at C", fontsize=8.5, y=1.0)
+    note = own_parameters_note(data, "pendulum", "list47", width=110)
+    if note:  # under the figure (in the title it widened the figure; an outside review)
+        fig.text(0.5, -0.005, note, ha="center", va="top", fontsize=7.5)
     return fig
 
 
@@ -353,14 +363,18 @@ def plot_fig02(data: dict[str, Any]) -> Figure:
 def plot_eq25(data: dict[str, Any]) -> Figure:
     # H_cr does not depend on the masses, the omega^2 curves do: the pendulum is stated.
     text = pendulum_text(data.get("params", {}).get("pendulum"))
-    return plot_dead_load_spectrum(
-        data, r"Eq. (25): dead load on equal rods, $H_{cr}$ = (3-$\sqrt{5}$)/2 K/L"
-        + (f"\n{wrap_items(text, 60)}" if text else ""))
+    stated = r"Eq. (25): dead load on equal rods, $H_{cr}$ = (3-$\sqrt{5}$)/2 K/L"
+    title = pendulum_case(data, lambda g: g.equal_rods, stated)
+    if title == stated:
+        return plot_dead_load_spectrum(data, stated
+                                       + (f"\n{wrap_items(text, 60)}" if text else ""))
+    return plot_dead_load_spectrum(data, f"Dead load (eq. 22) on {title}")
 
 
 def plot_eq46(data: dict[str, Any]) -> Figure:
-    return plot_follower_spectrum(
-        data, r"Eq. (46): $l_1=l_2=L$, $d=L$, $k_1=k_2=K$, $m_1=m_2$, $m_3=0$")
+    return plot_follower_spectrum(data, pendulum_case(
+        data, lambda g: g.symmetric,
+        r"Eq. (46): $l_1=l_2=L$, $d=L$, $k_1=k_2=K$, $m_1=m_2$, $m_3=0$"))
 
 
 def plot_eq47(data: dict[str, Any]) -> Figure:
@@ -370,4 +384,6 @@ def plot_eq47(data: dict[str, Any]) -> Figure:
 
 
 def plot_eq48(data: dict[str, Any]) -> Figure:
-    return plot_follower_spectrum(data, r"Eq. (48): as eq. (46) but $d = L/2$ ($y_1 = 1/2$)")
+    return plot_follower_spectrum(data, pendulum_case(
+        data, lambda g: g.equal_rods and g.rho1 == 1.0 and g.rho2 == 0.0 and g.y1 == 0.5,
+        r"Eq. (48): as eq. (46) but $d = L/2$ ($y_1 = 1/2$)"))

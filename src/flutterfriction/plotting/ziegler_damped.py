@@ -9,7 +9,7 @@ import numpy as np
 from matplotlib.colors import Normalize
 from matplotlib.figure import Figure
 
-from flutterfriction.plotting import list47, own_parameters_note
+from flutterfriction.plotting import chapter_list, list47, own_parameters_note, pendulum_case
 from flutterfriction.plotting.labels import declutter, label_at
 
 COLOURS = ["black", "C0", "C3", "C2", "C1"]
@@ -62,16 +62,24 @@ def plot_fig05(data: dict[str, Any]) -> Figure:
     ax_re.tick_params(labelbottom=False)
     ax_re.legend(loc="lower left", fontsize=7)
     # the assumptions of eq. (50) in full (rho2 = 0: no mass at C) and epsilon of eq. (29)
-    ax_re.set_title(r"Fig. 5: $l_1=l_2=L$, $k_1=k_2=K$, $m_1=m_2$, $m_3=0$, $d=L$, $c_1=c_2$ "
-                    "(eq. 51)\n"
+    symmetric = data.get("symmetric", True)
+    which = (r"$l_1=l_2=L$, $k_1=k_2=K$, $m_1=m_2$, $m_3=0$, $d=L$, $c_1=c_2$ (eq. 51)"
+             if symmetric else chapter_list(data, "pendulum", "list47", "the pendulum of list (47)",
+                                          short=True)
+             + r", $c_1=c_2$; $L = l_1$, $K = k_2$")
+    ax_re.set_title(f"Fig. 5: {which}\n"
                     r"$\epsilon = c_2/(l_2\sqrt{k_2 m_2})$ (eq. 29); dashed: flutter loads",
                     fontsize=8)
+    if not symmetric:
+        fig.text(0.5, 0.005, own_parameters_note(data, "pendulum", "list47", width=80),
+                 ha="center", va="top", fontsize=7)
     ax_z.set_xlim(lo, hi)
     ax_z.set_ylim(-0.25 * ztop * zs, 0.25 * ztop * zs)
     ax_z.set_xlabel(r"$\gamma = P L/K$ [-]")
     ax_z.set_ylabel(rf"largest Re $\tilde\omega$ in $10^{{{zexp}}}$ [-]")
+    undamped = next(c["gamma_flu"] for c in data["cases"].values() if c["eps"] == 0)
     ax_z.set_title(r"zoom: the largest Re $\tilde\omega$ changes sign at the damped flutter "
-                   "loads (dots); undamped: 0 until 2", fontsize=8)
+                   f"loads (dots); undamped: 0 until {undamped:.4g}", fontsize=8)
     return fig
 
 
@@ -81,8 +89,13 @@ def plot_paradox_limit(data: dict[str, Any]) -> Figure:
     fig, ax = plt.subplots(figsize=(5.4, 3.6), layout="constrained")
     ax.semilogx(eps, data["gamma_flu_routh"], "o", ms=3.5, mfc="none", color="C0",
                 label="Routh–Hurwitz (exact verdict) on the matrices")
-    ax.semilogx(eps, data["gamma_flu_eq54"], color="C3", lw=1.2,
-                label=r"eq. (54): $4/3 + \epsilon^2/2$")
+    symmetric = data.get("symmetric", True)
+    if symmetric:
+        ax.semilogx(eps, data["gamma_flu_eq54"], color="C3", lw=1.2,
+                    label=r"eq. (54): $4/3 + \epsilon^2/2$")
+    else:  # eq. (54) is the symmetric pendulum's: this pendulum's own closed form
+        ax.semilogx(eps, data["gamma_flu_closed_form"], color="C3", lw=1.2,
+                    label="closed form (eq. 54 for this pendulum)")
     ax.axhline(data["gamma_flu_undamped"], color="k", ls="--", lw=1.0,
                label=f"undamped (eq. 46): {data['gamma_flu_undamped']:.4g} K/L")
     ax.axhline(data["gamma_flu_limit"], color="0.4", ls=":", lw=1.0,
@@ -95,10 +108,16 @@ def plot_paradox_limit(data: dict[str, Any]) -> Figure:
                 va="center", fontsize=8, color="C3")
     ax.set_xlabel(r"viscosity $\epsilon = c_2/(l_2\sqrt{k_2 m_2})$ [-]")
     ax.set_ylabel(r"flutter load $P_{flu}\,L/K$ [-]")
-    ax.set_ylim(1.2, 2.6)
+    values = [*data["gamma_flu_routh"], data["gamma_flu_undamped"], data["gamma_flu_limit"]]
+    span = max(values) - min(values)
+    ax.set_ylim(min(values) - 0.15 * span, max(values) + 0.15 * span)
     # under the axes: at the upper right it hid eq. (54)'s curve (a figure review)
     ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=2, fontsize=7)
-    ax.set_title("Flutter load with vanishing hinge viscosity (symmetric pendulum)")
+    ax.set_title("Flutter load with vanishing hinge viscosity ("
+                 + ("symmetric pendulum" if symmetric else list47(data, short=True)) + ")")
+    note = own_parameters_note(data, "pendulum", "list47", width=90) if not symmetric else ""
+    if note:
+        fig.text(0.5, -0.02, note, ha="center", va="top", fontsize=7)
     return fig
 
 
@@ -199,7 +218,11 @@ def plot_paradox_map(data: dict[str, Any]) -> Figure:
     fig.subplots_adjust(wspace=0.38)
     fig.colorbar(im, ax=axes,
                  label=r"$\lim_{\epsilon\to 0} P^*_{flu} / P_{flu}$(undamped) [-]")
+    stated = r"$l_1=l_2$, $k_1=k_2$, $m_3=0$"
+    case = pendulum_case(data, lambda g: g.equal_rods and g.rho2 == 0.0, stated, short=True)
     fig.suptitle("Where the Ziegler paradox is strong (dark) and where it vanishes (ratio 1); "
-                 r"$l_1=l_2$, $k_1=k_2$, $m_3=0$; × = checked by Routh–Hurwitz at small "
-                 r"$\epsilon$", fontsize=8)
+                 f"{case}; × = checked by Routh–Hurwitz at small " r"$\epsilon$", fontsize=8)
+    if case != stated:
+        fig.text(0.45, -0.04, own_parameters_note(data, "pendulum", "list47", width=110),
+                 ha="center", va="top", fontsize=7)
     return fig

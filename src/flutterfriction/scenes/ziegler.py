@@ -47,16 +47,18 @@ def eq25(params: dict[str, Any]) -> dict[str, Any]:
     eta = np.linspace(0.0, eta_max, n_points(params))
     curve = _spectrum_curve(p, p.dead_load_matrix(), eta * u)
     closed = cf.omega2_dead_load(g, eta)
+    quantities = {
+        "eta_cr": quantity(H_cr / u, e_cr, NUMERIC_BUCKLING, "closed form eq. (22)", "K/L"),
+        "eta_sup": quantity(H_sup / u, e_sup, NUMERIC_BUCKLING, "closed form eq. (22)", "K/L"),
+        "H_cr": quantity(H_cr, e_cr * u, NUMERIC_BUCKLING, "closed form eq. (22)", "N"),
+    }
+    if g.equal_rods:  # eq. (25) is the equal rods' (an outside review: it FAILed another's)
+        quantities["eta_cr_eq25"] = quantity(H_cr / u, cf.buckling_eta_equal_rods(),
+                                             NUMERIC_BUCKLING,
+                                             "closed form eq. (25), (3 - sqrt 5)/2", "K/L")
     return {
         "groups": vars(g),
-        "quantities": {
-            "eta_cr": quantity(H_cr / u, e_cr, NUMERIC_BUCKLING, "closed form eq. (22)", "K/L"),
-            "eta_cr_eq25": quantity(H_cr / u, cf.buckling_eta_equal_rods(), NUMERIC_BUCKLING,
-                                     "closed form eq. (25), (3 - sqrt 5)/2", "K/L"),
-            "eta_sup": quantity(H_sup / u, e_sup, NUMERIC_BUCKLING, "closed form eq. (22)",
-                                 "K/L"),
-            "H_cr": quantity(H_cr, e_cr * u, NUMERIC_BUCKLING, "closed form eq. (22)", "N"),
-        },
+        "quantities": quantities,
         "curve": {"eta": eta.tolist(), **curve,
                   "omega2_closed_form": closed.T.tolist()},
     }

@@ -104,15 +104,17 @@ def fig05(params: dict[str, Any]) -> dict[str, Any]:
             gd_eig = damped_divergence_load(p, "eigenvalues") / u
             gd_alg = damped_divergence_load(p, "algebraic") / u
             quantities[f"gamma_flu_eps{eps:g}"] = quantity(gf_rh, gf_eig, RH, EIG_CROSS, "K/L")
-            quantities[f"eq54_eps{eps:g}"] = quantity(cfd.eq54_flutter_gamma(eps), gf_rh,
-                                                       "closed form eq. (54)", RH, "K/L")
+            if p0.groups().symmetric:  # eq. (54) is the symmetric pendulum's
+                quantities[f"eq54_eps{eps:g}"] = quantity(
+                    cfd.eq54_flutter_gamma(eps), gf_rh, "closed form eq. (54)", RH, "K/L")
             quantities[f"gamma_div_eps{eps:g}"] = quantity(gd_eig, gd_alg, EIG_COAL,
                                                             ALGEBRAIC, "K/L")
             case.update(gamma_flu=gf_rh, gamma_div=gd_eig)
         else:
             case.update(gamma_flu=g_flu0, gamma_div=g_div0)
         cases[f"{eps:g}"] = case
-    return {"gamma": gamma.tolist(), "cases": cases, "quantities": quantities}
+    return {"gamma": gamma.tolist(), "cases": cases, "symmetric": p0.groups().symmetric,
+            "quantities": quantities}
 
 
 # ---------------------------------------------------------------------- the paradox limit
@@ -132,12 +134,14 @@ def paradox_limit(params: dict[str, Any]) -> dict[str, Any]:
     # on the pendulums Routh-Hurwitz is given (eps rounded through c2), in doubles or, where
     # the closed form's terms cancel (a user's extreme pendulum), exactly
     closed = np.array([cfd.damped_flutter_gamma_of(p) for p in viscous])
-    eq54 = np.array([cfd.eq54_flutter_gamma(e) for e in eps])
+    # eq. (54) is the symmetric pendulum's; another's is drawn with its own closed form only
+    eq54 = np.array([cfd.eq54_flutter_gamma(e) for e in eps]) if g.symmetric else None
     g_flu0 = follower_critical_loads(p0)[0] / u
     limit = cfd.flutter_gamma_limit(p0, 1.0)
     return {
         "eps": eps.tolist(), "gamma_flu_routh": numeric.tolist(),
-        "gamma_flu_closed_form": closed.tolist(), "gamma_flu_eq54": eq54.tolist(),
+        "gamma_flu_closed_form": closed.tolist(), "symmetric": g.symmetric,
+        "gamma_flu_eq54": None if eq54 is None else eq54.tolist(),
         "gamma_flu_undamped": g_flu0, "gamma_flu_limit": limit,
         "quantities": {
             "limit": quantity(limit, float(numeric[0]), "closed form, eps -> 0",
