@@ -15,7 +15,7 @@ from hypothesis import strategies as st
 from flutterfriction.analysis import rod as ar
 from flutterfriction.analysis import rod_scan
 from flutterfriction.analysis.rod import fe_eigenvalues
-from flutterfriction.errors import ParameterError
+from flutterfriction.errors import ConvergenceError, ParameterError
 from flutterfriction.models.rod import Rod, RodGroups, characteristic_function
 from flutterfriction.models.rod_fe import assemble
 from flutterfriction.parameters import LIST_119
@@ -958,3 +958,24 @@ def test_a_closed_twin_window_just_below_p_max_is_found(p_max):
     assert len(flutter) == 1
     assert flutter[0]["p_from"] == pytest.approx(lo, rel=1e-10)
     assert flutter[0]["p_to"] == pytest.approx(min(hi, p_max), rel=1e-10)
+
+
+def test_no_verdict_at_every_check_point_is_not_a_pass(monkeypatch):
+    """An outside review: the final regime check counted a load where eq. (118)'s roots give
+    no verdict (``None``) as a verdict, so an interval with none at all passed unchecked, and
+    no verdict at the twin's near miss was not sent to the finer twin. ``None`` is no verdict
+    now: an interval with none is refused, naming it (with a tiny damping, gamma = 1e-9 at
+    tan a = 1.2, 5-6 of 7 points had none: the FE twin's high modes are poor guesses, and
+    their Newton landing on a neighbour's root no longer withholds the verdict)."""
+    from flutterfriction.analysis import rod_exact
+
+    g = RodGroups(tan_alpha=0.0)
+    assert [iv["regime"] for iv in ar.critical_loads(g, p_max=30.0).intervals] == [
+        "stable", "flutter"]
+    monkeypatch.setattr(ar, "_exact_regime", lambda p, g: None)
+    with pytest.raises(ConvergenceError, match="no exact regime at any of the 7 check points "
+                                               "of the stable interval"):
+        ar.critical_loads(g, p_max=30.0)
+    monkeypatch.undo()
+    for p in (407.6989 + 0.3, 877.1702 + 1.0):  # inside the flutter intervals
+        assert rod_exact._exact_regime(p, RodGroups(tan_alpha=1.2, gamma=1e-9)) == "flutter"

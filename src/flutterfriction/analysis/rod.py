@@ -394,9 +394,14 @@ def _solve_on(g: RodGroups, g_scan: RodGroups, n_el: int, p_max: float, step: fl
         checks = [iv["p_from"] + frac * width for frac in REGIME_CHECK_POINTS]
         near_at = [p for p, _ in near]
         for k, mid in enumerate(checks + near_at + probes):
+            why = ("a growth rate or a coalescing pair's gap below what eq. (118)'s roots "
+                   "resolve")
             try:
                 r = _exact_regime(mid, g)
             except ConvergenceError as exc:
+                r, why = None, str(exc)
+                first_error = first_error or exc
+            if r is None:  # no verdict here (an outside review: it was counted as one)
                 if k >= len(checks):
                     # No verdict at a near miss (eq. 118's roots nearly coincide there): a
                     # window may open or close within the twin's error. Unresolved: the finer
@@ -404,18 +409,18 @@ def _solve_on(g: RodGroups, g_scan: RodGroups, n_el: int, p_max: float, step: fl
                     # up to 0.087 wide at tan(alpha) = 0.982343-0.982349 went unreported).
                     raise ConvergenceError(
                         f"no exact regime at p = {mid:.6g}, where the FE twin nearly changes "
-                        f"regime (a window within its error): {exc}") from None
-                first_error = first_error or exc
+                        f"regime (a window within its error): {why}")
                 continue
             verdicts += 1
-            if r is not None and r != iv["regime"]:
+            if r != iv["regime"]:
                 raise ConvergenceError(
                     f"regime check failed at p = {mid:.6g}: the exact roots of eq. (118) give "
                     f"{r}, the FE bracketing {iv['regime']} (a change of regime the scan "
                     "missed)")
         if not verdicts:
-            assert first_error is not None
-            raise first_error
+            raise first_error or ConvergenceError(
+                f"no exact regime at any of the {len(checks)} check points of the "
+                f"{iv['regime']} interval [{iv['p_from']:.10g}, {iv['p_to']:.10g}]")
     out = _loads_from(intervals, {b.p: b.omega for b in exact})
     return RodCriticalLoads(**out, intervals=intervals)
 
