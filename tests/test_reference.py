@@ -19,6 +19,14 @@ def reference():
     return load_reference(ROOT / "workflow" / "reference.yaml")
 
 
+@pytest.fixture(scope="module")
+def recorded():
+    """The chapter's parameters of every scene and preset (the shipped record)."""
+    from flutterfriction.reference import load_parameters
+
+    return load_parameters(ROOT / "workflow" / "reference_parameters.json")
+
+
 # The nonlinear rod's cycle, its work-precision study, its Hopf onset and its branch take
 # ~2-5 min each; the workflow's check (run by CI on every commit) covers their entries, and
 # tests/test_rod_nonlinear.py, tests/test_beck_branch.py their solvers.
@@ -312,20 +320,12 @@ def test_recorded_parameters_are_the_shipped_configuration():
                              shipped) == []
 
 
-def test_a_scene_with_other_parameters_is_not_applicable_not_failed():
+def test_a_scene_with_other_parameters_is_not_applicable_not_failed(reference, recorded):
     """A researcher's own pendulum in eq47 (k1 = 0.25): the chapter's 4.8038 N does not apply,
     so the entry is 'not applicable', naming the changed key, and does not fail the run (it
     failed it, unexplained: an outside audit); the scenes left alone are still checked."""
-    from flutterfriction.reference import (
-        NOT_APPLICABLE,
-        failed,
-        load_parameters,
-        load_reference,
-        run_check,
-    )
+    from flutterfriction.reference import NOT_APPLICABLE, failed, run_check
 
-    recorded = load_parameters(ROOT / "workflow" / "reference_parameters.json")
-    reference = load_reference(ROOT / "workflow" / "reference.yaml")
     entry = next(e for e in reference["quantities"] if e["id"] == "eq47_P_flu")
     params = json.loads(json.dumps(recorded["paper"]["eq47"]))
     params["pendulum"]["k1"] = 0.25
@@ -549,23 +549,16 @@ def test_every_quantity_names_the_origin_of_its_value_and_the_summaries_count_th
     assert sentence in summary_markdown(rows)
 
 
-def test_the_chapters_special_case_formulas_are_not_applied_to_a_researchers_pendulum():
+def test_the_chapters_special_case_formulas_are_not_applied_to_a_researchers_pendulum(
+        reference, recorded):
     """An outside review: with its own (unequal-rod, unsymmetric) pendulum the run failed on
     correct numbers: eq. (25)'s (3 - sqrt 5)/2 (the equal rods') was eq25's independent
     method, and eq. (54)'s 4/3 + eps^2/2 (the symmetric pendulum's) fig05's primary. The
     scenes now compute those quantities only where the chapter's formula holds, so the
     entries are not applicable (not failed) for another pendulum and still checked for the
     chapter's."""
-    from flutterfriction.reference import (
-        NOT_APPLICABLE,
-        failed,
-        load_parameters,
-        load_reference,
-        run_check,
-    )
+    from flutterfriction.reference import NOT_APPLICABLE, failed, run_check
 
-    recorded = load_parameters(ROOT / "workflow" / "reference_parameters.json")
-    reference = load_reference(ROOT / "workflow" / "reference.yaml")
     config = load_config(ROOT / "workflow" / "config.yaml")
     mine = {"l1": 0.15, "l2": 0.12, "d": 0.1, "h": 0.05, "m1": 0.4, "m2": 0.08, "m3": 0.1,
             "k1": 0.3, "k2": 0.2}

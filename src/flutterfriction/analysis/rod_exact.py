@@ -18,7 +18,7 @@ nearly coincide (Newton on them fails) the pair is decided by its gap
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 
 import numpy as np
 from numpy.typing import NDArray
@@ -347,6 +347,39 @@ def _closest_pair_index(z: NDArray) -> tuple[int, int]:
     return int(i), int(j)
 
 
+def _rejected_pairs(z: NDArray, candidates: NDArray, accepted: NDArray,
+                    distance: Callable[[complex, complex], float]
+                    ) -> Iterator[tuple[int, int] | None]:
+    """Each guess of ``candidates`` whose root was not accepted, with its nearest candidate
+    (by ``distance``), in turn: ``(k, j)``, ``j`` taken from the rejected or, once, from the
+    accepted (its root is then the pair's); ``None`` where three guesses crowd together."""
+    left = [int(k) for k in candidates if not accepted[k]]
+    taken = set(left)
+    while left:
+        k = left.pop(0)
+        j = min((int(q) for q in candidates if q != k), key=lambda q: distance(z[q], z[k]))
+        if j in left:
+            left.remove(j)
+        elif accepted[j] and j not in taken:
+            taken.add(j)
+        else:
+            yield None
+            return
+        yield k, j
+
+
+def _pair_from_gap(p: float, g: RodGroups, mid: float, variable: str) -> list[complex] | None:
+    """The two roots of eq. (118) next to ``mid`` from their pair's gap
+    (:func:`flutterfriction.analysis.rod_gap.pair_gap`): a complex pair where it is negative,
+    two real roots about its centre where positive; ``None`` within its round-off."""
+    centre, gap, noise = pair_gap(p, g, mid, variable)
+    if abs(gap) <= GAP_NOISE_FACTOR * noise:
+        return None
+    half = math.sqrt(abs(gap))
+    return ([complex(centre - half), complex(centre + half)] if gap > 0 else
+            [complex(centre, half), complex(centre, -half)])
+
+
 def _about_real_axis(z1: complex, z2: complex) -> bool:
     """Whether two guesses' mean lies within 5 % of its modulus of the real axis: a pair
     whose gap in ``omega~`` (about a real centre) decides it (the FE twin's error ~1e-3)."""
@@ -375,29 +408,19 @@ def _damped_roots_by_gap(p: float, g: RodGroups, guesses: NDArray) -> NDArray | 
     if _about_real_axis(guesses[idx[a]], guesses[idx[b]]):
         accepted[[idx[a], idx[b]]] = False
     keep = accepted.copy()
-    left = [int(k) for k in idx if not accepted[k]]
-    taken = set(left)
-    pairs = []
-    while left:
-        k = left.pop(0)
-        j = min((int(q) for q in idx if q != k), key=lambda q: abs(guesses[q] - guesses[k])
-                / (abs(guesses[q]) + abs(guesses[k]) + 1e-300))
-        if j in left:
-            left.remove(j)
-        elif accepted[j] and j not in taken:
-            keep[j] = False
-            taken.add(j)
-        else:
+    pairs: list[complex] = []
+    for pair in _rejected_pairs(guesses, idx, accepted,
+                                lambda a, b: abs(a - b) / (abs(a) + abs(b) + 1e-300)):
+        if pair is None:
             return None  # three crowded guesses: no verdict here
+        k, j = pair
+        keep[j] = False
         if not _about_real_axis(guesses[k], guesses[j]):
             return None  # not a pair the gap in omega~ decides: no verdict here
-        centre, gap, noise = pair_gap(p, g, float(0.5 * (guesses[k] + guesses[j]).real),
-                                      "omega")
-        if abs(gap) <= GAP_NOISE_FACTOR * noise:
+        two = _pair_from_gap(p, g, float(0.5 * (guesses[k] + guesses[j]).real), "omega")
+        if two is None:
             return None
-        half = math.sqrt(abs(gap))
-        pairs += ([complex(centre - half), complex(centre + half)] if gap > 0 else
-                  [complex(centre, half), complex(centre, -half)])
+        pairs += two
     return np.concatenate([_polished(p, g, refined[keep]), np.array(pairs, dtype=complex)])
 
 
@@ -447,23 +470,17 @@ def _undamped_regime_by_gap(p: float, g: RodGroups, n_modes: int, n_el: int
         except ConvergenceError:
             pass
     accepted = np.isfinite(refined) & _in_basins(mu, refined)
-    roots = [complex(r) for r in refined[accepted]]
-    left = [int(k) for k in np.flatnonzero(~accepted)]
-    taken = set(left)
-    while left:
-        k = left.pop(0)
-        j = min((q for q in range(mu.size) if q != k), key=lambda q: abs(mu[q] - mu[k]))
-        if j in left:
-            left.remove(j)
-        elif accepted[j] and j not in taken:  # its root is the pair's: decided with it
-            roots.remove(complex(refined[j]))
-            taken.add(j)
-        else:
+    keep = accepted.copy()
+    roots: list[complex] = []
+    for pair in _rejected_pairs(mu, np.arange(mu.size), accepted,
+                                lambda a, b: abs(a - b)):
+        if pair is None:
             return None  # three crowded guesses: no verdict here
-        centre, gap, noise = pair_gap(p, g, float(0.5 * (mu[k] + mu[j]).real))
-        if abs(gap) <= GAP_NOISE_FACTOR * noise:
+        k, j = pair
+        keep[j] = False  # (where j's own root was accepted, the pair's replaces it)
+        two = _pair_from_gap(p, g, float(0.5 * (mu[k] + mu[j]).real), "mu")
+        if two is None:
             return None
-        half = math.sqrt(abs(gap))
-        roots += ([complex(centre, half), complex(centre, -half)] if gap < 0 else
-                  [complex(centre - half), complex(centre + half)])
+        roots += two
+    roots += [complex(r) for r in refined[keep]]
     return _regime_of(np.array(roots, dtype=complex))
