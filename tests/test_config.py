@@ -341,9 +341,9 @@ def test_a_number_given_as_a_string_says_why(value, extra):
     raw["scenes"]["rod_stability_map"]["eta_small"] = value
     problems = validate_config(raw, SCHEMA_PATH, scenes=SCENES)
     assert problems == [
-        f"config: scenes.rod_stability_map.eta_small: {value!r} is a string, not a number: "
-        "snakemake --config passes nested values (scenes={...}) as strings; give nested "
-        "values in a --configfile" + (extra + " (YAML 1.1 reads an exponent without a decimal "
+        f"config: scenes.rod_stability_map.eta_small: {value!r} is a string, not a number "
+        "(quoted in a YAML file, or nested in snakemake --config, which passes scenes={...} "
+        "as strings: give nested values unquoted in a --configfile)" + (extra + " (YAML 1.1 reads an exponent without a decimal "
                                       "point or without its sign as a string)" if extra
                                       else "")]
 
@@ -420,9 +420,9 @@ def test_the_workflow_refuses_duplicate_keys_and_model_ranges_before_any_job(tmp
     run = _dry_run(tmp_path, "--config", "scenes={rod_stability_map: {eta_small: 1e-20}}")
     out = run.stdout + run.stderr
     assert run.returncode != 0
-    assert ("config: scenes.rod_stability_map.eta_small: '1e-20' is a string, not a number: "
-            "snakemake --config passes nested values (scenes={...}) as strings; give nested "
-            "values in a --configfile") in out
+    assert ("config: scenes.rod_stability_map.eta_small: '1e-20' is a string, not a number "
+            "(quoted in a YAML file, or nested in snakemake --config, which passes "
+            "scenes={...} as strings: give nested values unquoted in a --configfile)") in out
     config = tmp_path / "workflow" / "config.yaml"
     config.write_text(config.read_text() + "fidelity: quick\n")
     run = _dry_run(tmp_path)

@@ -228,8 +228,9 @@ def _string_number_message(text: str, expected: Any) -> str:
     """Why a number (or boolean) arrived as a string, and how to give it (the two ways it
     happens: ``snakemake --config`` nested values, and YAML 1.1's floats)."""
     kind = expected if isinstance(expected, str) else " or ".join(expected)
-    message = (f"{text!r} is a string, not a {kind}: snakemake --config passes nested values "
-               f"(scenes={{...}}) as strings; give nested values in a --configfile")
+    message = (f"{text!r} is a string, not a {kind} (quoted in a YAML file, or nested in "
+               f"snakemake --config, which passes scenes={{...}} as strings: give nested values "
+               f"unquoted in a --configfile)")
     mantissa, e, exponent = text.strip().lower().partition("e")
     if e and ("." not in mantissa or exponent[:1] not in "+-"):
         fixed = (mantissa if "." in mantissa else mantissa + ".0") + "e" + \
