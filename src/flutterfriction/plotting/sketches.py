@@ -84,7 +84,10 @@ def plot_fig01(data: dict[str, Any]) -> Figure:
         ax.plot(shape, y, color=colour, lw=2.0, label=name, zorder=4)
         t = np.array([np.sin(th), np.cos(th)])
         tip = np.array([v, l])
-        _arrow(ax, tip + 0.22 * l * t, tip, colour)
+        # two states share each tip position (1, 2 at v = 0; 3, 4 at v0): heads drawn at the
+        # tip coincided (a review), so the head sits on the force's line above the tip
+        ax.plot(*np.array([tip, tip + 0.12 * l * t]).T, color=colour, lw=1.4)
+        _arrow(ax, tip + 0.26 * l * t, tip + 0.1 * l * t, colour)
     ax.add_patch(Polygon([[-0.08 * l, 0], [0.08 * l, 0], [0.08 * l, -0.04 * l],
                           [-0.08 * l, -0.04 * l]], fc="0.75", ec=ROD, lw=0.8))
     ax.set_aspect("equal")
@@ -93,8 +96,8 @@ def plot_fig01(data: dict[str, Any]) -> Figure:
     ax.set_axis_off()
     ax.legend(loc="lower right", fontsize=8, frameon=False)
     ax.set_title(f"Clamped rod, tangential follower load (l = {l * 1e3:.0f} mm, "
-                 f"P = {rod['P']:g} N)\nshapes: static beam-column, p = {rod['p']:.2f}",
-                 fontsize=9)
+                 f"P = {rod['P']:g} N)\nshapes: static beam-column at "
+                 f"$p = Pl^2/B$ = {rod['p']:.2f}", fontsize=9)
 
     # -- the loops in configuration space
     ax = axes[1, 0]
@@ -147,8 +150,9 @@ def plot_fig01(data: dict[str, Any]) -> Figure:
     ax.set_xlabel(r"transverse displacement of the end, $v$ [mm]")
     ax.set_ylabel(r"rotation of the end, $\theta$ [rad]")
     ax.set_title("Loop 1→2→3→4→1 (small displacements)", fontsize=9)
-    fig.suptitle("Fig. 1: a follower force does positive work in a closed deformation loop",
-                 fontsize=11)
+    fig.suptitle("Fig. 1: a follower force does positive work in a closed deformation loop\n"
+                 "(the devices of lists (47) and (119); the loops' sizes β, θ0, v0 are ours: "
+                 "the caption gives none)", fontsize=10)
     fig.tight_layout()
     return fig
 
@@ -181,9 +185,18 @@ def plot_fig10(data: dict[str, Any]) -> Figure:
             tip = np.array([v[-1], 1.0])
             slope = amp * mode["slope"][-1]
             t = np.array([slope, 1.0]) / np.hypot(slope, 1.0)
-            _arrow(ax, tip + 0.16 * t, tip, colour)  # the tangential follower load
-            if name == "pfluger":
-                ax.add_patch(Circle(tip, 0.025, fc="0.3", ec="0.1", zorder=8))
+            # the tangential follower load; with a tip mass the head stops at the disc's edge
+            # (a review: the disc hid both heads)
+            gap = 0.032 if name == "pfluger" else 0.0
+            _arrow(ax, tip + (0.16 + gap) * t, tip + gap * t, colour)
+        if name == "pfluger":
+            ax.add_patch(Circle(tip, 0.025, fc="0.3", ec="0.1", zorder=2.5))
+        # the symbols the legend would otherwise leave unexplained (a review)
+        ax.plot([], [], ls="none", marker=r"$\rightarrow$", ms=11, color="0.2",
+                label="the follower load P at the end, tangent to the rod")
+        if name == "pfluger":
+            ax.plot([], [], ls="none", marker="o", ms=8, mfc="0.3", mec="0.1",
+                    label="the tip mass M")
         ax.add_patch(Polygon([[-0.12, 0.0], [0.12, 0.0], [0.12, -0.04], [-0.12, -0.04]],
                              fc="0.75", ec=ROD, lw=0.8))
         ax.set_aspect("equal")

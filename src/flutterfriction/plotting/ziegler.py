@@ -250,7 +250,7 @@ def plot_fig04(data: dict[str, Any]) -> Figure:
             ax_t.text(0.03, 0.97, f"|α| > {FIG04_MAX_DEG:g}°: linearisation invalid",
                       transform=ax_t.transAxes, fontsize=6.5, va="top", color="0.3",
                       bbox={"facecolor": "0.88", "edgecolor": "none", "pad": 1.0}, zorder=5)
-        ax_t.set_xlim(0, times[-1])
+        ax_t.set_xlim(-0.02 * times[-1], 1.02 * times[-1])  # the end instants' dots whole
         ax_t.set_xlabel("time t [s]")
         ax_t.set_ylabel("linear solution [deg]")
         ax_t.yaxis.set_label_position("right")

@@ -23,14 +23,15 @@ def plot_fig05(data: dict[str, Any]) -> Figure:
     """
     gamma = np.array(data["gamma"])
     fig = plt.figure(figsize=(5.4, 7.4))
-    outer = fig.add_gridspec(2, 1, height_ratios=[6, 2.3], hspace=0.3)
+    outer = fig.add_gridspec(2, 1, height_ratios=[6, 2.3], hspace=0.36, top=0.85)
     gs = outer[0].subgridspec(2, 1, hspace=0.08)
     ax_re = fig.add_subplot(gs[0])
     ax_im = fig.add_subplot(gs[1], sharex=ax_re)
     ax_z = fig.add_subplot(outer[1])
     damped = [c for c in data["cases"].values() if c["eps"] > 0]
-    lo = min(c["gamma_flu"] for c in damped) - 0.08
-    hi = max(c["gamma_flu"] for c in damped) + 0.08
+    limit = data.get("gamma_flu_limit")  # the caption's eps -> 0 limit (4/3 K/L at eq. 51)
+    ends = [c["gamma_flu"] for c in damped] + ([limit] if limit is not None else [])
+    lo, hi = min(ends) - 0.08, max(ends) + 0.08
     window = (gamma >= lo) & (gamma <= hi)
     damped_top = [np.max(np.array(c["re"]), axis=0)[window] for c in damped]
     ztop = max(np.abs(t).max() for t in damped_top)
@@ -39,10 +40,14 @@ def plot_fig05(data: dict[str, Any]) -> Figure:
     for colour, case in zip(COLOURS, data["cases"].values(), strict=False):
         name = "undamped" if case["eps"] == 0 else rf"$\epsilon$ = {case['eps']:g}"
         label = rf"{name}: $\gamma_{{flu}}$ = {case['gamma_flu']:.3f}"
+        # the undamped branches thinner and on top: the damped ones run under them where
+        # the viscosity barely moves them (a review saw the black ones hidden for gamma < 1.8)
+        lw, z = (0.9, 3) if case["eps"] == 0 else (1.3, 2)
         for i, branch in enumerate(case["re"]):
-            ax_re.plot(gamma, branch, color=colour, lw=1.3, label=label if i == 0 else None)
+            ax_re.plot(gamma, branch, color=colour, lw=lw, zorder=z,
+                       label=label if i == 0 else None)
         for branch in case["im"]:
-            ax_im.plot(gamma, branch, color=colour, lw=1.3)
+            ax_im.plot(gamma, branch, color=colour, lw=lw, zorder=z)
         for ax in (ax_re, ax_im):
             ax.axvline(case["gamma_flu"], color=colour, ls="--", lw=0.8)
         top = np.max(np.array(case["re"]), axis=0)
@@ -53,6 +58,14 @@ def plot_fig05(data: dict[str, Any]) -> Figure:
             ax_z.annotate(f"{case['gamma_flu']:.3f}", (case["gamma_flu"], 0.0),
                           xytext=(4, -12), textcoords="offset points", fontsize=7,
                           color=colour)
+    if limit is not None:
+        text = "4/3" if data.get("symmetric", True) else f"{limit:.4g}"
+        label = rf"$\epsilon \to 0$: $\gamma_{{flu}}$ = {text} (the Ziegler paradox)"
+        for ax in (ax_re, ax_im, ax_z):
+            ax.axvline(limit, color="0.35", ls=":", lw=1.1,
+                       label=label if ax is ax_re else None)
+        ax_z.annotate(rf"$\epsilon \to 0$: {text}", (limit, 0.0), xytext=(-4, 12),
+                      textcoords="offset points", ha="right", fontsize=7, color="0.25")
     ax_re.axhline(0, color="k", lw=0.6)
     ax_z.axhline(0, color="k", lw=0.6)
     ax_re.set_ylabel(r"Re $\tilde\omega$ [-]")
@@ -60,7 +73,9 @@ def plot_fig05(data: dict[str, Any]) -> Figure:
     ax_im.set_xlabel(r"$\gamma = P L/K$ [-]")
     ax_im.set_xlim(gamma[0], gamma[-1])
     ax_re.tick_params(labelbottom=False)
-    ax_re.legend(loc="lower left", fontsize=7)
+    # above the panels: inside, it covered the damped flutter loads' dashed lines
+    ax_re.legend(loc="lower center", bbox_to_anchor=(0.5, 1.0), ncol=2, fontsize=7,
+                 frameon=False, columnspacing=1.2, handlelength=1.8)
     # the assumptions of eq. (50) in full (rho2 = 0: no mass at C) and epsilon of eq. (29)
     symmetric = data.get("symmetric", True)
     which = (r"$l_1=l_2=L$, $k_1=k_2=K$, $m_1=m_2$, $m_3=0$, $d=L$, $c_1=c_2$ (eq. 51)"
@@ -69,7 +84,7 @@ def plot_fig05(data: dict[str, Any]) -> Figure:
              + r", $c_1=c_2$; $L = l_1$, $K = k_2$")
     ax_re.set_title(f"Fig. 5: {which}\n"
                     r"$\epsilon = c_2/(l_2\sqrt{k_2 m_2})$ (eq. 29); dashed: flutter loads",
-                    fontsize=8)
+                    fontsize=8, pad=30)
     if not symmetric:
         fig.text(0.5, 0.005, own_parameters_note(data, "pendulum", "list47", width=80),
                  ha="center", va="top", fontsize=7)
@@ -79,7 +94,9 @@ def plot_fig05(data: dict[str, Any]) -> Figure:
     ax_z.set_ylabel(rf"largest Re $\tilde\omega$ in $10^{{{zexp}}}$ [-]")
     undamped = next(c["gamma_flu"] for c in data["cases"].values() if c["eps"] == 0)
     ax_z.set_title(r"zoom: the largest Re $\tilde\omega$ changes sign at the damped flutter "
-                   f"loads (dots); undamped: 0 until {undamped:.4g}", fontsize=8)
+                   f"loads (dots)\nundamped: 0 until {undamped:.4g}"
+                   + ("; dotted: the limit $\\epsilon \\to 0$" if limit is not None else ""),
+                   fontsize=8)
     return fig
 
 
@@ -170,7 +187,8 @@ def plot_fig19_theory(data: dict[str, Any]) -> Figure:
     declutter(ax2)
     fig.suptitle("Fig. 19, theory only: the experimental spots of the printed figure are "
                  "measurements, not reproduced;\nits horizontal theory bars are drawn here as "
-                 "columns", fontsize=8)
+                 "columns (the model's loads do not depend on the plate's speed, 50 mm/s in "
+                 "the experiment)", fontsize=8)
     note = own_parameters_note(data, "pendulum", "list47", width=170)
     fig.tight_layout(rect=(0, 0.05 if note else 0, 1, 1))
     if note:

@@ -179,7 +179,9 @@ def plot_fig21(data: dict[str, Any]) -> Figure:
     fig.suptitle(f"Fig. 21: {list47_viscous(data, short=True)}, P = {data['P']:.3f} N (middle "
                  f"of the flutter interval), {T:g} s "
                  f"from α1 = α2 = 0 with angular velocities {w0:g} rad/s (computed)\n"
-                 "the photo of the scratch and the camera's spots are an experiment, not "
+                 + ("largest rotations reached: |α1| = {:.0f}°, |α2| = {:.0f}°; ".format(
+                     *data["alpha_max_deg"]) if "alpha_max_deg" in data else "")
+                 + "the photo of the scratch and the camera's spots are an experiment, not "
                  "reproduced" + (f"\n{note}" if note else ""), fontsize=8)
     # the frame of eq. (1): origin at the clamp A, x along the straight pendulum
     ax1.set_xlabel("x (from the clamp A, along the straight pendulum) [mm]", fontsize=8)

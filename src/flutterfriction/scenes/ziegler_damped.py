@@ -113,8 +113,10 @@ def fig05(params: dict[str, Any]) -> dict[str, Any]:
         else:
             case.update(gamma_flu=g_flu0, gamma_div=g_div0)
         cases[f"{eps:g}"] = case
+    # the caption's eps -> 0 limit (4/3 for eq. 51's pendulum; this pendulum's own with
+    # c1 = c2): drawn beside the damped loads; its check is the paradox limit scene's
     return {"gamma": gamma.tolist(), "cases": cases, "symmetric": p0.groups().symmetric,
-            "quantities": quantities}
+            "gamma_flu_limit": cfd.flutter_gamma_limit(p0, 1.0), "quantities": quantities}
 
 
 # ---------------------------------------------------------------------- the paradox limit

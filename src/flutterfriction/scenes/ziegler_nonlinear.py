@@ -246,8 +246,12 @@ def fig21(params: dict[str, Any]) -> dict[str, Any]:
     # The plate slides under the wheel along -e1 (the friction on the wheel, -P t, points to A):
     # in the plate's frame the wheel moves by +v t along e1.
     scratch = C + np.stack([v * t, np.zeros_like(t)], axis=-1)
+    # the largest rotations reached: they let a reader judge how far the path swings
+    # (C passes behind the clamp, x < 0, where alpha2 exceeds 90 degrees)
+    alpha_max = np.degrees(np.abs(sol.y[:2]).max(axis=1))
     return {"P": P, "P_flu": P_flu, "P_div": P_div, "omega0": w0, "duration": T,
-            "t": t.tolist(), "C": C.tolist(), "scratch": scratch.tolist(), "plate_speed": v}
+            "t": t.tolist(), "C": C.tolist(), "scratch": scratch.tolist(), "plate_speed": v,
+            "alpha_max_deg": alpha_max.tolist()}
 
 
 def _amplitude_points(params: dict[str, Any]) -> list[list[Any]]:
