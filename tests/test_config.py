@@ -343,9 +343,9 @@ def test_a_number_given_as_a_string_says_why(value, extra):
     assert problems == [
         f"config: scenes.rod_stability_map.eta_small: {value!r} is a string, not a number "
         "(quoted in a YAML file, or nested in snakemake --config, which passes scenes={...} "
-        "as strings: give nested values unquoted in a --configfile)" + (extra + " (YAML 1.1 reads an exponent without a decimal "
-                                      "point or without its sign as a string)" if extra
-                                      else "")]
+        "as strings: give nested values unquoted in a --configfile)"
+        + (extra + " (YAML 1.1 reads an exponent without a decimal point or without its sign "
+           "as a string)" if extra else "")]
 
 
 # ---------------------------------------------------------------------- duplicate keys
