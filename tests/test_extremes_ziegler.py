@@ -20,6 +20,8 @@ from flutterfriction.analysis.ziegler import (
     damped_flutter_load,
     dead_critical_loads,
     follower_critical_gammas,
+    regime,
+    spectrum,
 )
 from flutterfriction.cli import main
 from flutterfriction.closed_forms.ziegler_damped import (
@@ -276,7 +278,9 @@ def test_api_refuses_what_it_cannot_compute_instead_of_nan_or_tracebacks():
     p = ZieglerPendulum(**LIST47)
     cases = [
         (lambda: az.linear_response(p, 3.0, 0.0, [0.1, 0, 0, 0], [1e300]), "times"),
-        (lambda: az.regime(p, 1e308), "P = 1e[+]308"),
+        # (beyond the double range in units of k2/l1; list 47's own 1e308 N is computed,
+        # below, from its exact biquadratic)
+        (lambda: az.regime(p.with_(k2=0.01), 1e308), "P = 1e[+]308"),
         (lambda: az.follower_critical_loads(p, n_scan=-5), "n_scan"),
         (lambda: az.follower_critical_loads(p, n_scan=2.5), "n_scan"),
         (lambda: az.follower_critical_loads(p, max_doublings=0), "max_doublings"),
@@ -288,6 +292,7 @@ def test_api_refuses_what_it_cannot_compute_instead_of_nan_or_tracebacks():
             call()
     # and what they do compute is unchanged
     assert az.regime(p, 6.8).value == "flutter"
+    assert az.regime(p, 1e308).value == "divergence"
     assert az.linear_response(p, 3.0, 0.0, [0.1, 0, 0, 0], [0.0])[0] == pytest.approx(
         [0.1, 0, 0, 0])
 
@@ -565,3 +570,48 @@ def test_a_refusal_never_shows_the_value_as_the_bound_it_violates(capsys):
     for command, shown in cases:
         assert main(command) == 2
         assert shown in capsys.readouterr().err
+
+
+def _mp_state_eigenvalues(p: ZieglerPendulum, P: float, dps: int = 60) -> np.ndarray:
+    """Independent truth: the eigenvalues of the first-order matrix of eq. (11), formed and
+    solved in ``dps``-digit arithmetic from the model's matrices (exact in binary)."""
+    with mp.workdps(dps):
+        M = mp.matrix(p.mass_matrix().tolist())
+        C = mp.matrix(p.viscosity_matrix().tolist())
+        K = mp.matrix(p.stiffness_matrix().tolist()) + P * mp.matrix(
+            p.follower_load_matrix().tolist())
+        Minv = M ** -1
+        A = mp.zeros(4, 4)
+        A[0, 2] = A[1, 3] = 1
+        for i in range(2):
+            for j in range(2):
+                A[2 + i, j] = -(Minv * K)[i, j]
+                A[2 + i, 2 + j] = -(Minv * C)[i, j]
+        return np.array([complex(x) for x in mp.eig(A, left=False, right=False)])
+
+
+@pytest.mark.parametrize("P", [1e6, 1e9, 1e12])
+def test_damped_spectrum_at_large_loads_is_the_characteristic_polynomials(P):
+    """An outside review: at P = 1e9 load units the first-order eigenvalues gave the damped
+    pendulum's slow pair as 5e-11 +- 9.2e-5i (flutter) instead of the real +-2.236e-5 (23 %
+    off at 1e8, 0.86 % at 1e7); the spectrum is checked against the exact characteristic
+    polynomial and taken in multiple precision where the eigenvalues are not its roots.
+    Truth: the first-order matrix's eigenvalues in 60 digits (mpmath's eig)."""
+    p = ZieglerPendulum(l1=1, l2=1, d=1, h=0, m1=2, m2=1, m3=0, k1=1, k2=1, c1=0.1, c2=0.1)
+    got = spectrum(p, P)
+    truth = _mp_state_eigenvalues(p, P)
+    for z in truth:
+        assert np.min(np.abs(got - z)) <= 1e-12 * abs(z)
+    assert np.all(np.abs(got.imag) == 0.0)  # all real: divergence, as regime says
+    assert regime(p, P).value == "divergence"
+
+
+def test_undamped_spectrum_beyond_the_coefficients_range():
+    """An outside review: at P = 1e160 load units b^2 of the exact biquadratic overflowed and
+    the first-order eigenvalues gave the slow pair -3.4e63, 1.1e64 instead of
+    +-(2P - 7)^(-1/2) = 7.07e-81 (2 s^4 + (7 - 2P) s^2 + 1 = 0 for this pendulum)."""
+    p = ZieglerPendulum(l1=1, l2=1, d=1, h=0, m1=2, m2=1, m3=0, k1=1, k2=1)
+    for P in (1e160, 1e300):
+        s = np.sort(np.abs(spectrum(p, P)))
+        assert s[:2] == pytest.approx([(2 * P) ** -0.5] * 2, rel=1e-14)
+        assert s[2:] == pytest.approx([P ** 0.5] * 2, rel=1e-14)

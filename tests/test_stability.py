@@ -11,6 +11,7 @@ from flutterfriction.analysis.stability import (
     classify,
     coalescence_loads,
     discriminant,
+    first_order_matrix,
     pencil_eigenvalues,
     static_bifurcation_loads,
 )
@@ -102,3 +103,48 @@ def test_linear_response_rejects_bad_input(list47):
         linear_response(list47, 1.0, 0.0, [0.0, 0.0], [0.0])
     with pytest.raises(ParameterError, match="P"):
         linear_response(list47, float("nan"), 0.0, [0.0] * 4, [0.0])
+
+
+@pytest.mark.parametrize("load_max", [10.0, 1e4, 1e5, 1e8, 1e12])
+def test_coalescence_loads_whatever_the_scan_range(load_max):
+    """An outside review: with load_max = 1e5 the 2048-step scan put both coalescences of
+    this pendulum (7/2 -+ sqrt 2, m1 = 2, m2 = 1, l = k = 1) inside its first step, and none
+    was returned, silently. The scan's ends are minimised as its interior dips are, and it
+    adds the loads load_max 2^-k."""
+    M, K0, K1 = [[3.0, 1.0], [1.0, 1.0]], [[2.0, -1.0], [-1.0, 1.0]], [[-1.0, 1.0], [0.0, 0.0]]
+    loads = coalescence_loads(K0, K1, M, load_max)
+    assert loads == pytest.approx([3.5 - 2 ** 0.5, 3.5 + 2 ** 0.5], rel=1e-14)
+
+
+@pytest.mark.parametrize(("kwargs", "match"), [
+    ({"M": [[np.nan, 1.0], [1.0, 1.0]]}, "M must be a finite real 2x2"),
+    ({"M": [[1.0, 2.0], [3.0, 4.0]]}, "M must be a symmetric positive definite"),
+    ({"M": [[1.0, 0.0], [0.0, -1.0]]}, "M must be a symmetric positive definite"),
+    ({"M": [1.0, 2.0]}, "M must be a square matrix"),
+    ({"M": None}, "M must be a square matrix"),
+    ({"K1": [[True, 0], [0, 1]]}, "K1 must be a finite real 2x2 matrix"),
+    ({"K0": np.eye(3)}, "K0 must be a finite real 2x2 matrix"),
+    ({"load_max": 1e-320}, "load_max must be >= 2.23e-308"),
+    ({"load_max": float("inf")}, "load_max must be finite"),
+    ({"n_scan": 0}, "n_scan must be an integer in"),
+])
+def test_coalescence_loads_refuses_bad_input_by_name(kwargs, match):
+    """An outside review: NaN, singular, ragged or 1-d matrices ended in numpy's errors, and
+    load_max = 1e-320 in a ValueError after 37 s."""
+    args = {"K0": [[2.0, -1.0], [-1.0, 1.0]], "K1": [[-1.0, 1.0], [0.0, 0.0]],
+            "M": [[3.0, 1.0], [1.0, 1.0]], "load_max": 10.0} | kwargs
+    with pytest.raises(ParameterError, match=match):
+        coalescence_loads(**args)
+
+
+@pytest.mark.parametrize("rtol", [float("nan"), -1.0, 1e9, "1", True])
+def test_classify_refuses_a_meaningless_tolerance(rtol):
+    """An outside review: rtol = NaN or 1e9 called [1 +- 1j] stable, rtol = -1 called a
+    stable pair flutter."""
+    with pytest.raises(ParameterError, match="rtol"):
+        classify([1 + 1j, 1 - 1j], rtol=rtol)
+
+
+def test_first_order_matrix_refuses_a_singular_mass_matrix():
+    with pytest.raises(ParameterError, match="M must be a nonsingular matrix"):
+        first_order_matrix([[0.0, 0.0], [0.0, 0.0]], np.eye(2))

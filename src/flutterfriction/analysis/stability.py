@@ -24,20 +24,57 @@ import scipy.linalg as sla
 from numpy.typing import ArrayLike, NDArray
 from scipy.optimize import brentq, minimize_scalar
 
-from flutterfriction.errors import ConvergenceError, ParameterError
+from flutterfriction.errors import (
+    ConvergenceError,
+    ParameterError,
+    check_finite_array,
+    check_integer,
+    check_positive,
+    check_real,
+)
 from flutterfriction.results import Regime  # noqa: F401  (re-exported)
 
 Matrix = NDArray[np.float64]
 
 
+def square_matrices(**named: object) -> list[Matrix]:
+    """Each named matrix as a float array, all finite, real and square of one size ``n >= 1``
+    (the first one's), or a :class:`ParameterError` naming the first that is not (an outside
+    review: NaN, 1-d, None or mismatched matrices ended in numpy's LinAlgError, ValueError or
+    IndexError, and strings or booleans were read as numbers)."""
+    out: list[Matrix] = []
+    n = None
+    for name, value in named.items():
+        if n is None:
+            shape = getattr(value, "shape", None)
+            if shape is None:
+                try:
+                    shape = np.shape(value)
+                except (ValueError, TypeError):  # ragged nesting
+                    shape = None
+            if shape is None or len(shape) != 2 or shape[0] != shape[1] or shape[0] < 1:
+                raise ParameterError(f"{name} must be a square matrix (n x n, n >= 1) of "
+                                     f"finite real numbers, got shape {shape}")
+            n = int(shape[0])
+        out.append(check_finite_array(name, value, (n, n),
+                                      f"a finite real {n}x{n} matrix (the size of "
+                                      f"{next(iter(named))})"))
+    return out
+
+
 def first_order_matrix(M: ArrayLike, K: ArrayLike, C: ArrayLike | None = None) -> Matrix:
     """State matrix ``A`` of ``x' = A x``, ``x = [q, q']``, for ``M q'' + C q' + K q = 0``."""
-    M = np.asarray(M, dtype=float)
-    K = np.asarray(K, dtype=float)
+    if C is None:
+        M, K = square_matrices(M=M, K=K)
+        C = np.zeros_like(M)
+    else:
+        M, K, C = square_matrices(M=M, K=K, C=C)
     n = M.shape[0]
-    C = np.zeros((n, n)) if C is None else np.asarray(C, dtype=float)
-    return np.block([[np.zeros((n, n)), np.eye(n)],
-                     [-np.linalg.solve(M, K), -np.linalg.solve(M, C)]])
+    try:
+        MK, MC = np.linalg.solve(M, K), np.linalg.solve(M, C)
+    except np.linalg.LinAlgError:
+        raise ParameterError(f"M must be a nonsingular matrix, got {M.tolist()}") from None
+    return np.block([[np.zeros((n, n)), np.eye(n)], [-MK, -MC]])
 
 
 def state_eigenvalues(M: ArrayLike, K: ArrayLike, C: ArrayLike | None = None) -> NDArray:
@@ -57,6 +94,9 @@ def classify(s: ArrayLike, rtol: float = 1e-8) -> Regime:
     mesh with Kelvin–Voigt damping, ``|s| ~ 1e7``) blur the low ones. Critical loads are never
     found with it, see :func:`coalescence_loads`.
     """
+    rtol = check_real("rtol", rtol)
+    if not 0.0 <= rtol < 1.0:  # (an outside review: NaN, 1e9 or -1 gave verdicts)
+        raise ParameterError(f"rtol must be in [0, 1), got {rtol!r}")
     s = np.asarray(s, dtype=complex)
     if not np.all(np.isfinite(s)):  # (an outside audit: [nan, -1] was "stable")
         raise ParameterError(f"s must be finite eigenvalues, got {s.tolist()}")
@@ -91,10 +131,17 @@ def pencil_eigenvalues(K0: ArrayLike, K1: ArrayLike, M: ArrayLike, loads: ArrayL
 
 
 def _reduce(K0: ArrayLike, K1: ArrayLike, M: ArrayLike) -> tuple[Matrix, Matrix, Matrix]:
-    """``(L^-1, L^-1 K0 L^-T, L^-1 K1 L^-T)`` with ``M = L L^T``."""
-    Linv = _cholesky_reduction(np.asarray(M, dtype=float))
-    return (Linv, Linv @ np.asarray(K0, dtype=float) @ Linv.T,
-            Linv @ np.asarray(K1, dtype=float) @ Linv.T)
+    """``(L^-1, L^-1 K0 L^-T, L^-1 K1 L^-T)`` with ``M = L L^T``; the matrices checked."""
+    M, K0, K1 = square_matrices(M=M, K0=K0, K1=K1)
+    if np.max(np.abs(M - M.T)) > 1e-12 * np.max(np.abs(M)):
+        raise ParameterError(f"M must be a symmetric positive definite mass matrix, got "
+                             f"{M.tolist()}")
+    try:
+        Linv = _cholesky_reduction(M)
+    except np.linalg.LinAlgError:
+        raise ParameterError(f"M must be a symmetric positive definite mass matrix, got "
+                             f"{M.tolist()}") from None
+    return Linv, Linv @ K0 @ Linv.T, Linv @ K1 @ Linv.T
 
 
 def _reduced_eigenvalues(Linv: Matrix, A0: Matrix, A1: Matrix, loads: ArrayLike) -> NDArray:
@@ -203,13 +250,21 @@ def refine_roots(f: Callable[[float], float], grid: NDArray, values: NDArray,
             noise(i, i + 1)
             roots.append(_brent(f, grid[i], grid[i + 1]))
     candidates = []
-    for i in range(1, len(grid) - 1):
-        v = values[i - 1:i + 2]
-        if v.min() > 0.0 and v[1] <= v[0] and v[1] <= v[2]:
-            if floor is not None and v[1] <= fl[i]:
-                noise(i - 1, i + 1)
+    last = len(grid) - 1
+    for i in range(len(grid)):
+        # the ends of the scan too, one-sided: a pair of roots within the first or the last
+        # step leaves the end sample a minimum (an outside review: load_max = 1e5 put the
+        # pendulum's flutter interval [2.09, 4.91] inside the first step of 49, and both loads
+        # were missed, silently)
+        lo, hi = max(i - 1, 0), min(i + 1, last)
+        if hi == lo:
+            continue
+        v = values[lo:hi + 1]
+        if v.min() > 0.0 and values[i] <= v[0] and values[i] <= v[-1]:
+            if floor is not None and values[i] <= fl[i]:
+                noise(lo, hi)
                 continue  # a neighbour is above the floor: a touch at round-off level
-            candidates.append((min(v[0], v[2]) - v[1], i))
+            candidates.append((min(v[0], v[-1]) - values[i], i))
     if floor is not None:
         # A round-off plateau has a local minimum at almost every sample (the historical hang:
         # hundreds of minimisations per scan). Only the deepest few dips are minimised; a
@@ -219,11 +274,11 @@ def refine_roots(f: Callable[[float], float], grid: NDArray, values: NDArray,
     # noisy one (scipy's default allows 500). Only the sign of the minimum found is used.
     options = {"xatol": 4 * np.finfo(float).eps, "maxiter": 100 if floor is not None else 500}
     for _, i in candidates:
-        lo, hi = grid[i - 1], grid[i + 1]
+        lo, hi = grid[max(i - 1, 0)], grid[min(i + 1, last)]
         res = minimize_scalar(f, bounds=(lo, hi), method="bounded",
                               options={**options, "xatol": options["xatol"] * abs(hi)})
         if res.fun < 0.0:
-            level = max(np.max(fl[i - 1:i + 2]),
+            level = max(np.max(fl[max(i - 1, 0):i + 2]),
                         0.0 if floor_at is None else floor_at(float(res.x)))
             if floor is not None and -res.fun <= level:
                 raise ConvergenceError(
@@ -243,11 +298,19 @@ def coalescence_loads(K0: ArrayLike, K1: ArrayLike, M: ArrayLike, load_max: floa
     the real axis) and the divergence load (the complex pair returns to the real axis, negative).
     Sign changes of :func:`discriminant` on a uniform scan are refined to machine precision with
     Brent's method; positive local minima of the samples are minimised to catch two coalescences
-    closer than the scan step. Callers that know how many to expect (the pendulum: two) check
-    the count. With ``noise_floor`` the samples are judged against the discriminant's
-    round-off level (:func:`discriminant_noise_floor`): round-off is refused, not minimised.
+    closer than the scan step. The scan adds the loads ``load_max 2^-k`` (k = 1..59), so a
+    coalescence far below the uniform step is bracketed whatever ``load_max``. Callers that
+    know how many to expect (the pendulum: two) check the count. With ``noise_floor`` the
+    samples are judged against the discriminant's round-off level
+    (:func:`discriminant_noise_floor`): round-off is refused, not minimised.
     """
-    grid = np.linspace(0.0, float(load_max), int(n_scan) + 1)
+    load_max = check_positive("load_max", load_max)
+    n_scan = check_integer("n_scan", n_scan, 2, 10**6)
+    # uniform, plus load_max 2^-k towards 0: coalescences at loads far below the uniform
+    # step are bracketed at any scale (an outside review: the pendulum's flutter interval
+    # [2.09, 4.91] was missed at load_max = 1e5 and 1e12)
+    grid = np.union1d(np.linspace(0.0, load_max, n_scan + 1),
+                      load_max * 2.0 ** -np.arange(1.0, 60.0))
     reduced = _reduce(K0, K1, M)  # once: the same numbers pencil_eigenvalues would form
     mu = _reduced_eigenvalues(*reduced, grid)
     values = discriminant(mu)
@@ -271,8 +334,8 @@ def static_bifurcation_loads(K0: ArrayLike, K1: ArrayLike) -> NDArray:
     Solved as the generalised eigenproblem ``K0 a = p (-K1) a``; symmetric-definite when
     ``-K1`` is positive definite (dead loads), general otherwise.
     """
-    K0 = np.asarray(K0, dtype=float)
-    B = -np.asarray(K1, dtype=float)
+    K0, K1 = square_matrices(K0=K0, K1=K1)
+    B = -K1
     if np.allclose(B, B.T) and np.allclose(K0, K0.T) and np.all(np.linalg.eigvalsh(B) > 0):
         p = sla.eigh(K0, B, eigvals_only=True)
     else:

@@ -323,24 +323,84 @@ def _undamped_spectrum(pendulum: ZieglerPendulum, a: Fraction, b: Fraction, c: F
     the product ``c/a`` (no cancellation), ``s = +-sqrt``, in units of ``sqrt(k2/m2)/l2``;
     None where it leaves the double range."""
     disc = b * b - 4 * a * c
+    if a <= 0:
+        return None
     try:
         fa, fb, fc, fd = (float(v) for v in (a, b, c, disc))
-    except OverflowError:
-        return None
-    if fa <= 0:
-        return None
-    if disc >= 0:
-        q = -(fb + math.copysign(math.sqrt(fd), fb)) / 2
-        lams = [q / fa, fc / q] if q != 0 else [0.0, 0.0]
-    else:
-        w = math.sqrt(-fd) / (2 * fa)
-        lams = [complex(-fb / (2 * fa), w), complex(-fb / (2 * fa), -w)]
+        if disc >= 0:
+            q = -(fb + math.copysign(math.sqrt(fd), fb)) / 2
+            lams = [q / fa, fc / q] if q != 0 else [0.0, 0.0]
+        else:
+            w = math.sqrt(-fd) / (2 * fa)
+            lams = [complex(-fb / (2 * fa), w), complex(-fb / (2 * fa), -w)]
+    except (OverflowError, ZeroDivisionError):
+        lams = _biquadratic_roots_by_ratios(a, b, c, disc)
     unit = math.sqrt(pendulum.k2) / (math.sqrt(pendulum.m2) * pendulum.l2)
     root = np.sqrt(np.array(lams, dtype=complex)) * unit
     s = np.concatenate([root, -root])
     if not np.all(np.isfinite(s)):
         return None
     return s[np.lexsort((-s.imag, -s.real))]
+
+
+def _biquadratic_roots_by_ratios(a: Fraction, b: Fraction, c: Fraction, disc: Fraction
+                                 ) -> list[complex]:
+    """The roots ``lam`` of ``a lam^2 + b lam + c`` from exact ratios of the coefficients, each
+    rounded once: where the coefficients or ``b^2`` leave the double range (an outside review:
+    at P = 1e160 load units the first-order matrix's eigenvalues gave the slow pair as
+    -3.4e63, 1.1e64 instead of +-7.1e-81). A ratio beyond the double range raises
+    OverflowError (the roots themselves overflow)."""
+    if b == 0:
+        r = math.sqrt(abs(float(c / a)))
+        return [r, -r] if c < 0 else [complex(0.0, r), complex(0.0, -r)]
+    if disc >= 0:
+        # q = -(b/2)(1 + sqrt(disc/b^2)); lam1 = q/a, lam2 = c/q
+        root = 1.0 + math.sqrt(float(disc / (b * b)))
+        return [-float(b / a) * root / 2, -2 * float(c / b) / root]
+    w = math.sqrt(float(-disc / (4 * a * a)))
+    re = -float(b / (2 * a))
+    return [complex(re, w), complex(re, -w)]
+
+
+#: Largest backward error of a damped pendulum's first-order eigenvalues against its exact
+#: characteristic polynomial, ``|p(s)| / sum |a_i| |s|^i``: a backward-stable eigensolver gives
+#: ~1e-15 (measured); above it the eigenvalues are not the polynomial's roots (an outside
+#: review: at P = 1e9 load units the slow pair came out 5e-11 +- 9.2e-5i, flutter, instead of
+#: the real +-2.24e-5, backward error ~1) and the roots are taken in multiple precision.
+SPECTRUM_BACKWARD_ERROR = 1e-10
+
+
+def _damped_spectrum(pendulum: ZieglerPendulum, s: NDArray, coefficients: NDArray) -> NDArray:
+    """The first-order eigenvalues ``s`` [1/s] of a damped pendulum, checked against its exact
+    characteristic polynomial (``coefficients``, highest degree first, in the dimensionless
+    ``s`` of units ``sqrt(k2/m2)/l2``); where they are not its roots, the polynomial's roots
+    in 40-digit arithmetic (mpmath's polyroots), sorted as :func:`state_eigenvalues`."""
+    unit = math.sqrt(pendulum.k2) / (math.sqrt(pendulum.m2) * pendulum.l2)
+    try:
+        a = np.array([float(x) for x in coefficients])
+        sigma = s / unit
+        powers = sigma[:, None] ** np.arange(len(a) - 1, -1, -1)[None, :]
+        with np.errstate(over="ignore", invalid="ignore"):
+            backward = np.abs(powers @ a) / (np.abs(powers) @ np.abs(a))
+        if np.all(np.isfinite(backward)) and backward.max() <= SPECTRUM_BACKWARD_ERROR:
+            return s
+    except OverflowError:
+        pass
+    import mpmath as mp
+
+    with mp.workdps(40):
+        exact = [mp.mpf(x.numerator) / x.denominator for x in coefficients]
+        try:
+            roots = mp.polyroots(exact, maxsteps=400, extraprec=200)
+        except mp.libmp.NoConvergence:
+            raise ConvergenceError(
+                "the spectrum of this damped pendulum at these loads is beyond the "
+                "first-order eigenvalues (they are not the characteristic polynomial's "
+                "roots) and the polynomial's roots did not converge") from None
+        out = np.array([complex(r) for r in roots]) * unit
+    if not np.all(np.isfinite(out)):
+        raise ParameterError("the loads put the spectrum beyond the double range")
+    return out[np.lexsort((-out.imag, -out.real))]
 
 
 def spectrum(pendulum: ZieglerPendulum, P: float = 0.0, H: float = 0.0) -> NDArray:
@@ -373,6 +433,10 @@ def _spectrum(pendulum: ZieglerPendulum, P: float, H: float
     if not np.all(np.isfinite(s)):
         raise ParameterError(f"the loads P = {P!r}, H = {H!r} N overflow the first-order "
                              f"matrix (load unit k2/l1 = {pendulum.load_unit:.3g} N)")
+    if coefficients is None:  # damped: checked against the exact characteristic polynomial
+        m = _exact_dimensionless(pendulum)
+        s = _damped_spectrum(pendulum, s, characteristic_polynomial(
+            m.M, m.C, _exact_loads(pendulum, m, check_real("P", P), check_real("H", H))))
     return s, coefficients
 
 
