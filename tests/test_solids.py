@@ -216,7 +216,14 @@ def test_plastic_modulus_eq152_and_classification():
     g1, g2 = so.flutter_interval_isotropic(1.0, 1.0, P, Q, n)
     assert ac.classify_acoustic(so.acoustic_tensor(E, P, Q, np.sqrt(g1 * g2), n)) == "flutter"
     assert ac.classify_acoustic(so.acoustic_tensor(E, P, Q, 10 * g2, n)) == "stable"
-    assert ac.classify_acoustic(so.acoustic_tensor(E, P, Q, -0.01, n)) == "divergence"
+    # divergence below the localization modulus of eq. (185), where it is positive (g > 0 is
+    # the model's range, §3.3: a negative g is refused, as by the command line)
+    n_loc = np.array([np.cos(np.pi / 3), 0.0, np.sin(np.pi / 3)])
+    g_loc = so.localization_modulus(E, P, Q, n_loc)
+    assert g_loc == pytest.approx(0.385, rel=1e-12)
+    assert ac.classify_acoustic(so.acoustic_tensor(E, P, Q, g_loc / 2, n_loc)) == "divergence"
+    with pytest.raises(ParameterError, match="g must be > 0"):
+        so.acoustic_tensor(E, P, Q, -0.01, n)
 
 
 def test_cubic_discriminant_is_the_eigenvalues_discriminant():
@@ -339,6 +346,9 @@ def test_overflowing_results_are_refused():
     with pytest.raises(ParameterError, match="overflows"):
         so.isotropic_elasticity(1e308, 1e308)
     with pytest.raises(ParameterError, match="overflows"):
+        so.elastoplastic_tangent(so.isotropic_elasticity(1.0, 1.0), np.eye(3), np.eye(3),
+                                 2.3e-308)
+    with pytest.raises(ParameterError, match="subnormal"):
         so.elastoplastic_tangent(so.isotropic_elasticity(1.0, 1.0), np.eye(3), np.eye(3), 1e-320)
 
 

@@ -38,7 +38,7 @@ from typing import Any
 import yaml
 
 from flutterfriction.config import safe_load
-from flutterfriction.errors import ParameterError
+from flutterfriction.errors import ParameterError, check_nonnegative, check_real
 from flutterfriction.figure_offences import Offence, figure_checks_markdown, figure_checks_summary
 from flutterfriction.io import markdown_table, write_json, write_text
 
@@ -165,11 +165,21 @@ def _not_applicable(entry: dict[str, Any], changes: list[str],
 
 
 def normalised_error(x: float, ref: float, tol: Mapping[str, float]) -> float:
-    """``|x - ref| / (atol + rtol |ref|)``; pass when ``<= 1``."""
-    scale = float(tol.get("atol", 0.0)) + float(tol.get("rtol", 0.0)) * abs(float(ref))
+    """``|x - ref| / (atol + rtol |ref|)``; pass when ``<= 1``. The values and the tolerance
+    are checked by name (an outside review: NaN and inf gave NaN; "1", True and unknown
+    tolerance keys were accepted)."""
+    x, ref = check_real("x", x), check_real("ref", ref)
+    if not isinstance(tol, Mapping):
+        raise ParameterError(f"tol must be a mapping with atol and/or rtol, got {tol!r}")
+    unknown = sorted(set(tol) - {"atol", "rtol", "why"})
+    if unknown:
+        raise ParameterError(f"tol: unknown key(s) {unknown}; allowed: atol, rtol, why")
+    atol = check_nonnegative("atol", tol.get("atol", 0.0))
+    rtol = check_nonnegative("rtol", tol.get("rtol", 0.0))
+    scale = atol + rtol * abs(ref)
     if scale <= 0.0:
-        raise ValueError("a tolerance needs atol > 0 or rtol > 0")
-    return abs(float(x) - float(ref)) / scale
+        raise ParameterError("a tolerance needs atol > 0 or rtol > 0")
+    return abs(x - ref) / scale
 
 
 REFERENCE_SCHEMA = Path(__file__).resolve().parents[2] / "workflow" / "schemas" / \

@@ -37,6 +37,10 @@ def cubic_discriminant(A: NDArray) -> NDArray:
     three distinct real eigenvalues, negative for a complex-conjugate pair (flutter), zero at a
     coalescence. No eigenvalue is computed."""
     A = np.asarray(A, dtype=float)
+    if A.ndim < 2 or A.shape[-2:] != (3, 3) or not np.all(np.isfinite(A)):
+        # (an outside review: NaN matrices gave NaN, and has_complex_pair "no pair")
+        raise ParameterError(f"A must be a stack of finite 3x3 matrices, got shape {A.shape}"
+                             + ("" if np.all(np.isfinite(A)) else " with NaN or inf"))
     # The invariants from the entries (elementwise over the stack: ~5x faster than a stacked
     # matrix product and LU determinant on the flutter map's ~1e6 tensors); i2 as the sum of
     # the principal minors, free of the cancellation in (i1^2 - tr A^2) / 2.
@@ -456,6 +460,9 @@ def classify_eigenvalues(eta: ArrayLike, rtol: float = 1e-10, imag_rtol: float =
     Measured (3000 random isotropic solids): a symmetric A (P = Q) gives ``|Im| <= 1.2e-16``,
     but a strongly non-normal coalescence up to 6e-6, so no threshold decides every case:
     :func:`isotropic_acoustic` decides the pair from the factored discriminant instead."""
+    for name, tol in (("rtol", rtol), ("imag_rtol", imag_rtol)):
+        if not 0.0 <= check_real(name, tol) < 1.0:  # (an outside review: -inf, '1' accepted)
+            raise ParameterError(f"{name} must be in [0, 1), got {tol!r}")
     eta = np.asarray(eta)
     if eta.ndim != 1 or eta.size == 0 or eta.dtype.kind not in "iufc" \
             or not np.all(np.isfinite(eta)):

@@ -83,6 +83,8 @@ def exact_coefficients(coeffs: ArrayLike) -> list[Fraction]:
     arr = np.atleast_1d(np.asarray(coeffs, dtype=object))
     out = []
     for x in arr.tolist():
+        if isinstance(x, np.ndarray) and x.ndim == 0:  # a numpy 0-d array is a number too
+            x = x.item()
         # real numbers only (an outside audit: "1" and True were read as numbers, a complex
         # coefficient was a raw TypeError)
         if isinstance(x, bool | np.bool_) or not isinstance(x, numbers.Real):

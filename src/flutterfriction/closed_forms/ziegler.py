@@ -20,9 +20,34 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from flutterfriction.errors import ParameterError
+from flutterfriction.errors import ParameterError, check_positive, check_real
 from flutterfriction.models.ziegler import PendulumGroups, ZieglerPendulum
 from flutterfriction.results import CriticalLoads, Regime
+
+
+def _groups(g: object) -> PendulumGroups:
+    """``g`` itself if it is the groups of eq. (17) (they check their own values)."""
+    if not isinstance(g, PendulumGroups):
+        raise ParameterError(f"g must be the PendulumGroups of a pendulum (eq. 17; "
+                             f"ZieglerPendulum.groups()), got {type(g).__name__}")
+    return g
+
+
+def _loads(name: str, value: ArrayLike) -> NDArray:
+    """A dimensionless load or array of them as floats: real and finite, or refused by name
+    (an outside review: '1', True, NaN and inf were computed on)."""
+    if isinstance(value, str | bytes) or isinstance(value, bool | np.bool_):
+        raise ParameterError(f"{name} must be a real number or an array of them, got {value!r}")
+    try:
+        a = np.asarray(value)
+    except (ValueError, TypeError):
+        raise ParameterError(f"{name} must be a real number or an array of them") from None
+    if a.dtype.kind not in "iuf" or (a.dtype == object):
+        raise ParameterError(f"{name} must be real numbers, got dtype {a.dtype}")
+    a = a.astype(float)
+    if not np.all(np.isfinite(a)):
+        raise ParameterError(f"{name} must be finite, got {value!r}")
+    return a
 
 
 def coefficient_a(g: PendulumGroups) -> float:
@@ -49,14 +74,14 @@ def coefficient_delta2(g: PendulumGroups) -> float:
 
 def coefficient_c(g: PendulumGroups, eta: ArrayLike) -> NDArray:
     """``c(eta)`` of eq. (21): the constant term, det of the dimensionless K + G."""
-    eta = np.asarray(eta, dtype=float)
+    g, eta = _groups(g), _loads("eta", eta)
     return eta**2 / g.lam - eta * (1 + 1 / g.lam + g.k / g.lam) + g.k
 
 
 # ---------------------------------------------------------------------- dead load, §2.2
 def omega2_dead_load(g: PendulumGroups, eta: ArrayLike) -> NDArray:
     """The two roots ``omega^2`` of eq. (19), shape (..., 2), lower root first."""
-    eta = np.asarray(eta, dtype=float)
+    g, eta = _groups(g), _loads("eta", eta)
     a = coefficient_a(g)
     b = coefficient_beta1(g) - eta * coefficient_delta2(g)
     disc = b**2 - 4 * a * coefficient_c(g, eta)  # eq. (20); >= 0 since the problem is symmetric
@@ -83,7 +108,7 @@ def buckling_eta_equal_rods() -> float:
 # ---------------------------------------------------------------------- follower load, §2.3
 def omega2_follower(g: PendulumGroups, gamma: ArrayLike) -> NDArray:
     """The two roots ``omega^2`` of eq. (34), complex, shape (..., 2)."""
-    gamma = np.asarray(gamma, dtype=float)
+    g, gamma = _groups(g), _loads("gamma", gamma)
     a = coefficient_a(g)
     b = coefficient_beta1(g) - gamma * coefficient_beta2(g)
     root = np.sqrt((b**2 - 4 * g.k * a).astype(complex))
@@ -92,7 +117,8 @@ def omega2_follower(g: PendulumGroups, gamma: ArrayLike) -> NDArray:
 
 def follower_line_and_parabola(g: PendulumGroups, gamma: ArrayLike) -> tuple[NDArray, NDArray]:
     """Fig. 3: the line ``beta1 - gamma beta2`` and the parabola ``(...)^2 - 4ka`` of eq. (34)."""
-    line = coefficient_beta1(g) - np.asarray(gamma, dtype=float) * coefficient_beta2(g)
+    g, gamma = _groups(g), _loads("gamma", gamma)
+    line = coefficient_beta1(g) - gamma * coefficient_beta2(g)
     return line, line**2 - 4 * g.k * coefficient_a(g)
 
 
@@ -112,7 +138,8 @@ def flutter_divergence_gammas_as_printed(g: PendulumGroups) -> tuple[float, floa
 
 def follower_regime(g: PendulumGroups, gamma: float) -> Regime:
     """Classification of eq. (37) and the list after Fig. 3 (stable / flutter / divergence)."""
-    g_flu, g_div = flutter_divergence_gammas(g)
+    gamma = check_real("gamma", gamma)  # (an outside review: NaN was "divergence")
+    g_flu, g_div = flutter_divergence_gammas(_groups(g))
     if gamma < g_flu:
         return Regime.STABLE
     return Regime.FLUTTER if gamma < g_div else Regime.DIVERGENCE
@@ -121,15 +148,27 @@ def follower_regime(g: PendulumGroups, gamma: float) -> Regime:
 def two_mass_gammas(lam: float, y: float, rho: float, k: float) -> tuple[float, float]:
     """Eq. (42) for m3 = 0 and its divergence twin: ``((1+lam)^2 + (lam y sqrt(rho) -/+ sqrt k)^2)
     / (1+lam)``. The chapter prints only the flutter one; eq. (48) uses both."""
+    lam, rho, k = (check_positive(n, v) for n, v in (("lam", lam), ("rho", rho), ("k", k)))
+    y = check_positive("y", y)
+    if y > 1.0:
+        raise ParameterError(f"y = d/l1 must be <= 1 (the mass on its rod), got {y!r}")
     s = lam * y * math.sqrt(rho)
+    if not math.isfinite(s * s / (1 + lam) + (1 + lam) + k / (1 + lam)):
+        raise ParameterError("lam, y, rho, k: eq. (42) leaves the double range")
     return (((1 + lam) ** 2 + (s - math.sqrt(k)) ** 2) / (1 + lam),
             ((1 + lam) ** 2 + (s + math.sqrt(k)) ** 2) / (1 + lam))
 
 
 def optimal_two_mass_loads(l1: float, l2: float, k1: float, k2: float) -> tuple[float, float]:
     """Eqs. (44), (45) [N]: ``P_flu``, ``P_div`` when eq. (43) (sqrt k = lam y sqrt rho) holds."""
+    l1, l2 = check_positive("l1", l1, "m"), check_positive("l2", l2, "m")
+    k1, k2 = check_positive("k1", k1, "N m"), check_positive("k2", k2, "N m")
     p_flu = k2 * (1 / l1 + 1 / l2)
-    return p_flu, p_flu + 4 * k1 * (l2 / l1) / (l1 + l2)
+    p_div = p_flu + 4 * k1 * (l2 / l1) / (l1 + l2)
+    if not (math.isfinite(p_flu) and math.isfinite(p_div)):
+        raise ParameterError("l1, l2, k1, k2: the loads of eqs. (44), (45) leave the double "
+                             "range")
+    return p_flu, p_div
 
 
 def critical_loads_closed_form(pendulum: ZieglerPendulum) -> CriticalLoads:

@@ -33,7 +33,12 @@ from flutterfriction.closed_forms.ziegler import (
     coefficient_beta1,
     coefficient_beta2,
 )
-from flutterfriction.errors import ConvergenceError, ParameterError
+from flutterfriction.errors import (
+    ConvergenceError,
+    ParameterError,
+    check_nonnegative,
+    check_real,
+)
 from flutterfriction.models.ziegler import PendulumGroups, ZieglerPendulum
 
 if TYPE_CHECKING:
@@ -87,11 +92,34 @@ def viscosity_groups(pendulum: ZieglerPendulum) -> tuple[float, float]:
     return _eps_c(pendulum)
 
 
+def _viscosity_args(g: object, eps: object, c: object) -> tuple[PendulumGroups, float, float]:
+    """The groups, ``epsilon >= 0`` and ``c = c1/c2 >= 0`` of eq. (29), refused by name (an
+    outside review: NaN, inf, c = -1 and complex values were computed on, or ended in
+    ZeroDivisionError / OverflowError)."""
+    if not isinstance(g, PendulumGroups):
+        raise ParameterError(f"g must be the PendulumGroups of a pendulum (eq. 17), got "
+                             f"{type(g).__name__}")
+    return g, check_nonnegative("eps", eps), check_nonnegative("c", c)
+
+
+def _finite(values: NDArray | float, what: str) -> NDArray | float:
+    if not np.all(np.isfinite(values)):
+        raise ParameterError(f"{what}: beyond the double range for these values")
+    return values
+
+
 def characteristic_coefficients(g: PendulumGroups, eps: float, c: float, gamma: float = 0.0,
                                 eta: float = 0.0) -> NDArray[np.float64]:
     """``[p0, p1, p2, p3, p4]`` of eq. (30) (derived, see :func:`symbolic_coefficients`)."""
-    return np.array(_numeric_coefficients()(g.rho1, g.rho2, g.y1, g.y2, g.lam, g.k, c, eps,
-                                            gamma, eta), dtype=float)
+    g, eps, c = _viscosity_args(g, eps, c)
+    gamma, eta = check_real("gamma", gamma), check_real("eta", eta)
+    with np.errstate(over="ignore", invalid="ignore"):
+        try:
+            p = np.array(_numeric_coefficients()(g.rho1, g.rho2, g.y1, g.y2, g.lam, g.k, c,
+                                                 eps, gamma, eta), dtype=float)
+        except OverflowError:
+            p = np.full(5, np.inf)
+    return _finite(p, "eq. (30) coefficients")
 
 
 def coefficients_as_printed_eq31(g: PendulumGroups, eps: float, c: float,
@@ -112,11 +140,19 @@ def coefficients_as_printed_eq31(g: PendulumGroups, eps: float, c: float,
 def eq52_coefficients(eps: float, gamma: float) -> NDArray[np.float64]:
     """Eq. (52): ``p = [1, 6 eps, 6 + eps^2 - 2 gamma, 2 eps, 1]`` (l1 = l2, k1 = k2, m1 = m2,
     d = l1, m3 = 0, c1 = c2)."""
+    eps, gamma = check_nonnegative("eps", eps), check_real("gamma", gamma)
+    if eps > 1e150:
+        raise ParameterError(f"eps must be <= 1e150 (eps^2 within the double range), got "
+                             f"{eps!r}")
     return np.array([1.0, 6 * eps, 6 + eps**2 - 2 * gamma, 2 * eps, 1.0])
 
 
 def eq54_flutter_gamma(eps: float) -> float:
     """Eq. (54): ``P*_flu L/K = 4/3 + eps^2/2``."""
+    eps = check_nonnegative("eps", eps)
+    if eps > 1e150:  # eps^2 beyond the double range
+        raise ParameterError(f"eps must be <= 1e150 (eps^2 within the double range), got "
+                             f"{eps!r}")
     return 4.0 / 3.0 + eps**2 / 2.0
 
 
@@ -155,7 +191,13 @@ def damped_flutter_gamma(g: PendulumGroups, eps: float, c: float) -> float:
         of the load (an outside audit: l1/l2 = 1e3, m1/m2 = 1e6, k1/k2 = 1e-2, c1 = 0 gave
         -1.2e-7 for 1.0e-11); :func:`damped_flutter_gamma_exact` answers there.
     """
-    b1, viscous, t, b2 = _flutter_terms(g, eps**2, c)
+    g, eps, c = _viscosity_args(g, eps, c)
+    if eps > 1e150:  # eps^2 beyond the double range
+        raise ParameterError(f"eps must be <= 1e150 (eps^2 within the double range), got "
+                             f"{eps!r}")
+    with np.errstate(over="ignore", invalid="ignore"):
+        b1, viscous, t, b2 = _flutter_terms(g, eps**2, c)
+    _finite(b1 + viscous + t, "the damped flutter load's terms")
     num = b1 + viscous - t
     bound = _TERM_ROUNDING * (b1 + viscous + t)
     if not bound <= CANCELLATION_RTOL * abs(num):
@@ -194,6 +236,11 @@ def vanishing_viscosity_flutter_gamma_exact(pendulum: ZieglerPendulum, c: float)
     ``c = c1/c2``, in exact rational arithmetic, rounded once."""
     from fractions import Fraction as F
 
+    if not isinstance(pendulum, ZieglerPendulum):
+        raise ParameterError(f"pendulum must be a ZieglerPendulum, got "
+                             f"{type(pendulum).__name__}")
+    # (a numpy scalar is a number too: Fraction refused np.float32, an outside review)
+    c = check_nonnegative("c", c)
     b1, _, t, b2 = _flutter_terms(pendulum.groups(exact=True), F(0), F(c))
     return float((b1 - t) / b2)
 
@@ -201,6 +248,10 @@ def vanishing_viscosity_flutter_gamma_exact(pendulum: ZieglerPendulum, c: float)
 def flutter_gamma_limit(pendulum: ZieglerPendulum, c: float) -> float:
     """:func:`vanishing_viscosity_flutter_gamma`, in doubles where they hold its digits (~1 us),
     else exactly (~0.1 ms): for the scenes' maps over any pendulum."""
+    if not isinstance(pendulum, ZieglerPendulum):
+        raise ParameterError(f"pendulum must be a ZieglerPendulum, got "
+                             f"{type(pendulum).__name__}")
+    c = check_nonnegative("c", c)
     try:
         return vanishing_viscosity_flutter_gamma(pendulum.groups(), c)
     except ConvergenceError:
@@ -209,7 +260,13 @@ def flutter_gamma_limit(pendulum: ZieglerPendulum, c: float) -> float:
 
 def damped_flutter_gamma_of(pendulum: ZieglerPendulum) -> float:
     """:func:`damped_flutter_gamma` of a viscous pendulum, in doubles where they hold its
-    digits, else exactly (:func:`damped_flutter_gamma_exact`)."""
+    digits, else exactly (:func:`damped_flutter_gamma_exact`). A pendulum outside the model's
+    numerical range is refused as the numerical twin refuses it (an outside review:
+    m1/m2 = 1e12 was answered)."""
+    if not isinstance(pendulum, ZieglerPendulum):
+        raise ParameterError(f"pendulum must be a ZieglerPendulum, got "
+                             f"{type(pendulum).__name__}")
+    pendulum.check_numerical_range()
     eps, c = viscosity_groups(pendulum)
     try:
         return damped_flutter_gamma(pendulum.groups(), eps, c)

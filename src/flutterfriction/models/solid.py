@@ -112,11 +112,14 @@ def _tensors(P: ArrayLike, Q: ArrayLike) -> tuple[NDArray, NDArray]:
 
 
 def _modulus(g: object) -> float:
-    """The plastic modulus, which divides: finite and non-zero."""
+    """The plastic modulus of eq. (152), "assumed strictly positive" (§3.3) and a normal double
+    (it divides; an outside review: g = -1 was accepted where the command line refuses it,
+    g = 1e-320 put an infinity into the tensor)."""
     g = check_real("g", g)
-    if g == 0:
-        raise ParameterError("g must be non-zero (the plastic modulus divides)")
-    return g
+    if not g > 0:
+        raise ParameterError(f"g must be > 0 (the plastic modulus of eq. 152, assumed strictly "
+                             f"positive in §3.3), got {g!r}")
+    return check_positive("g", g)
 
 
 def _isotropic(lam: object, mu: object) -> tuple[float, float]:
@@ -195,7 +198,10 @@ def acoustic_tensor(E: NDArray, P: ArrayLike, Q: ArrayLike, g: float, n: ArrayLi
     """``A(n) = A_el(n) - p (x) q / (rho g)`` (eq. 161), general elasticity."""
     g = _modulus(g)
     p, q = acoustic_vectors(E, P, Q, n)
-    return elastic_acoustic_tensor(E, n, rho) - np.outer(p, q) / (rho * g)
+    with np.errstate(over="ignore", invalid="ignore"):  # an overflow is refused just below
+        A = elastic_acoustic_tensor(E, n, rho) - np.outer(p, q) / (rho * g)
+    return check_finite_result(A, f"the acoustic tensor with g = {g:g} overflows the double "
+                               f"range")
 
 
 def localization_modulus(E: NDArray, P: ArrayLike, Q: ArrayLike, n: ArrayLike) -> float:
@@ -219,7 +225,10 @@ def acoustic_tensor_isotropic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike,
     g = _modulus(g)
     n = _nonzero_direction(n)
     p, q = isotropic_vectors(lam, mu, P, Q, n)
-    return (lam + mu) * np.outer(n, n) + mu * I3 - np.outer(p, q) / g
+    with np.errstate(over="ignore", invalid="ignore"):  # an overflow is refused just below
+        A = (lam + mu) * np.outer(n, n) + mu * I3 - np.outer(p, q) / g
+    return check_finite_result(A, f"the acoustic tensor with g = {g:g} overflows the double "
+                               f"range; analysis.acoustic.isotropic_acoustic computes it scaled")
 
 
 def acoustic_eigenvalues_isotropic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike,
@@ -261,7 +270,11 @@ def localization_modulus_isotropic(lam: float, mu: float, P: ArrayLike, Q: Array
     """Eq. (185)."""
     n = _nonzero_direction(n)
     p, q = isotropic_vectors(lam, mu, P, Q, n)
-    return float(-(lam + mu) / (mu * (lam + 2 * mu)) * (p @ n) * (q @ n) + p @ q / mu)
+    with np.errstate(over="ignore", invalid="ignore"):  # an overflow is refused just below
+        g = float(-(lam + mu) / (mu * (lam + 2 * mu)) * (p @ n) * (q @ n) + p @ q / mu)
+    # (an outside review: lam = 1e308 returned NaN)
+    return check_finite_result(g, "eq. (185) overflows the double range here; "
+                               "analysis.acoustic.isotropic_acoustic computes it scaled")
 
 
 def flutter_interval_isotropic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike,

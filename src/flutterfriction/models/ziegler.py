@@ -16,6 +16,7 @@ eq. (10) gives ``-l1 (P + H)``, as eq. (13) has it.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass, fields, replace
 from fractions import Fraction
 from typing import Any, NamedTuple
@@ -78,6 +79,23 @@ class DimensionlessMatrices(NamedTuple):
     G_dead: Matrix
 
 
+def _angles(name: str, value: ArrayLike) -> NDArray[np.float64]:
+    """Finite real numbers (a number or an array) as floats, refused by name: numpy reads
+    "1" and True as numbers, and NaN gave NaN positions (an outside review)."""
+    if isinstance(value, str | bytes | bool | np.bool_) or value is None:
+        raise ParameterError(f"{name} must be finite real numbers, got {value!r}")
+    try:
+        raw = np.asarray(value)
+    except (ValueError, TypeError):
+        raise ParameterError(f"{name} must be finite real numbers (an array)") from None
+    if raw.dtype.kind not in "iuf":
+        raise ParameterError(f"{name} must be finite real numbers, got dtype {raw.dtype}")
+    a = raw.astype(float)
+    if not np.all(np.isfinite(a)):
+        raise ParameterError(f"{name} must be finite (no NaN or inf)")
+    return a
+
+
 @dataclass(frozen=True)
 class PendulumGroups:
     """Dimensionless groups of eq. (17).
@@ -93,6 +111,24 @@ class PendulumGroups:
     y2: float
     lam: float
     k: float
+
+    def __post_init__(self) -> None:
+        # Refused by name as ZieglerPendulum refuses its parameters (an outside review: NaN,
+        # inf, negatives, strings and y1 = 5 were accepted and the closed forms computed on
+        # them, e.g. flutter loads for a mass off the rod). Values are kept as given: exact
+        # fractions stay exact (ZieglerPendulum.groups(exact=True)).
+        for name in ("rho1", "rho2", "y1", "y2", "lam", "k"):
+            value = getattr(self, name)
+            x = check_real(name, value)
+            if name in ("rho1", "lam", "k", "y1"):
+                check_positive(name, x)
+            else:
+                check_nonnegative(name, x)
+            if name in ("y1", "y2") and x > 1.0:
+                raise ParameterError(f"{name} = {'d/l1' if name == 'y1' else 'h/l2'} must be "
+                                     f"<= 1 (the mass on its rod), got {x!r}")
+            if not isinstance(value, Fraction):
+                object.__setattr__(self, name, x)  # a float, not a numpy scalar or an int
 
     @property
     def equal_rods(self) -> bool:
@@ -159,6 +195,9 @@ class ZieglerPendulum:
     def from_mapping(cls, params: dict[str, Any]) -> ZieglerPendulum:
         """Build from a mapping (e.g. a config section); unknown keys are rejected by name."""
         names = {f.name for f in fields(cls)}
+        if not isinstance(params, Mapping):  # (an outside review: None was a TypeError)
+            raise ParameterError(f"pendulum parameters must be a mapping of {sorted(names)}, "
+                                 f"got {type(params).__name__}")
         unknown = sorted(set(params) - names)
         if unknown:
             raise ParameterError(
@@ -170,7 +209,12 @@ class ZieglerPendulum:
         return cls(**params)
 
     def with_(self, **changes: float) -> ZieglerPendulum:
-        """A copy with some parameters changed (validated again)."""
+        """A copy with some parameters changed (validated again; unknown names refused)."""
+        names = {f.name for f in fields(self)}
+        unknown = sorted(set(changes) - names)
+        if unknown:  # (an outside review: a bare TypeError)
+            raise ParameterError(
+                f"unknown pendulum parameter(s) {unknown}; allowed: {sorted(names)}")
         return replace(self, **changes)
 
     def as_dict(self) -> dict[str, float]:
@@ -232,6 +276,7 @@ class ZieglerPendulum:
         exponents apart: ``l2 sqrt(k2) sqrt(m2)`` alone underflows to 0 at l2 = 1e-124,
         k2 = m2 = 1e-200 (a ZeroDivisionError; an outside audit) and overflows at the other
         end, while the group itself lies in the model's range."""
+        c = check_nonnegative("c", c, "N m s/rad")  # (an outside review: NaN, -1 returned)
         if c == 0:
             return 0.0
 
@@ -316,13 +361,17 @@ class ZieglerPendulum:
         """Geometric matrix G of eq. (11) as corrected (eq. 13): [[-l1(P+H), P l1], [0, -H l2]]."""
         P = check_real("P", P)
         H = check_real("H", H)
-        return P * self.follower_load_matrix() + H * self.dead_load_matrix()
+        with np.errstate(over="ignore", invalid="ignore"):
+            G = P * self.follower_load_matrix() + H * self.dead_load_matrix()
+        if not np.all(np.isfinite(G)):  # (an outside review: an inf matrix was returned)
+            raise ParameterError(f"the loads P = {P!r}, H = {H!r} N times the lengths leave "
+                                 f"the double range")
+        return G
 
     # ------------------------------------------------------------------ nonlinear kinematics
     def positions(self, alpha1: ArrayLike, alpha2: ArrayLike) -> dict[str, NDArray[np.float64]]:
         """Positions of A, D, B, E, C (eq. 1, with D corrected to use alpha1), shape (..., 2)."""
-        a1 = np.asarray(alpha1, dtype=float)
-        a2 = np.asarray(alpha2, dtype=float)
+        a1, a2 = _angles("alpha1", alpha1), _angles("alpha2", alpha2)
         u1 = np.stack([np.cos(a1), np.sin(a1)], axis=-1)
         u2 = np.stack([np.cos(a2), np.sin(a2)], axis=-1)
         B = self.l1 * u1
@@ -349,15 +398,23 @@ class ZieglerPendulum:
         ndarray
             ``d(state)/dt``, same shape as ``state``.
         """
-        state = np.asarray(state, dtype=float)
         if check:
+            state = _angles("state", state)
             P, H = check_real("P", P), check_real("H", H)
-            if state.ndim not in (1, 2) or state.shape[0] != 4:
+            if state.ndim not in (1, 2) or state.shape[0] != 4 or state.size == 0:
                 raise ParameterError(f"state must have shape (4,) or (4, n) "
                                      f"[alpha1, alpha2, alpha1_dot, alpha2_dot], got "
                                      f"{state.shape}")
-            if not np.isfinite(state).all():
-                raise ParameterError("state must be finite (no NaN or inf)")
+            try:
+                with np.errstate(over="ignore", invalid="ignore"):
+                    out = self.equations_of_motion(state, P, H, check=False)
+            except OverflowError:
+                out = np.full(state.shape, np.inf)
+            if not np.all(np.isfinite(out)):  # (an outside review: OverflowError, inf)
+                raise ParameterError(f"state, P = {P!r}, H = {H!r}: the equations of motion "
+                                     f"leave the double range")
+            return out
+        state = np.asarray(state, dtype=float)
         # One state (an integrator's call, ~1e6 per limit cycle): Python floats and math's
         # functions, ~3x cheaper than numpy's on scalars; several states: numpy. Same formulas.
         sin, cos = (math.sin, math.cos) if state.ndim == 1 else (np.sin, np.cos)

@@ -1,0 +1,100 @@
+"""The public API refuses bad input by name before any work (an outside review of the
+stability API: NaN, inf, strings, booleans, negative or off-range values were computed on and
+gave NaN, a wrong verdict or a raw numpy/Python error)."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from flutterfriction.analysis import acoustic as ac
+from flutterfriction.analysis import rod_exact
+from flutterfriction.closed_forms import ziegler as cz
+from flutterfriction.closed_forms import ziegler_damped as zd
+from flutterfriction.errors import ParameterError
+from flutterfriction.models import solid as so
+from flutterfriction.models.rod import RodGroups
+from flutterfriction.models.ziegler import PendulumGroups, ZieglerPendulum
+from flutterfriction.parameters import parameter_list
+from flutterfriction.reference import normalised_error
+
+GOOD = {"rho1": 1.0, "rho2": 1.0, "y1": 1.0, "y2": 0.0, "lam": 1.0, "k": 1.0}
+
+
+@pytest.mark.parametrize("name, value, match", [
+    ("rho1", float("nan"), "rho1"), ("lam", -1.0, "lam must be > 0"),
+    ("k", float("inf"), "k"), ("y1", 5.0, "y1 = d/l1 must be <= 1"),
+    ("y2", -0.1, "y2 must be >= 0"), ("k", "1", "k"),
+])
+def test_pendulum_groups_refuse_values_off_the_model(name, value, match):
+    with pytest.raises(ParameterError, match=match):
+        PendulumGroups(**{**GOOD, name: value})
+
+
+def test_pendulum_groups_keep_exact_fractions_and_give_floats_otherwise():
+    g = PendulumGroups(**{**GOOD, "k": np.float32(2.0)})
+    assert type(g.k) is float and g.k == 2.0
+    assert ZieglerPendulum(**parameter_list("list47")).groups(exact=True).lam.__class__.__name__ == "Fraction"
+
+
+@pytest.mark.parametrize("call, match", [
+    (lambda g: cz.coefficient_c(g, "1"), "eta must be a real number"),
+    (lambda g: cz.coefficient_c(g, True), "eta must be a real number"),
+    (lambda g: cz.omega2_follower(g, [1.0, np.nan]), "gamma must be finite"),
+    (lambda g: cz.follower_regime(g, float("nan")), "gamma"),
+    (lambda g: cz.coefficient_c({"k": 1}, 1.0), "g must be the PendulumGroups"),
+    (lambda g: zd.characteristic_coefficients(g, -1.0, 1.0), "eps must be >= 0"),
+    (lambda g: zd.damped_flutter_gamma(g, 0.1, float("nan")), "c"),
+    (lambda g: zd.eq54_flutter_gamma(1e200), "eps must be <= 1e150"),
+    (lambda g: cz.two_mass_gammas(1.0, 1.5, 1.0, 1.0), "y = d/l1 must be <= 1"),
+    (lambda g: cz.optimal_two_mass_loads(1.0, -1.0, 1.0, 1.0), "l2 must be > 0"),
+])
+def test_closed_forms_refuse_bad_arguments_by_name(call, match):
+    with pytest.raises(ParameterError, match=match):
+        call(PendulumGroups(**GOOD))
+
+
+def test_pendulum_refuses_unknown_names_and_non_mappings_and_nan_angles():
+    p = ZieglerPendulum(**parameter_list("list47"))
+    with pytest.raises(ParameterError, match=r"unknown pendulum parameter\(s\) \['l3'\]"):
+        p.with_(l3=1.0)
+    with pytest.raises(ParameterError, match="must be a mapping"):
+        ZieglerPendulum.from_mapping(None)
+    with pytest.raises(ParameterError, match="alpha1 must be finite"):
+        p.positions(np.nan, 0.0)
+    with pytest.raises(ParameterError, match="leave the double range"):
+        p.equations_of_motion(np.array([0.1, 0.2, 1e300, 1e300]), 1.0, 0.0)
+    # a valid state is answered as before
+    assert np.all(np.isfinite(p.equations_of_motion(np.array([0.1, 0.2, 0.0, 0.0]), 1.0, 0.0)))
+
+
+def test_acoustic_and_reference_helpers_refuse_nan_and_off_range_tolerances():
+    with pytest.raises(ParameterError, match="finite 3x3"):
+        ac.cubic_discriminant(np.full((3, 3), np.nan))
+    with pytest.raises(ParameterError, match="rtol must be"):
+        ac.classify_eigenvalues(np.array([1.0, 2.0, 3.0]), rtol=-np.inf)
+    with pytest.raises(ParameterError, match=r"imag_rtol must be in \[0, 1\)"):
+        ac.classify_eigenvalues(np.array([1.0, 2.0, 3.0]), imag_rtol=1e9)
+    with pytest.raises(ParameterError, match="g must be > 0"):
+        so.acoustic_tensor_isotropic(1.0, 1.0, np.eye(3), np.eye(3), -1.0, [1.0, 0.0, 0.0])
+    with pytest.raises(ParameterError, match="x"):
+        normalised_error(float("nan"), 1.0, {"rtol": 1e-3})
+    with pytest.raises(ParameterError, match=r"unknown key\(s\) \['rtoll'\]"):
+        normalised_error(1.0, 1.0, {"rtoll": 1e-3})
+    assert normalised_error(1.001, 1.0, {"rtol": 1e-3}) == pytest.approx(1.0)
+
+
+def test_a_guess_on_the_imaginary_axis_reaches_its_flutter_root_whatever_its_last_bits():
+    """tan(alpha) = 1.2, gamma = 1e-9, p = 878.1702: eq. (118) has the flutter pair
+    3.5527 +/- 67.9755i that the FE twin still has on the axis (66.42i and 69.81i). Newton from
+    69.81i on the axis wandered and failed with one BLAS thread's FE guess, and reached the
+    pair with two threads' (a test that failed on another machine): retried from either side
+    of the axis, the root is found from the axis itself."""
+    g, p = RodGroups(tan_alpha=1.2, gamma=1e-9), 878.1702
+    guesses = np.array([66.4210424496271j, 69.81001792630634j])
+    with pytest.raises(rod_exact.ConvergenceError):
+        rod_exact.refine_eigenvalues(p, g, guesses[1:])
+    roots = rod_exact._refined_alone(p, g, guesses, np.ones(2, dtype=bool))
+    assert np.all(np.isfinite(roots))
+    # the two guesses give the pair's two roots of the upper half-plane, not one root twice
+    assert np.sort(roots.real) == pytest.approx([-3.5526589, 3.5526589], rel=1e-7)
+    assert roots.imag == pytest.approx([67.9754791, 67.9754791], rel=1e-7)
