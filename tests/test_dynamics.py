@@ -131,6 +131,7 @@ _D5 = dict(l1=0.2, l2=0.4, d=0.05, h=0.2, m1=3, m2=0.05, m3=0, k1=0.5, k2=0.3, c
 _D8 = dict(l1=1, l2=1, d=1, h=0, m1=1, m2=1, m3=0, k1=1, k2=1, c1=0.5, c2=0.05)
 
 
+@pytest.mark.slow  # > 4 s on a 2-core AMD EPYC host (2026-11-29)
 def test_limit_cycle_with_several_maxima_of_alpha1_per_period():
     """D8 at 2.3 P_flu: a stable cycle with more than one maximum of alpha1 per period was
     refused (only consecutive section crossings were compared); the section-return check took
@@ -146,6 +147,7 @@ def test_limit_cycle_with_several_maxima_of_alpha1_per_period():
     assert t == pytest.approx(lc.period_s, rel=1e-8)
 
 
+@pytest.mark.slow  # > 4 s on a 2-core AMD EPYC host (2026-11-29)
 def test_limit_cycle_stops_on_the_distance_left_not_on_the_last_step():
     """Near the Hopf point the cycle attracts slowly (ratio 0.983 per period at 1.01 P_flu):
     stopping when successive crossings differ by tol left 60 tol (4.6e-6 at tol 1e-7)."""
@@ -182,6 +184,7 @@ def test_transient_and_shooting_do_not_depend_on_the_unit_of_time(cycle, s):
     assert shot.period_s == pytest.approx(s * lc.period_s, rel=1e-8)
 
 
+@pytest.mark.slow  # > 4 s on a 2-core AMD EPYC host (2026-11-29)
 def test_bifurcation_diagram_does_not_depend_on_the_unit_of_time():
     """The pendulum's bifurcation-diagram scene (limit_cycle_amplitude) for the §2.9 pendulum
     and the same pendulum 100x slower: the same amplitudes, periods x 100, the same verdict.

@@ -169,6 +169,7 @@ def test_scene_quantities_and_bad_parameters():
             elastica({**FIG09, **bad})
 
 
+@pytest.mark.slow  # > 4 s on a 2-core AMD EPYC host (2026-11-29)
 def test_figures_6_to_9_draw():
     import io
 
@@ -187,6 +188,7 @@ def test_figures_6_to_9_draw():
         fig.savefig(io.BytesIO(), format="png", dpi=40)
 
 
+@pytest.mark.slow  # > 4 s on a 2-core AMD EPYC host (2026-11-29)
 @pytest.mark.parametrize("loads", [{}, {"P2": -0.5, "q2": 2.0}, {"P2": 0.2, "q1": 0.0,
                                                                    "q2": 3.0}],
                          ids=["configured", "bending up", "S-shaped"])
@@ -262,6 +264,7 @@ def test_the_stability_eigenvalue_of_the_straight_rod_is_eulers():
         assert el.stability_eigenvalue(sol) == pytest.approx(math.pi**2 / 4 - P1, abs=1e-8)
 
 
+@pytest.mark.slow  # > 4 s on a 2-core AMD EPYC host (2026-11-29)
 def test_past_the_euler_load_the_stable_bent_equilibrium_is_returned():
     """An outside audit: P1 just past the Euler load with a tiny P2 gave the unstable, nearly
     straight equilibrium bent against the push (theta(l) = +5.2e-6) from both solvers. Shooting

@@ -297,6 +297,7 @@ def test_api_refuses_what_it_cannot_compute_instead_of_nan_or_tracebacks():
         [0.1, 0, 0, 0])
 
 
+@pytest.mark.slow  # > 4 s on a 2-core AMD EPYC host (2026-11-29)
 def test_limit_cycle_does_not_depend_on_the_unit_of_time():
     """An outside audit: the same dimensionless pendulum with masses of 1e-8 kg (time unit
     1e-4 s) never returned (20 s chunks of 27000 periods), and with 100 kg it was refused.

@@ -492,6 +492,7 @@ def test_critical_loads_print_no_numpy_warnings():
     assert c.p_flu is not None and 0 < c.p_flu < 40
 
 
+@pytest.mark.slow  # > 4 s on a 2-core AMD EPYC host (2026-11-29)
 def test_fig12_says_it_reproduces_the_quoted_loads_only_where_it_does():
     """An outside audit: with your own tan(alpha) = 1.2 Fig. 12 said "tan α = 1.2: reproduces
     the loads the chapter quotes" and "the loads the chapter quotes are those at tan α = 1.2"."""
@@ -861,6 +862,7 @@ def test_a_boundary_next_to_another_pairs_change_is_put_where_eq118_has_it(kw, p
     assert starts[0]["p_from"] == pytest.approx(exact(), rel=1e-10)
 
 
+@pytest.mark.slow  # > 4 s on a 2-core AMD EPYC host (2026-11-29)
 def test_two_nearly_coincident_pairs_at_one_load_are_decided():
     """Outside review: tan a = 0.2166 at p_max 1000: two pairs (mu ~ 20150 and 75147) nearly
     coincide at p ~ 847.08, where the ends of a two-pair window swap order; the exact regime
@@ -897,6 +899,7 @@ def test_no_window_just_before_its_opening(tan_alpha):
     assert float(mp.im(mu)) == pytest.approx(math.sqrt(-gap), rel=1e-3)
 
 
+@pytest.mark.slow  # > 4 s on a 2-core AMD EPYC host (2026-11-29)
 def test_a_damped_window_the_reduced_twin_loses_is_found_by_the_retry_on_more_modes():
     """Outside review: tan(alpha) = 1.52753, eta = 1.48316e-4, gamma = 0.224965 has a flutter
     window [207.986, 208.798] (p_max 210-220 find it; a 60-120-element unreduced FE spectrum
@@ -913,6 +916,7 @@ def test_a_damped_window_the_reduced_twin_loses_is_found_by_the_retry_on_more_mo
     assert str(ar._exact_regime(208.4, g)) == "flutter"
 
 
+@pytest.mark.slow  # > 4 s on a 2-core AMD EPYC host (2026-11-29)
 @pytest.mark.parametrize("p_max", [785.30, 785.4])
 def test_a_window_whose_twin_lies_beyond_p_max_is_found(p_max):
     """Outside review: at tan a = 0.3014 eq. (118) diverges on [785.28466, 785.31623] (pair
@@ -935,6 +939,7 @@ def test_a_window_whose_twin_lies_beyond_p_max_is_found(p_max):
     assert c.intervals[-1]["regime"] == ("divergence" if p_max < hi else "flutter")
 
 
+@pytest.mark.slow  # > 4 s on a 2-core AMD EPYC host (2026-11-29)
 def test_a_damped_window_between_two_pairs_with_both_pairs_near_coincidence_is_checked():
     """The same window with eta = 1e-8 (ends the double real roots in omega~ of the two
     pairs): p_max 785.4 was refused ("regime check failed at p = 785.359": two damped pairs

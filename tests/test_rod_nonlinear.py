@@ -64,6 +64,7 @@ def test_linearised_flutter_load_converges_at_fourth_order():
     assert errors[-1] < 2e-5
 
 
+@pytest.mark.slow  # > 4 s on a 2-core AMD EPYC host (2026-11-29)
 def test_damped_linearised_flutter_load_converges_past_the_spectrum_round_off():
     """The damped load of the rod linearised on fine meshes: the first-order spectrum's
     round-off (the stiff Kelvin-Voigt modes) had put a floor under it (1.1e-8 relative at 48
@@ -435,6 +436,7 @@ def test_tip_lateral_velocity_is_the_kinematics_tip_row(n_elements):
         assert abs(short.imag - full.imag) <= 1e-14 * abs(full.imag)
 
 
+@pytest.mark.slow  # > 4 s on a 2-core AMD EPYC host (2026-11-29)
 def test_work_precision_periods_start_on_the_section_at_the_quick_preset():
     """Each timed period starts on the Poincaré section, where the section function is zero
     only to rounding: its sign at t = 0 must not decide whether scipy's event search raises

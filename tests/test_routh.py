@@ -57,6 +57,7 @@ def polynomials_from_roots(draw, margin_exponent=ANY_MARGIN):
     return np.poly(roots).real
 
 
+@pytest.mark.slow  # > 4 s on a 2-core AMD EPYC host (2026-11-29)
 @given(polynomials_from_roots())
 def test_exact_criterion_matches_high_precision_roots(coeffs):
     truth = true_max_real_part(coeffs)

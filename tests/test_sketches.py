@@ -93,6 +93,7 @@ OWN_PENDULUMS = [
 ]
 
 
+@pytest.mark.slow  # > 4 s on a 2-core AMD EPYC host (2026-11-29)
 @pytest.mark.parametrize("figure", ["fig02", "fig18"])
 def test_the_pendulum_sketches_of_ones_own_pendulum_pass_the_figure_check(figure):
     import copy
@@ -119,6 +120,7 @@ def test_the_pendulum_sketches_of_ones_own_pendulum_pass_the_figure_check(figure
                    for x, y in line.get_xydata()), pendulum
 
 
+@pytest.mark.slow  # > 4 s on a 2-core AMD EPYC host (2026-11-29)
 def test_fig19_of_ones_own_pendulum_keeps_its_labels_clear():
     """An own pendulum puts the inferred viscosity near c_max: its label ran into the panel's
     title and the §2.9 line's label (an outside audit's run ended red on it)."""
