@@ -1,7 +1,7 @@
 """Write the README's timing table from Snakemake's benchmark files (never typed by hand).
 
 usage: python .ci/timing_table.py AFTER_DIR [--before BEFORE_DIR] [--totals TOTALS.json]
-       [--readme README.md]
+       [--readme README.md] [--baseline NAME]
 
 AFTER_DIR/BEFORE_DIR: the results/benchmarks/ folders of this checkout's and the previous main's
 paper runs from clean (same machine, same hour); TOTALS.json: {"what": {"before": s, "after": s}}
@@ -18,6 +18,8 @@ parser.add_argument("after")
 parser.add_argument("--before")
 parser.add_argument("--totals")
 parser.add_argument("--readme")
+parser.add_argument("--baseline", default="previous main",
+                    help="what BEFORE_DIR is, as the headers name it (e.g. 7ecfb71)")
 args = parser.parse_args()
 
 
@@ -26,7 +28,7 @@ def jobs(folder):
 
 
 totals = json.loads(Path(args.totals).read_text()) if args.totals else None
-table = timing_markdown(jobs(args.after), jobs(args.before), totals)
+table = timing_markdown(jobs(args.after), jobs(args.before), totals, baseline=args.baseline)
 if args.readme:
     readme = Path(args.readme)
     readme.write_text(replace_timing_block(readme.read_text(), table))

@@ -142,3 +142,15 @@ def test_read_studies_merges_each_study_with_its_timings(tmp_path):
         files[f"{name}_timings"].write_text(json.dumps({"runs": [{"wall_s": 0.5 + k}]}))
     assert read_studies(files) == [{"runs": [{"error": k, "wall_s": 0.5 + k}]}
                                    for k in range(4)]
+
+
+def test_timing_table_names_its_baseline():
+    """The table says what it was measured against (the issue's 7ecfb71, not always the
+    previous main)."""
+    from flutterfriction.benchmarks import timing_markdown
+
+    job = {"job": "solve_rods", "wall_s": 2.0, "cpu_s": 1.5, "max_rss_mb": 100.0}
+    table = timing_markdown([job], [{**job, "wall_s": 4.0}],
+                            {"paper": {"before": 300.0, "after": 150.0}}, baseline="7ecfb71")
+    assert "| 7ecfb71 [s] |" in table and "7ecfb71 wall [s]" in table
+    assert "previous main" not in table and "2.00x faster" in table

@@ -147,7 +147,8 @@ TIMING_END = "<!-- end of timing table -->"
 
 def timing_markdown(after: list[dict[str, Any]], before: list[dict[str, Any]] | None = None,
                     totals: Mapping[str, Mapping[str, float | None]] | None = None,
-                    n_slowest: int = 10) -> str:
+                    n_slowest: int = 10,
+                    baseline: str = "previous main") -> str:
     """The README's timing section from Snakemake's ``benchmark:`` files.
 
     Parameters
@@ -159,11 +160,14 @@ def timing_markdown(after: list[dict[str, Any]], before: list[dict[str, Any]] | 
     totals
         ``{what: {"before": s, "after": s}}``: whole-command wall times measured around the
         runs (paper from clean, quick from clean, no-op, tests), medians.
+    baseline
+        What ``before`` is, as the table's headers name it (the previous main, or the commit
+        a target is measured against, e.g. "7ecfb71").
     """
     lines: list[str] = []
     if totals:
         lines += markdown_table(
-            ["command (wall time; the median where several runs)", "previous main [s]",
+            ["command (wall time; the median where several runs)", f"{baseline} [s]",
              "this main [s]", "ratio"],
             [[what, _fmt(t.get("before"), ".0f"), _fmt(t.get("after"), ".0f"),
               _speedup(t.get("before"), t.get("after"))] for what, t in totals.items()])
@@ -173,9 +177,9 @@ def timing_markdown(after: list[dict[str, Any]], before: list[dict[str, Any]] | 
     def total(jobs, key):
         return sum(j[key] or 0.0 for j in jobs)
 
-    lines.append(f"Jobs with a `benchmark:` file: {len(after)} (previous main: "
+    lines.append(f"Jobs with a `benchmark:` file: {len(after)} ({baseline}: "
                  f"{len(before or [])}); CPU time of those jobs "
-                 f"{total(after, 'cpu_s'):.0f} s (previous main: "
+                 f"{total(after, 'cpu_s'):.0f} s ({baseline}: "
                  f"{total(before or [], 'cpu_s'):.0f} s). The slowest {n_slowest}:")
     lines.append("")
     rows = []
@@ -185,7 +189,7 @@ def timing_markdown(after: list[dict[str, Any]], before: list[dict[str, Any]] | 
                      _fmt(j["max_rss_mb"], ".0f"), _fmt(b.get("wall_s"), ".1f") or "-",
                      _fmt(b.get("cpu_s"), ".1f") or "-"])
     lines += markdown_table(["job", "wall [s]", "CPU [s]", "peak RSS [MB]",
-                             "previous wall [s]", "previous CPU [s]"], rows)
+                             f"{baseline} wall [s]", f"{baseline} CPU [s]"], rows)
     return "\n".join(lines) + "\n"
 
 
