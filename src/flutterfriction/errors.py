@@ -133,6 +133,30 @@ def check_finite_array(name: str, value: object, shape: tuple[int, ...],
     return a
 
 
+def check_finite_reals(name: str, value: object) -> Any:
+    """``value`` (a number or an array of any shape) as floats, every entry real and finite, or
+    a :class:`ParameterError` naming ``name`` (numpy reads "1" and True as numbers, and NaN
+    went on into NaN results; outside reviews of the closed forms and the pendulum's
+    kinematics). :func:`check_finite_array` where the shape is fixed."""
+    import numpy as np
+
+    if isinstance(value, str | bytes | bool | np.bool_) or value is None:
+        raise ParameterError(f"{name} must be a real number or an array of them, finite; got "
+                             f"{value!r}")
+    try:
+        raw = np.asarray(value)
+    except (ValueError, TypeError):  # ragged nesting
+        raise ParameterError(f"{name} must be a real number or an array of them, finite") \
+            from None
+    if raw.dtype.kind not in "iuf":
+        raise ParameterError(f"{name} must be a real number or an array of them, finite; got "
+                             f"dtype {raw.dtype}")
+    a = raw.astype(float)
+    if not np.all(np.isfinite(a)):
+        raise ParameterError(f"{name} must be finite (no NaN or inf), got {value!r}")
+    return a
+
+
 def _unit(unit: str) -> str:
     return f" {unit}" if unit else ""
 

@@ -20,7 +20,12 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from flutterfriction.errors import ParameterError, check_positive, check_real
+from flutterfriction.errors import (
+    ParameterError,
+    check_finite_reals,
+    check_positive,
+    check_real,
+)
 from flutterfriction.models.ziegler import PendulumGroups, ZieglerPendulum
 from flutterfriction.results import CriticalLoads, Regime
 
@@ -31,23 +36,6 @@ def _groups(g: object) -> PendulumGroups:
         raise ParameterError(f"g must be the PendulumGroups of a pendulum (eq. 17; "
                              f"ZieglerPendulum.groups()), got {type(g).__name__}")
     return g
-
-
-def _loads(name: str, value: ArrayLike) -> NDArray:
-    """A dimensionless load or array of them as floats: real and finite, or refused by name
-    (an outside review: '1', True, NaN and inf were computed on)."""
-    if isinstance(value, str | bytes) or isinstance(value, bool | np.bool_):
-        raise ParameterError(f"{name} must be a real number or an array of them, got {value!r}")
-    try:
-        a = np.asarray(value)
-    except (ValueError, TypeError):
-        raise ParameterError(f"{name} must be a real number or an array of them") from None
-    if a.dtype.kind not in "iuf" or (a.dtype == object):
-        raise ParameterError(f"{name} must be real numbers, got dtype {a.dtype}")
-    a = a.astype(float)
-    if not np.all(np.isfinite(a)):
-        raise ParameterError(f"{name} must be finite, got {value!r}")
-    return a
 
 
 def coefficient_a(g: PendulumGroups) -> float:
@@ -74,14 +62,14 @@ def coefficient_delta2(g: PendulumGroups) -> float:
 
 def coefficient_c(g: PendulumGroups, eta: ArrayLike) -> NDArray:
     """``c(eta)`` of eq. (21): the constant term, det of the dimensionless K + G."""
-    g, eta = _groups(g), _loads("eta", eta)
+    g, eta = _groups(g), check_finite_reals("eta", eta)
     return eta**2 / g.lam - eta * (1 + 1 / g.lam + g.k / g.lam) + g.k
 
 
 # ---------------------------------------------------------------------- dead load, §2.2
 def omega2_dead_load(g: PendulumGroups, eta: ArrayLike) -> NDArray:
     """The two roots ``omega^2`` of eq. (19), shape (..., 2), lower root first."""
-    g, eta = _groups(g), _loads("eta", eta)
+    g, eta = _groups(g), check_finite_reals("eta", eta)
     a = coefficient_a(g)
     b = coefficient_beta1(g) - eta * coefficient_delta2(g)
     disc = b**2 - 4 * a * coefficient_c(g, eta)  # eq. (20); >= 0 since the problem is symmetric
@@ -108,7 +96,7 @@ def buckling_eta_equal_rods() -> float:
 # ---------------------------------------------------------------------- follower load, §2.3
 def omega2_follower(g: PendulumGroups, gamma: ArrayLike) -> NDArray:
     """The two roots ``omega^2`` of eq. (34), complex, shape (..., 2)."""
-    g, gamma = _groups(g), _loads("gamma", gamma)
+    g, gamma = _groups(g), check_finite_reals("gamma", gamma)
     a = coefficient_a(g)
     b = coefficient_beta1(g) - gamma * coefficient_beta2(g)
     root = np.sqrt((b**2 - 4 * g.k * a).astype(complex))
@@ -117,7 +105,7 @@ def omega2_follower(g: PendulumGroups, gamma: ArrayLike) -> NDArray:
 
 def follower_line_and_parabola(g: PendulumGroups, gamma: ArrayLike) -> tuple[NDArray, NDArray]:
     """Fig. 3: the line ``beta1 - gamma beta2`` and the parabola ``(...)^2 - 4ka`` of eq. (34)."""
-    g, gamma = _groups(g), _loads("gamma", gamma)
+    g, gamma = _groups(g), check_finite_reals("gamma", gamma)
     line = coefficient_beta1(g) - gamma * coefficient_beta2(g)
     return line, line**2 - 4 * g.k * coefficient_a(g)
 

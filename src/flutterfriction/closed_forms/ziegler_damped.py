@@ -29,6 +29,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from flutterfriction.closed_forms.ziegler import (
+    _groups,
     coefficient_a,
     coefficient_beta1,
     coefficient_beta2,
@@ -96,10 +97,19 @@ def _viscosity_args(g: object, eps: object, c: object) -> tuple[PendulumGroups, 
     """The groups, ``epsilon >= 0`` and ``c = c1/c2 >= 0`` of eq. (29), refused by name (an
     outside review: NaN, inf, c = -1 and complex values were computed on, or ended in
     ZeroDivisionError / OverflowError)."""
-    if not isinstance(g, PendulumGroups):
-        raise ParameterError(f"g must be the PendulumGroups of a pendulum (eq. 17), got "
-                             f"{type(g).__name__}")
-    return g, check_nonnegative("eps", eps), check_nonnegative("c", c)
+    return _groups(g), check_nonnegative("eps", eps), check_nonnegative("c", c)
+
+
+#: Largest ``epsilon`` of eq. (29) the closed forms take: ``eps^2`` within the double range.
+EPS_MAX = 1e150
+
+
+def _eps_squarable(eps: float) -> float:
+    """``eps`` if ``eps^2`` stays within the double range, else a :class:`ParameterError`."""
+    if eps > EPS_MAX:
+        raise ParameterError(f"eps must be <= 1e150 (eps^2 within the double range), got "
+                             f"{eps!r}")
+    return eps
 
 
 def _finite(values: NDArray | float, what: str) -> NDArray | float:
@@ -141,18 +151,14 @@ def eq52_coefficients(eps: float, gamma: float) -> NDArray[np.float64]:
     """Eq. (52): ``p = [1, 6 eps, 6 + eps^2 - 2 gamma, 2 eps, 1]`` (l1 = l2, k1 = k2, m1 = m2,
     d = l1, m3 = 0, c1 = c2)."""
     eps, gamma = check_nonnegative("eps", eps), check_real("gamma", gamma)
-    if eps > 1e150:
-        raise ParameterError(f"eps must be <= 1e150 (eps^2 within the double range), got "
-                             f"{eps!r}")
+    _eps_squarable(eps)
     return np.array([1.0, 6 * eps, 6 + eps**2 - 2 * gamma, 2 * eps, 1.0])
 
 
 def eq54_flutter_gamma(eps: float) -> float:
     """Eq. (54): ``P*_flu L/K = 4/3 + eps^2/2``."""
     eps = check_nonnegative("eps", eps)
-    if eps > 1e150:  # eps^2 beyond the double range
-        raise ParameterError(f"eps must be <= 1e150 (eps^2 within the double range), got "
-                             f"{eps!r}")
+    _eps_squarable(eps)
     return 4.0 / 3.0 + eps**2 / 2.0
 
 
@@ -192,9 +198,7 @@ def damped_flutter_gamma(g: PendulumGroups, eps: float, c: float) -> float:
         -1.2e-7 for 1.0e-11); :func:`damped_flutter_gamma_exact` answers there.
     """
     g, eps, c = _viscosity_args(g, eps, c)
-    if eps > 1e150:  # eps^2 beyond the double range
-        raise ParameterError(f"eps must be <= 1e150 (eps^2 within the double range), got "
-                             f"{eps!r}")
+    _eps_squarable(eps)
     with np.errstate(over="ignore", invalid="ignore"):
         b1, viscous, t, b2 = _flutter_terms(g, eps**2, c)
     _finite(b1 + viscous + t, "the damped flutter load's terms")

@@ -26,6 +26,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from flutterfriction.errors import (
     ParameterError,
+    check_finite_reals,
     check_nonnegative,
     check_positive,
     check_real,
@@ -77,23 +78,6 @@ class DimensionlessMatrices(NamedTuple):
     K: Matrix
     G_follower: Matrix
     G_dead: Matrix
-
-
-def _angles(name: str, value: ArrayLike) -> NDArray[np.float64]:
-    """Finite real numbers (a number or an array) as floats, refused by name: numpy reads
-    "1" and True as numbers, and NaN gave NaN positions (an outside review)."""
-    if isinstance(value, str | bytes | bool | np.bool_) or value is None:
-        raise ParameterError(f"{name} must be finite real numbers, got {value!r}")
-    try:
-        raw = np.asarray(value)
-    except (ValueError, TypeError):
-        raise ParameterError(f"{name} must be finite real numbers (an array)") from None
-    if raw.dtype.kind not in "iuf":
-        raise ParameterError(f"{name} must be finite real numbers, got dtype {raw.dtype}")
-    a = raw.astype(float)
-    if not np.all(np.isfinite(a)):
-        raise ParameterError(f"{name} must be finite (no NaN or inf)")
-    return a
 
 
 @dataclass(frozen=True)
@@ -371,7 +355,7 @@ class ZieglerPendulum:
     # ------------------------------------------------------------------ nonlinear kinematics
     def positions(self, alpha1: ArrayLike, alpha2: ArrayLike) -> dict[str, NDArray[np.float64]]:
         """Positions of A, D, B, E, C (eq. 1, with D corrected to use alpha1), shape (..., 2)."""
-        a1, a2 = _angles("alpha1", alpha1), _angles("alpha2", alpha2)
+        a1, a2 = check_finite_reals("alpha1", alpha1), check_finite_reals("alpha2", alpha2)
         u1 = np.stack([np.cos(a1), np.sin(a1)], axis=-1)
         u2 = np.stack([np.cos(a2), np.sin(a2)], axis=-1)
         B = self.l1 * u1
@@ -399,7 +383,7 @@ class ZieglerPendulum:
             ``d(state)/dt``, same shape as ``state``.
         """
         if check:
-            state = _angles("state", state)
+            state = check_finite_reals("state", state)
             P, H = check_real("P", P), check_real("H", H)
             if state.ndim not in (1, 2) or state.shape[0] != 4 or state.size == 0:
                 raise ParameterError(f"state must have shape (4,) or (4, n) "
