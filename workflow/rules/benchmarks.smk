@@ -24,6 +24,8 @@ rule work_precision_figure:
         check="results/checks/figures/work_precision.json",
     log:
         "results/logs/work_precision_figure.log",
+    benchmark:
+        "results/benchmarks/work_precision_figure.tsv"
     priority: 3  # with the other figures (see animate_pendulum_cycle)
     conda:
         "../envs/flutterfriction.yaml"

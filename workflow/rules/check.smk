@@ -70,6 +70,8 @@ rule report:
         problems="results/checks/problems.json",
     log:
         "results/logs/report.log",
+    benchmark:
+        "results/benchmarks/report.tsv"
     conda:
         "../envs/flutterfriction.yaml"
     resources:

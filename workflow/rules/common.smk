@@ -155,6 +155,13 @@ def benchmark_files(wildcards=None):
         ]
         + expand("results/benchmarks/report_{nb}.tsv", nb=NOTEBOOK_REPORTS)
         + ["results/benchmarks/stress.tsv"]
+        # the figures' jobs too: every job but this table's own, the report and the check
+        + expand("results/benchmarks/plot_{figure}.tsv", figure=SINGLE_FIGURES)
+        + expand("results/benchmarks/plot_{part}.tsv", part=FIGURE_BATCHES)
+        + [
+            f"results/benchmarks/{job}.tsv"
+            for job in ("animate_pendulum_cycle", "animate_rod_cycle", "work_precision_figure")
+        ]
     )
 
 

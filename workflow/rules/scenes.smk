@@ -111,6 +111,8 @@ rule plot:
         check="results/checks/figures/{scene}.json",
     log:
         "results/logs/plot/{scene}.log",
+    benchmark:
+        "results/benchmarks/plot_{scene}.tsv"
     wildcard_constraints:
         scene="|".join(SINGLE_FIGURES),
     # as the batches' figures: a notebook waits for its part's figures (drawn last, a sweep's
@@ -176,6 +178,8 @@ for _part in FIGURE_BATCHES:
             batch_figure_outputs(_part),
         log:
             f"results/logs/plot/{_part}.log",
+        benchmark:
+            f"results/benchmarks/plot_{_part}.tsv"
         # before the notebooks and the one-figure jobs: the batches are the longest plot jobs
         # (2-5 s), and one started last leaves a serial tail (its notebook waits for it)
         priority: 3
@@ -199,6 +203,8 @@ rule animate_pendulum_cycle:
         "results/figures/pendulum_cycle.gif",
     log:
         "results/logs/animate_pendulum_cycle.log",
+    benchmark:
+        "results/benchmarks/animate_pendulum_cycle.tsv"
     # with the figures, not after them: a 2.4 s GIF started last ran alone at the end of
     # the paper run (measured: 2.4 s of one idle core before the report)
     priority: 3
@@ -221,6 +227,8 @@ rule animate_rod_cycle:
         "results/figures/beck_cycle.gif",
     log:
         "results/logs/animate_rod_cycle.log",
+    benchmark:
+        "results/benchmarks/animate_rod_cycle.tsv"
     # with the figures, not after them: a 2.4 s GIF started last ran alone at the end of
     # the paper run (measured: 2.4 s of one idle core before the report)
     priority: 3
