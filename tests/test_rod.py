@@ -984,3 +984,31 @@ def test_no_verdict_at_every_check_point_is_not_a_pass(monkeypatch):
     monkeypatch.undo()
     for p in (407.6989 + 0.3, 877.1702 + 1.0):  # inside the flutter intervals
         assert rod_exact._exact_regime(p, RodGroups(tan_alpha=1.2, gamma=1e-9)) == "flutter"
+
+
+@pytest.mark.parametrize("groups", [dict(tan_alpha=0.0), dict(tan_alpha=1.0),
+                                    dict(tan_alpha=1.561, eta=0.0167),
+                                    dict(tan_alpha=1.0, eta=0.02, gamma=0.1)])
+def test_eigenvalues_along_loads_are_the_eigenvalues_at_each_load(groups):
+    """The batched roots (one assembly, FE spectra in blocks, Newton on every load at once) are
+    :func:`eigenvalues` at each load, as sets (an undamped spectrum's conjugate and real pairs
+    tie in the sort, so their order is round-off's), to round-off; through flutter and
+    divergence (p up to 40)."""
+    from scipy.optimize import linear_sum_assignment
+
+    g = RodGroups(**groups)
+    p = np.linspace(0.0, 40.0, 41)
+    along = ar.eigenvalues_along(p, g, n_modes=2, n_elements=16)
+    assert along.shape == (41, 4)
+    for row, load in zip(along, p, strict=True):
+        alone = ar.eigenvalues(load, g, n_modes=2, n_elements=16)
+        cost = np.abs(row[:, None] - alone[None, :])
+        i, j = linear_sum_assignment(cost)
+        assert np.all(cost[i, j] <= 1e-12 * np.maximum(1.0, np.abs(alone[j])))
+
+
+def test_eigenvalues_along_loads_refuses_as_at_one_load():
+    with pytest.raises(ParameterError, match="p_values"):
+        ar.eigenvalues_along(np.array([1.0, np.nan]), RodGroups(tan_alpha=1.0))
+    with pytest.raises(ParameterError, match="n_modes"):
+        ar.eigenvalues_along(np.array([1.0]), RodGroups(tan_alpha=1.0), n_modes=0)

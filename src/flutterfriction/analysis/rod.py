@@ -33,6 +33,7 @@ from flutterfriction.analysis.rod_exact import (
     _undamped_double_root,
     check_groups,
     eigenvalues,
+    eigenvalues_along,
     fe_eigenvalues,
     refine_eigenvalues,
 )
@@ -69,6 +70,7 @@ __all__ = [
     "DAMPING_FLOOR", "GROUP_RANGES", "LAST_INTERVAL_RTOL", "MAX_BRANCH_LOADS", "MAX_ELEMENTS",
     "P_MAX_LIMIT", "REGIME_CHECK_POINTS", "SCAN_STEP", "RodCriticalLoads", "branches",
     "check_groups", "continue_critical_loads", "critical_loads", "eigenvalues",
+    "eigenvalues_along",
     "fe_critical_loads", "fe_eigenvalues", "refine_eigenvalues",
 ]
 
@@ -479,8 +481,9 @@ def branches(g: RodGroups, p_values: NDArray, n_modes: int = 2,
     _check_mesh(n_elements, n_modes)
     check_groups(g)
     out = np.empty((p_values.size, 2 * n_modes), dtype=complex)
+    truths = eigenvalues_along(p_values, g, n_modes, n_elements)
     for i, p in enumerate(p_values):
-        truth = eigenvalues(p, g, n_modes, n_elements)
+        truth = truths[i]
         if i == 0:
             out[i] = truth
             continue

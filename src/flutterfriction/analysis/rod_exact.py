@@ -168,6 +168,72 @@ def eigenvalues(p: float, g: RodGroups, n_modes: int = 3, n_elements: int = 16) 
     return w[np.lexsort((w.real, w.imag))]
 
 
+#: Loads per block of :func:`eigenvalues_along` (the stacked first-order matrices of one
+#: block: 200 x 64 x 64 complex at 16 elements, 13 MB).
+_ALONG_BLOCK = 200
+
+
+def eigenvalues_along(p_values: NDArray, g: RodGroups, n_modes: int = 3,
+                      n_elements: int = 16) -> NDArray:
+    """:func:`eigenvalues` at every load of ``p_values`` (rows), computed together: the mesh
+    assembled once, the FE spectra in blocks of loads, Newton on eq. (118) for every load at
+    once (a load's roots stop iterating when all of them have converged, as they do alone).
+    Measured on Fig. 12's branches: 7.5 -> 3.2 CPU-s, the roots the same to round-off. Where
+    Newton fails at some load, every load is solved alone, so that the error is the one
+    :func:`eigenvalues` raises at the first failing load."""
+    _check_mesh(n_elements, n_modes)
+    p_values = np.asarray([_check_load(p, "p_values") for p in p_values], dtype=float)
+    check_groups(g)
+    fe = assemble(g, n_elements)
+    n = fe.M.shape[0]
+    MK, ML, MC = (np.linalg.solve(fe.M, X) for X in (fe.K_B, fe.load_matrix(), fe.C))
+    k = 2 * n_modes
+    guesses = np.empty((p_values.size, k), dtype=complex)
+    for start in range(0, p_values.size, _ALONG_BLOCK):
+        block = p_values[start:start + _ALONG_BLOCK]
+        A = np.zeros((block.size, 2 * n, 2 * n))
+        A[:, :n, n:] = np.eye(n)
+        A[:, n:, :n] = -MK[None] - block[:, None, None] * ML[None]
+        A[:, n:, n:] = -MC
+        s = np.linalg.eigvals(A)
+        guesses[start:start + block.size] = np.take_along_axis(
+            s, np.argsort(np.abs(s), axis=-1, kind="stable")[:, :k], axis=-1)
+    try:
+        w = _refine_along(p_values, g, guesses)
+    except ConvergenceError:
+        w = np.array([refine_eigenvalues(p, g, row) for p, row in
+                      zip(p_values, guesses, strict=True)])
+    order = np.lexsort((w.real, w.imag), axis=-1)
+    return np.take_along_axis(w, order, axis=-1)
+
+
+def _refine_along(p_values: NDArray, g: RodGroups, guesses: NDArray, tol: float = 1e-13,
+                  max_iter: int = 50) -> NDArray:
+    """:func:`refine_eigenvalues` for every load (rows of ``guesses``) at once; a row stops
+    iterating once each of its roots has met the tolerance (as :func:`refine_eigenvalues`
+    returns); a :class:`ConvergenceError` if some row does not."""
+    p = p_values[:, None]
+    w = np.asarray(guesses, dtype=complex).copy()
+    h = 1e-4 * np.maximum(1.0, np.abs(w))
+    met = np.zeros(w.shape, dtype=bool)
+    active = np.ones(w.shape[0], dtype=bool)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        sigma0 = np.real(characteristic_function(p, w, g, with_exponent=True)[1])
+        for _ in range(max_iter):
+            rows = np.flatnonzero(active)
+            pr, s0 = p[rows], sigma0[rows]
+            F, dF = _with_derivative(lambda z, pr=pr, s0=s0: _f(pr, z, g, s0), w[rows], h[rows])
+            step = F / dF
+            if not np.all(np.isfinite(step)):
+                break
+            w[rows] = w[rows] - step
+            met[rows] |= np.abs(step) <= tol * np.maximum(1.0, np.abs(w[rows]))
+            active[rows] = ~np.all(met[rows], axis=-1)
+            if not np.any(active):
+                return w
+    raise ConvergenceError("Newton on eq. (118) did not converge at every load")
+
+
 def fe_eigenvalues(g: RodGroups, p: float, n_elements: int, follower: bool = True) -> NDArray:
     """All eigenvalues ``omega~`` of the discretised rod at load ``p`` (first-order form)."""
     p = _check_load(p)
