@@ -26,11 +26,11 @@ def timed_figures() -> set[str]:
 
 
 before = digests()
-from flutterfriction.registry import PARTS  # noqa: E402
 
-batches = [f"{kind}_{part}" for part in PARTS for kind in ("solve", "plot")]
 listed = subprocess.run([sys.executable, "-m", "snakemake", "--list-rules"], capture_output=True,
                         text=True, check=True).stdout.split()
+# the batches: a part's (solve_<part>, plot_<part>) and a multi-figure scene's (plot_<scene>)
+batches = [r for r in listed if r.startswith(("solve_", "plot_")) and r != "solve_part"]
 subprocess.run([sys.executable, "-m", "snakemake", "-j2", "--quiet", "rules", "--forcerun",
                 "solve", "solve_part", "plot", *[b for b in batches if b in listed],
                 "animate_pendulum_cycle", "animate_rod_cycle"], check=True)

@@ -37,7 +37,20 @@ FIGURE_BATCHES = {
     part: [f for n in names for f in SCENES[n].figures] for part, names in BATCHES.items()
 }
 FIGURE_BATCHES = {part: figs for part, figs in FIGURE_BATCHES.items() if figs}
-SINGLE_FIGURES = [f for f in ALL_FIGURES if FIGURE_DATA[f] not in BATCHED]
+FIGURE_BATCH_SCENES = {part: BATCHES[part] for part in FIGURE_BATCHES}
+# A slow scene that draws several figures (Figs. 15-17, from the rod's one cycle) draws them in
+# one job too, named by the scene: they always rerun together, and each job more would pay
+# its start-up and imports again (~1.7 CPU-s a plot job here).
+MULTI_FIGURE_SCENES = {
+    n: list(SCENES[n].figures) for n in SINGLE_SCENES if len(SCENES[n].figures) > 1
+}
+FIGURE_BATCHES.update(MULTI_FIGURE_SCENES)
+FIGURE_BATCH_SCENES.update({n: [n] for n in MULTI_FIGURE_SCENES})
+SINGLE_FIGURES = [
+    f
+    for f in ALL_FIGURES
+    if FIGURE_DATA[f] not in BATCHED and FIGURE_DATA[f] not in MULTI_FIGURE_SCENES
+]
 
 
 def job_sources(*modules):

@@ -172,8 +172,10 @@ for _part in FIGURE_BATCHES:
             f"plot_{_part}"
         input:
             figure_batch_sources(_part),
-            data=expand("results/data/{scene}.json", scene=BATCHES[_part]),
-            timings=expand("results/benchmarks/{scene}.timings.json", scene=BATCHES[_part]),
+            data=expand("results/data/{scene}.json", scene=FIGURE_BATCH_SCENES[_part]),
+            timings=expand(
+                "results/benchmarks/{scene}.timings.json", scene=FIGURE_BATCH_SCENES[_part]
+            ),
         output:
             batch_figure_outputs(_part),
         log:
