@@ -1012,3 +1012,13 @@ def test_eigenvalues_along_loads_refuses_as_at_one_load():
         ar.eigenvalues_along(np.array([1.0, np.nan]), RodGroups(tan_alpha=1.0))
     with pytest.raises(ParameterError, match="n_modes"):
         ar.eigenvalues_along(np.array([1.0]), RodGroups(tan_alpha=1.0), n_modes=0)
+
+
+def test_newton_on_many_loads_names_the_first_load_it_fails_at():
+    """As the loads solved one by one would: the first failing load in order, not the last."""
+    from flutterfriction.analysis.rod_exact import _newton_rows
+
+    g = RodGroups(tan_alpha=1.0, eta=0.01)
+    guesses = np.array([[3 + 4j, 10j], [3 + 4j, 10j], [3 + 4j, 10j]])
+    with pytest.raises(ConvergenceError, match=r"at p = 7\.25 from 2 guesses"):
+        _newton_rows(np.array([7.25, 12.5, 20.0]), g, guesses, tol=1e-13, max_iter=1)

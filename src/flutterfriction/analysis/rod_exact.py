@@ -94,7 +94,19 @@ def refine_eigenvalues(p: float, g: RodGroups, guesses: NDArray, tol: float = 1e
     :class:`ConvergenceError` at once, without numpy's warnings (the callers treat it as any
     failed Newton: an outside audit saw divide-by-zero warnings printed for answers that
     were right)."""
-    w = np.asarray(guesses, dtype=complex).copy()
+    w = np.asarray(guesses, dtype=complex)
+    return _newton_rows(p, g, w.reshape(1, -1), tol, max_iter).reshape(w.shape)
+
+
+def _newton_rows(p: float | NDArray, g: RodGroups, guesses: NDArray, tol: float,
+                 max_iter: int) -> NDArray:
+    """Newton on eq. (118) from each row of ``guesses`` (2-d) at its load (``p``: one load
+    for every row, or one per row); :func:`refine_eigenvalues` is one row. A row stops
+    iterating once each of its roots has met the tolerance; a :class:`ConvergenceError` names
+    the first row's load whose roots do not all converge."""
+    scalar = np.ndim(p) == 0
+    loads = p if scalar else np.asarray(p, dtype=float)[:, None]
+    w = np.array(guesses, dtype=complex)
     h = 1e-4 * np.maximum(1.0, np.abs(w))
     # A root counts as converged once its step has met the tolerance: next to a double root
     # the steps of two nearly coincident roots jitter at ~1e-13 |w| (f' is small there), and
@@ -102,23 +114,35 @@ def refine_eigenvalues(p: float, g: RodGroups, guesses: NDArray, tol: float = 1e
     # p = 48.85: every root converged alone; an outside audit). Elsewhere a converged step
     # stays converged, so the iterations and the roots are those of "all at once".
     met = np.zeros(w.shape, dtype=bool)
+    active = np.ones(w.shape[0], dtype=bool)
+    failed = np.zeros(w.shape[0], dtype=bool)
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        sigma0 = np.real(characteristic_function(p, w, g, with_exponent=True)[1])
+        sigma0 = np.real(characteristic_function(loads, w, g, with_exponent=True)[1])
         for _ in range(max_iter):
-            F, dF = _with_derivative(lambda z: _f(p, z, g, sigma0), w, h)
+            rows = np.flatnonzero(active)
+            pr = loads if scalar else loads[rows]
+            s0 = sigma0[rows]
+            F, dF = _with_derivative(lambda z, pr=pr, s0=s0: _f(pr, z, g, s0), w[rows], h[rows])
             step = F / dF
-            if not np.all(np.isfinite(step)):
+            finite = np.all(np.isfinite(step), axis=-1)
+            failed[rows[~finite]] = True
+            rows, step = rows[finite], step[finite]
+            w[rows] = w[rows] - step
+            met[rows] |= np.abs(step) <= tol * np.maximum(1.0, np.abs(w[rows]))
+            active[:] = False
+            active[rows] = ~np.all(met[rows], axis=-1)
+            if not np.any(active):
                 break
-            w = w - step
-            met |= np.abs(step) <= tol * np.maximum(1.0, np.abs(w))
-            if np.all(met):
-                return w
-    # one line a reader can act on (the guesses' array, printed whole, was a screenful)
-    raise ConvergenceError(f"Newton on eq. (118) did not converge at p = {p:.10g} from "
-                           f"{np.size(guesses)} guesses: nearly coincident roots (next to a "
-                           f"double root, where a regime changes) or a flat point of eq. "
-                           f"(118); a slightly different p_max or step moves the loads "
-                           f"tried")
+    failed |= active  # not converged in max_iter steps
+    if np.any(failed):
+        load = p if scalar else p[int(np.argmax(failed))]
+        # one line a reader can act on (the guesses' array, printed whole, was a screenful)
+        raise ConvergenceError(f"Newton on eq. (118) did not converge at p = {load:.10g} from "
+                               f"{w.shape[-1]} guesses: nearly coincident roots (next to a "
+                               f"double root, where a regime changes) or a flat point of eq. "
+                               f"(118); a slightly different p_max or step moves the loads "
+                               f"tried")
+    return w
 
 
 #: Largest FE mesh of the eigenvalue helpers (:func:`eigenvalues`, :func:`branches`,
@@ -177,10 +201,10 @@ def eigenvalues_along(p_values: NDArray, g: RodGroups, n_modes: int = 3,
                       n_elements: int = 16) -> NDArray:
     """:func:`eigenvalues` at every load of ``p_values`` (rows), computed together: the mesh
     assembled once, the FE spectra in blocks of loads, Newton on eq. (118) for every load at
-    once (a load's roots stop iterating when all of them have converged, as they do alone).
-    Measured on Fig. 12's branches: 7.5 -> 3.2 CPU-s, the roots the same to round-off. Where
-    Newton fails at some load, every load is solved alone, so that the error is the one
-    :func:`eigenvalues` raises at the first failing load."""
+    once (a load's roots stop iterating when all of them have converged, as they do alone;
+    the error of a failed Newton names the first such load, as :func:`eigenvalues` load by
+    load would). Measured on Fig. 12's branches: 7.5 -> 3.2 CPU-s, the roots the same to
+    round-off."""
     _check_mesh(n_elements, n_modes)
     p_values = np.asarray([_check_load(p, "p_values") for p in p_values], dtype=float)
     check_groups(g)
@@ -198,40 +222,9 @@ def eigenvalues_along(p_values: NDArray, g: RodGroups, n_modes: int = 3,
         s = np.linalg.eigvals(A)
         guesses[start:start + block.size] = np.take_along_axis(
             s, np.argsort(np.abs(s), axis=-1, kind="stable")[:, :k], axis=-1)
-    try:
-        w = _refine_along(p_values, g, guesses)
-    except ConvergenceError:
-        w = np.array([refine_eigenvalues(p, g, row) for p, row in
-                      zip(p_values, guesses, strict=True)])
+    w = _newton_rows(p_values, g, guesses, 1e-13, 50)
     order = np.lexsort((w.real, w.imag), axis=-1)
     return np.take_along_axis(w, order, axis=-1)
-
-
-def _refine_along(p_values: NDArray, g: RodGroups, guesses: NDArray, tol: float = 1e-13,
-                  max_iter: int = 50) -> NDArray:
-    """:func:`refine_eigenvalues` for every load (rows of ``guesses``) at once; a row stops
-    iterating once each of its roots has met the tolerance (as :func:`refine_eigenvalues`
-    returns); a :class:`ConvergenceError` if some row does not."""
-    p = p_values[:, None]
-    w = np.asarray(guesses, dtype=complex).copy()
-    h = 1e-4 * np.maximum(1.0, np.abs(w))
-    met = np.zeros(w.shape, dtype=bool)
-    active = np.ones(w.shape[0], dtype=bool)
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        sigma0 = np.real(characteristic_function(p, w, g, with_exponent=True)[1])
-        for _ in range(max_iter):
-            rows = np.flatnonzero(active)
-            pr, s0 = p[rows], sigma0[rows]
-            F, dF = _with_derivative(lambda z, pr=pr, s0=s0: _f(pr, z, g, s0), w[rows], h[rows])
-            step = F / dF
-            if not np.all(np.isfinite(step)):
-                break
-            w[rows] = w[rows] - step
-            met[rows] |= np.abs(step) <= tol * np.maximum(1.0, np.abs(w[rows]))
-            active[rows] = ~np.all(met[rows], axis=-1)
-            if not np.any(active):
-                return w
-    raise ConvergenceError("Newton on eq. (118) did not converge at every load")
 
 
 def fe_eigenvalues(g: RodGroups, p: float, n_elements: int, follower: bool = True) -> NDArray:
