@@ -24,7 +24,6 @@ from scipy.optimize import linear_sum_assignment
 
 from flutterfriction.analysis.rod_exact import (
     MAX_ELEMENTS,
-    _check_load,
     _check_mesh,
     _damped_divergence,
     _damped_flutter,
@@ -476,12 +475,9 @@ def branches(g: RodGroups, p_values: NDArray, n_modes: int = 2,
     if p_values.size > MAX_BRANCH_LOADS:  # (1e7 loads ran for minutes; an outside audit)
         raise ParameterError(f"p_values must hold at most {MAX_BRANCH_LOADS} loads (~1 ms "
                              f"each), got {p_values.size}")
-    for p in p_values:
-        _check_load(p, "p_values")
-    _check_mesh(n_elements, n_modes)
-    check_groups(g)
-    out = np.empty((p_values.size, 2 * n_modes), dtype=complex)
+    # (the loads, the mesh and the groups are checked by eigenvalues_along)
     truths = eigenvalues_along(p_values, g, n_modes, n_elements)
+    out = np.empty((p_values.size, 2 * n_modes), dtype=complex)
     for i, p in enumerate(p_values):
         truth = truths[i]
         if i == 0:
