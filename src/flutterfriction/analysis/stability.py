@@ -232,6 +232,7 @@ def refine_roots(f: Callable[[float], float], grid: NDArray, values: NDArray,
     are minimised, and a negative minimum within the floor there (``floor_at``, the floor at
     any load) is refused too: at a double root the normalised discriminant is pure noise.
     Without ``floor`` the behaviour is the historical one (used by the rod code)."""
+    values = np.asarray(values, dtype=float)
     fl = np.zeros_like(values) if floor is None else np.asarray(floor, dtype=float)
 
     def noise(lo: int, hi: int) -> None:
@@ -240,42 +241,46 @@ def refine_roots(f: Callable[[float], float], grid: NDArray, values: NDArray,
                 f"the discriminant is at its round-off floor for loads {grid[lo]:.6g}.."
                 f"{grid[hi]:.6g}: a coalescence there is not resolved in double precision")
 
+    if len(grid) != len(values):
+        raise ValueError(f"grid and values differ in length ({len(grid)}, {len(values)})")
     roots = []
-    for i, (x, v) in enumerate(zip(grid, values, strict=True)):
-        if v == 0.0:  # an exact zero is a root unless its neighbours are round-off too
-            noise(max(i - 1, 0), min(i + 1, len(grid) - 1))
-            roots.append(float(x))
-    for i in range(len(grid) - 1):
-        if values[i] * values[i + 1] < 0.0:
-            noise(i, i + 1)
-            roots.append(_brent(f, grid[i], grid[i + 1]))
+    # The samples' tests are vectorised (the same comparisons, in the same order of samples:
+    # a Python loop over the grid was half the cost of a pendulum's critical loads).
+    for i in np.flatnonzero(values == 0.0):
+        # an exact zero is a root unless its neighbours are round-off too
+        noise(max(i - 1, 0), min(i + 1, len(grid) - 1))
+        roots.append(float(grid[i]))
+    for i in np.flatnonzero(values[:-1] * values[1:] < 0.0):
+        noise(i, i + 1)
+        roots.append(_brent(f, grid[i], grid[i + 1]))
     candidates = []
     last = len(grid) - 1
-    for i in range(len(grid)):
-        # the ends of the scan too, one-sided: a pair of roots within the first or the last
-        # step leaves the end sample a minimum (an outside review: load_max = 1e5 put the
-        # pendulum's flutter interval [2.09, 4.91] inside the first step of 49, and both loads
-        # were missed, silently)
+    # the ends of the scan too, one-sided: a pair of roots within the first or the last
+    # step leaves the end sample a minimum (an outside review: load_max = 1e5 put the
+    # pendulum's flutter interval [2.09, 4.91] inside the first step of 49, and both loads
+    # were missed, silently)
+    idx = np.arange(len(grid))
+    below, above = values[np.maximum(idx - 1, 0)], values[np.minimum(idx + 1, last)]
+    with np.errstate(invalid="ignore"):
+        dips = ((np.minimum(np.minimum(below, values), above) > 0.0)
+                & (values <= below) & (values <= above))
+    for i in np.flatnonzero(dips) if last > 0 else ():
         lo, hi = max(i - 1, 0), min(i + 1, last)
-        if hi == lo:
-            continue
-        v = values[lo:hi + 1]
-        if v.min() > 0.0 and values[i] <= v[0] and values[i] <= v[-1]:
-            depth = min(v[0], v[-1]) - values[i]
-            if floor is not None:
-                if values[i] <= fl[i]:
-                    noise(lo, hi)
-                    continue  # a neighbour is above the floor: a touch at round-off level
-                # A dip no deeper than round-off, two samples out too, is a plateau: the
-                # scan's loads load_max 2^-k crowd where the discriminant is flat to the last
-                # bits (list 47: four minimisations a window at loads ~1e-16, 6x the scan's
-                # cost). Two out, because a narrow interval centred between samples i and
-                # i + 1 leaves them equal, its dip seen only against i - 1 and i + 2.
-                lo2, hi2 = max(i - 2, 0), min(i + 2, last)
-                depth = max(depth, min(values[lo2], values[hi2]) - values[i])
-                if depth <= np.max(fl[lo2:hi2 + 1]):
-                    continue
-            candidates.append((depth, i))
+        depth = min(values[lo], values[hi]) - values[i]
+        if floor is not None:
+            if values[i] <= fl[i]:
+                noise(lo, hi)
+                continue  # a neighbour is above the floor: a touch at round-off level
+            # A dip no deeper than round-off, two samples out too, is a plateau: the
+            # scan's loads load_max 2^-k crowd where the discriminant is flat to the last
+            # bits (list 47: four minimisations a window at loads ~1e-16, 6x the scan's
+            # cost). Two out, because a narrow interval centred between samples i and
+            # i + 1 leaves them equal, its dip seen only against i - 1 and i + 2.
+            lo2, hi2 = max(i - 2, 0), min(i + 2, last)
+            depth = max(depth, min(values[lo2], values[hi2]) - values[i])
+            if depth <= np.max(fl[lo2:hi2 + 1]):
+                continue
+        candidates.append((depth, i))
     if floor is not None:
         # A round-off plateau has a local minimum at almost every sample (the historical hang:
         # hundreds of minimisations per scan). Only the deepest few dips are minimised; a
