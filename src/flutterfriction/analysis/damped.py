@@ -32,7 +32,7 @@ from flutterfriction.analysis.polynomial import (
     regime_from_coefficients,
 )
 from flutterfriction.analysis.routh import routh_hurwitz
-from flutterfriction.analysis.stability import Regime, classify, discriminant
+from flutterfriction.analysis.stability import Regime, classify, classify_rows, discriminant
 from flutterfriction.errors import (
     ConvergenceError,
     ParameterError,
@@ -418,7 +418,7 @@ def divergence_onset(M: ArrayLike, C: ArrayLike, K0: ArrayLike, K1: ArrayLike, *
         regime_of = sys_.regime_eigen
 
         def regimes_of(loads: NDArray) -> list[Regime | None]:
-            return [classify(s) for s in sys_.spectra(loads)]
+            return classify_rows(sys_.spectra(loads))
 
         def disc(p: float) -> float:
             # Only the eigenvalues nearest the unstable ones: a product over all pairs of a

@@ -110,6 +110,26 @@ def classify(s: ArrayLike, rtol: float = 1e-8) -> Regime:
     return Regime.DIVERGENCE
 
 
+def classify_rows(s: ArrayLike, rtol: float = 1e-8) -> list[Regime]:
+    """:func:`classify` of each row of ``s`` (spectra, shape (m, n)), vectorised: the same
+    comparisons elementwise, so the same verdicts (a scan's grid of spectra classified one
+    call per load cost more than computing them). Rows that are empty or not finite go
+    through :func:`classify`, which refuses them with its own message."""
+    s = np.asarray(s, dtype=complex)
+    if s.ndim != 2 or s.shape[1] == 0 or not np.all(np.isfinite(s)):
+        return [classify(row, rtol) for row in s]
+    rtol = check_real("rtol", rtol)
+    if not 0.0 <= rtol < 1.0:
+        raise ParameterError(f"rtol must be in [0, 1), got {rtol!r}")
+    modulus = np.abs(s)
+    scale = np.max(modulus, axis=1, keepdims=True)
+    tol = rtol * modulus + 1000 * np.finfo(float).eps * scale
+    unstable = s.real > tol
+    flutter = np.any(unstable & (np.abs(s.imag) > tol), axis=1)
+    return [Regime.FLUTTER if f else Regime.DIVERGENCE if u else Regime.STABLE
+            for u, f in zip(np.any(unstable, axis=1).tolist(), flutter.tolist(), strict=True)]
+
+
 def _cholesky_reduction(M: Matrix) -> Matrix:
     """``L^{-1}`` with ``M = L L^T``: the pencil (K, M) becomes the matrix ``L^{-1} K L^{-T}``."""
     L = np.linalg.cholesky(M)
