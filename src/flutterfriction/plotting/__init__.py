@@ -4,8 +4,7 @@ from __future__ import annotations
 
 import os
 import time
-from collections.abc import Callable, Iterator
-from contextlib import contextmanager
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -24,6 +23,7 @@ from matplotlib.transforms import Bbox  # noqa: E402
 from flutterfriction.figure_check import check_figure, saved_pad_inches  # noqa: E402
 from flutterfriction.figure_offences import offences_json  # noqa: E402
 from flutterfriction.io import atomic_path, write_json  # noqa: E402
+from flutterfriction.plotting.font_subsets import embedded_font_subsets  # noqa: E402
 
 plt.rcParams.update({
     "font.size": 9, "axes.titlesize": 9, "axes.labelsize": 9, "legend.fontsize": 8,
@@ -188,31 +188,6 @@ def tidy_log_axis(axis, values) -> None:
     axis.set_major_formatter(FuncFormatter(lambda x, _: f"{x:g}"))
 
 
-#: OpenType layout tables (ligatures, positioning): a PDF viewer draws the glyphs at the places
-#: matplotlib wrote and never reads them, and matplotlib reads only the subset's advance widths
-#: (``backend_pdf.embedTTFType42``); fontTools' subsetting decompiled them for every embedded
-#: font, ~30 % of a paper PDF's save (14.5 -> 10.4 CPU-s over the 39 figures, measured).
-_UNREAD_FONT_TABLES = ("GSUB", "GPOS", "GDEF")
-
-
-@contextmanager
-def _embedded_fonts_without_layout_tables() -> Iterator[None]:
-    """While saving: the TrueType subsets embedded in a PDF leave out the layout tables
-    (:data:`_UNREAD_FONT_TABLES`). matplotlib offers no option for it; fontTools' list of tables
-    to drop is extended for the save and put back after (a no-op if fontTools renames it)."""
-    from fontTools.subset import Options  # a dependency of matplotlib's PDF backend
-
-    default = getattr(Options, "_drop_tables_default", None)
-    if not isinstance(default, list):
-        yield
-        return
-    Options._drop_tables_default = [*default, *_UNREAD_FONT_TABLES]
-    try:
-        yield
-    finally:
-        Options._drop_tables_default = default
-
-
 def _canvas_cut(fig: Figure, tight: Bbox, pad: float) -> np.ndarray | None:
     """The PNG of ``fig`` saved with ``bbox_inches=tight.padded(pad)`` [in], cut from its
     rendered Agg canvas (RGBA rows, top first); the pad beyond the canvas is the figure's
@@ -249,7 +224,8 @@ def save_figure(fig: Figure, *paths: str | os.PathLike, draft: bool = False,
     and render PNGs at 200 dpi. ``check``: then run the figure check
     (:func:`flutterfriction.figure_check.check_figure`) and write its offences to this JSON
     file (the workflow's check fails the run on any). A PDF's embedded font subsets leave out
-    the OpenType layout tables no PDF reader uses (:func:`_embedded_fonts_without_layout_tables`).
+    the OpenType layout tables no PDF reader uses, and are cut from per-process working copies
+    of the fonts (the same bytes, cheaper; :mod:`flutterfriction.plotting.font_subsets`).
 
     The figure is laid out, measured and rendered once at the PNG's resolution, by one draw
     into the Agg canvas (the check's, when checked): its layout engine runs there, the PNG is
@@ -307,7 +283,7 @@ def save_figure(fig: Figure, *paths: str | os.PathLike, draft: bool = False,
             # installed one there; an outside review)
             with plt.rc_context({"figure.autolayout": False,
                                  "figure.constrained_layout.use": False}), \
-                    _embedded_fonts_without_layout_tables():
+                    embedded_font_subsets():
                 fig.set_layout_engine(None)
                 for path in map(Path, paths):
                     fmt = path.suffix.lstrip(".")
