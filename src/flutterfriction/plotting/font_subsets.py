@@ -8,7 +8,7 @@ subsets). Two levers, both applied while saving (:func:`embedded_font_subsets`):
 
 - the subsets leave out the OpenType layout tables (:data:`UNREAD_FONT_TABLES`), which no PDF
   reader uses (was ~30 % of a paper PDF's save);
-- a process that embeds a font a second time (a chapter part's figure batch) cuts it once to a
+- a process that embeds a font in a second PDF (a chapter part's figure batch) cuts it once to a
   *working copy* holding the glyphs of the scripts the figures write (:data:`WORKING_RANGES`:
   Latin, Greek, punctuation, arrows, mathematical operators; ~1000 glyphs) and cuts each
   further subset from that copy, ~4.5x cheaper (measured on the 164 subsets of the paper
@@ -67,10 +67,12 @@ class _FontBytes(io.BytesIO):
 
 
 class _WorkingCopies:
-    """Per process: how often each font was subset, and its working copy once asked twice."""
+    """Per process: the PDF save that first embedded each font, and its working copy, made
+    when a later save embeds it again."""
 
     def __init__(self) -> None:
-        self.asked: dict[tuple, int] = {}
+        self.saves = 0  # PDF saves so far (from_working_copies counts them)
+        self.first_save: dict[tuple, int] = {}  # the save that first embedded each font
         self.copies: dict[tuple, tuple[bytes, dict[int, int]]] = {}
         self.cut_from_copy = 0  # subsets cut from a working copy (the tests read them)
         self.outside_copy = 0  # subsets with a glyph the copy lacks, cut from the font
@@ -84,8 +86,9 @@ class _WorkingCopies:
         # the tables to drop are part of the key: a copy cut under other options would give
         # other subsets
         key = (str(fontfile), fontfile.face_index, tuple(Options._drop_tables_default))
-        self.asked[key] = self.asked.get(key, 0) + 1
-        if self.asked[key] == 1:  # a font embedded once costs what it did
+        # a font's first PDF costs what it did (one PDF may subset one font several times:
+        # a copy built there cost more than it saved in a one-figure job, measured)
+        if self.first_save.setdefault(key, self.saves) == self.saves:
             return direct(fontfile, glyphs)
         if key not in self.copies:
             self.copies[key] = self._working_copy(direct, backend, fontfile)
@@ -142,6 +145,7 @@ def from_working_copies() -> Iterator[None]:
     def get_glyphs_subset(fontfile: Any, glyphs: Any) -> Any:
         return _COPIES.subset(direct, backend, fontfile, glyphs)
 
+    _COPIES.saves += 1
     backend.get_glyphs_subset = get_glyphs_subset
     try:
         yield
