@@ -86,8 +86,13 @@ def _newton2(residual: Callable[[NDArray], NDArray], x0: NDArray, tol: float = 1
     raise ConvergenceError(f"Newton did not converge from {x0} (last {x}, residual {r})")
 
 
-def refine_eigenvalues(p: float, g: RodGroups, guesses: NDArray, tol: float = 1e-13,
-                       max_iter: int = 50) -> NDArray:
+#: Newton on eq. (118): step tolerance (relative to max(1, |omega~|)) and iterations, for one
+#: load's roots, many loads' (:func:`eigenvalues_along`) and roots refined alone.
+NEWTON_TOL, NEWTON_MAX_ITER = 1e-13, 50
+
+
+def refine_eigenvalues(p: float, g: RodGroups, guesses: NDArray, tol: float = NEWTON_TOL,
+                       max_iter: int = NEWTON_MAX_ITER) -> NDArray:
     """Newton on the exact ``f(p, omega~) = 0`` from each guess (vectorised over guesses).
 
     A step onto the pole ``omega~ = -1/eta`` of eq. (113) or a flat point (``f' = 0``) is a
@@ -231,7 +236,7 @@ def eigenvalues_along(p_values: NDArray, g: RodGroups, n_modes: int = 3,
         s = np.linalg.eigvals(A)
         guesses[start:start + block.size] = np.take_along_axis(
             s, np.argsort(np.abs(s), axis=-1, kind="stable")[:, :k], axis=-1)
-    w = _newton_rows(p_values, g, guesses, 1e-13, 50)
+    w = _newton_rows(p_values, g, guesses, NEWTON_TOL, NEWTON_MAX_ITER)
     order = np.lexsort((w.real, w.imag), axis=-1)
     return np.take_along_axis(w, order, axis=-1)
 
@@ -367,7 +372,8 @@ def _refined_alone(p: float, g: RodGroups, guesses: NDArray, which: NDArray) -> 
     # a short array costs its overhead)
     rows = np.flatnonzero(which)
     if rows.size:
-        w, failed = _newton_rows_failing(p, g, guesses[rows][:, None], 1e-13, 50)
+        w, failed = _newton_rows_failing(p, g, guesses[rows][:, None], NEWTON_TOL,
+                                         NEWTON_MAX_ITER)
         out[rows[~failed]] = w[~failed, 0]
     for k in np.flatnonzero(which & ~np.isfinite(out) & (guesses.real == 0)):
         out[k] = _refined_off_axis(p, g, guesses[k], out)

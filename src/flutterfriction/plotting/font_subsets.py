@@ -26,7 +26,7 @@ from __future__ import annotations
 import inspect
 import io
 from collections.abc import Iterator
-from contextlib import ExitStack, contextmanager
+from contextlib import contextmanager
 from typing import Any
 
 #: OpenType layout tables (ligatures, positioning): a PDF viewer draws the glyphs at the places
@@ -156,7 +156,5 @@ def from_working_copies() -> Iterator[None]:
 @contextmanager
 def embedded_font_subsets() -> Iterator[None]:
     """While saving PDFs: both levers of this module."""
-    with ExitStack() as stack:
-        stack.enter_context(without_layout_tables())
-        stack.enter_context(from_working_copies())
+    with without_layout_tables(), from_working_copies():
         yield
