@@ -304,8 +304,8 @@ def test_the_check_measures_the_figure_as_its_png_is_saved(tmp_path, monkeypatch
     """The check runs at the PNG's resolution (text extents differ by resolution: at the
     figure's 150 dpi it passed three quick-preset PNGs, saved at 100 dpi, whose labels
     overlapped), and its draw lays the figure out, measures its tight box and renders the
-    PNG's pixels once: a figure saved as PDF + PNG and checked is drawn 3 times (was 5), as a
-    checked PNG once (was 3). The PNG is the one ``bbox_inches="tight"`` gives (same size, the
+    PNG's pixels once: a figure saved as PDF + PNG and checked is drawn twice (was 5, then 3:
+    the PDF's own layout pass is skipped), as a checked PNG once (was 3). The PNG is the one ``bbox_inches="tight"`` gives (same size, the
     drawing within a pixel), with or without the check, and the figure keeps its own
     resolution."""
     from matplotlib.figure import Figure
@@ -333,7 +333,7 @@ def test_the_check_measures_the_figure_as_its_png_is_saved(tmp_path, monkeypatch
     save_figure(fig, tmp_path / "a.pdf", tmp_path / "a.png", draft=draft,
                 check=tmp_path / "a.json")
     assert seen == [dpi] and fig.dpi == 150
-    assert len(draws) == 3
+    assert len(draws) == 2
     draws.clear()
     save_figure(constrained(), tmp_path / "d.png", draft=draft, check=tmp_path / "d.json")
     assert len(draws) == 1
