@@ -88,6 +88,11 @@ rule all:
         rules.check.output,
 
 
+# Snakemake's job-rate timers: fewer scheduling rounds (common.smk).
+onstart:
+    rate_limit_rounds_every(workflow)
+
+
 # The finished run does not wait for Snakemake's job-rate timers (common.smk).
 onsuccess:
     stop_rate_limit_timers()

@@ -257,6 +257,27 @@ def batch_figure_outputs(part):
     return out
 
 
+#: Snakemake's default job rate limit (--max-jobs-per-timespan 100/1s) and the timespan [s] it
+#: becomes here (see rate_limit_rounds_every).
+DEFAULT_RATE_LIMIT, RATE_LIMIT_TIMESPAN = (100, 1), 10
+
+
+def rate_limit_rounds_every(workflow):
+    """Snakemake's job rate limit runs the scheduler again one timespan after every scheduling
+    round, and each of those rounds arms its timer again: the rounds grow like jobs x seconds
+    (3108 in a paper run's 43 jobs with the default 1 s, each reading the size of every ready
+    job's inputs), 27-28 CPU-s of Snakemake's own process taken from the jobs on two cores
+    (measured; 13-14 CPU-s with 10 s). The default limit's timespan becomes
+    RATE_LIMIT_TIMESPAN: the same jobs are submitted (two cores never near 100 jobs in 10 s; a
+    cluster profile's 100 in 10 s is no limit either). A limit given on the command line or in
+    a profile is kept (only the default's value is changed). Called by onstart, after the
+    scheduler took the limit and before it runs."""
+    settings = getattr(workflow, "scheduling_settings", None)
+    limit = getattr(settings, "max_jobs_per_timespan", None)
+    if (getattr(limit, "max_jobs", None), getattr(limit, "timespan", None)) == DEFAULT_RATE_LIMIT:
+        limit.timespan = RATE_LIMIT_TIMESPAN
+
+
 def stop_rate_limit_timers():
     """Snakemake's job rate limit (--max-jobs-per-timespan, default 100/1s) starts a 1-s timer
     thread at each submission, not a daemon: the last one held the finished run for up to a
