@@ -279,9 +279,10 @@ def rate_limit_rounds_every(workflow):
 
 
 def stop_rate_limit_timers():
-    """Snakemake's job rate limit (--max-jobs-per-timespan, default 100/1s) starts a 1-s timer
-    thread at each submission, not a daemon: the last one held the finished run for up to a
-    second (measured 0.96 s after the check). Called by onsuccess/onerror, when nothing is
+    """Snakemake's job rate limit (--max-jobs-per-timespan; its timespan here 10 s, see
+    rate_limit_rounds_every) starts a timer thread at each scheduling round, not a daemon: the
+    last one held the finished run for up to a timespan (measured 0.96 s after the check at
+    1 s). Called by onsuccess/onerror, when nothing is
     left to schedule: stop them."""
     import threading
 

@@ -4,7 +4,7 @@ matplotlib parses a math string (``$10^{-3}$``, ``$\\tilde p$``) with pyparsing,
 string on the slow 2-core host, and caches the result per *parser*, that is per renderer, 50
 strings deep. Saving a figure makes several renderers (the check's Agg canvas, the PDF's
 measuring renderer and its drawing one), and a figure batch one set per figure, so the same
-strings were parsed again and again: 1131 parses of ~600 distinct keys while drawing the 39
+strings were parsed again and again: 1131 parses of ~520 distinct keys while drawing the 39
 paper figures in one process (11.9 of ~74 CPU-s, measured).
 
 While a figure is saved (:func:`shared_mathtext_parses`), every parser looks the parse up in
@@ -27,7 +27,7 @@ from contextlib import contextmanager
 from typing import Any
 
 #: Most parses held (least recently used dropped first): a figure batch's distinct strings are
-#: ~300 (measured: ~600 for all 39 paper figures in one process), each a few kB.
+#: ~300 (measured: 522 for all 39 paper figures in one process), each a few kB.
 MAX_PARSES = 2048
 
 #: The settings a parse can depend on beyond matplotlib's key (by prefix).
