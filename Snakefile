@@ -2,8 +2,7 @@
 # tolerance check of every number the chapter quotes (results/checks/summary.md).
 import os
 import sys
-
-import yaml
+from pathlib import Path
 
 # One BLAS thread per job: the matrices are small and Snakemake already runs jobs in parallel;
 # two threads per job on two cores made small eigenvalue solves up to 100x slower (measured
@@ -16,15 +15,8 @@ for _var in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 
 from snakemake.utils import min_version
 
-from flutterfriction.config import (
-    yaml_file_problems,
-    expand_parameter_lists,
-    validate_config,
-)
-from flutterfriction.errors import ParameterError
-from flutterfriction.reference import reference_file_problems
-from flutterfriction.registry import SCENES, check_registry
-from flutterfriction.report import load_coverage
+from flutterfriction.config import expand_parameter_lists
+from flutterfriction.workflow_plan import workflow_plan
 
 min_version("8.0")
 
@@ -41,23 +33,11 @@ report: "workflow/report/workflow.rst"
 # problem naming the key (the schema, the pendulum and rod geometry, the models' numerical
 # ranges, finite numbers, ranges); a key written twice in workflow/config.yaml or in any
 # --configfile (Snakemake keeps the last silently); and the reference and coverage files,
-# which the last jobs read.
-_problems = (
-    check_registry()
-    + [
-        line
-        for path in dict.fromkeys(map(str, workflow.configfiles))
-        for line in yaml_file_problems(path)
-    ]
-    + validate_config(config, "workflow/schemas/config.schema.yaml", scenes=SCENES)
-    + reference_file_problems("workflow/reference.yaml", scenes=SCENES)
-    + yaml_file_problems("workflow/coverage.yaml")
-)
-try:
-    load_coverage("workflow/coverage.yaml")
-except (ParameterError, OSError, yaml.YAMLError) as _exc:
-    _lines = str(_exc).splitlines()
-    _problems += [f"workflow/coverage.yaml: {line.strip()}" for line in _lines[1:] or _lines]
+# which the last jobs read. PLAN: the registry's scenes and the package's imports as the rules
+# need them. Both come from a cache keyed by every file and setting they depend on
+# (flutterfriction.workflow_plan: 2.5-3 s of each snakemake call here otherwise).
+PKG = Path(workflow.basedir) / "src" / "flutterfriction"
+PLAN, _problems = workflow_plan(config, workflow.configfiles, root=PKG)
 if _problems:
     sys.exit("invalid configuration:\n  " + "\n  ".join(_problems))
 expand_parameter_lists(config)  # `rod: list119` -> its values (flutterfriction.parameters)

@@ -305,9 +305,9 @@ def test_the_check_measures_the_figure_as_its_png_is_saved(tmp_path, monkeypatch
     figure's 150 dpi it passed three quick-preset PNGs, saved at 100 dpi, whose labels
     overlapped), and its draw lays the figure out, measures its tight box and renders the
     PNG's pixels once: a figure saved as PDF + PNG and checked is drawn twice (was 5, then 3:
-    the PDF's own layout pass is skipped), as a checked PNG once (was 3). The PNG is the one ``bbox_inches="tight"`` gives (same size, the
-    drawing within a pixel), with or without the check, and the figure keeps its own
-    resolution."""
+    the PDF's own layout pass is skipped), as a checked PNG once (was 3). The PNG is the one
+    ``bbox_inches="tight"`` gives (same size, the drawing within a pixel), with or without the
+    check, and the figure keeps its own resolution."""
     from matplotlib.figure import Figure
 
     import flutterfriction.plotting as plotting

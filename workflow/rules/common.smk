@@ -3,17 +3,15 @@ import sys
 from pathlib import Path
 
 from flutterfriction.config import scene_params
-from flutterfriction.registry import PARTS, SCENES, figures, import_path, scenes_of
-from flutterfriction.sources import module_sources
 
-PKG = Path(workflow.basedir) / "src" / "flutterfriction"
-
-# Every list of scenes and figures comes from the registry (src/flutterfriction/registry.py).
-FIGURES = figures()  # figure -> (its scene, its plot function and caption)
+# Every list of scenes and figures comes from the registry (src/flutterfriction/registry.py),
+# as PLAN gives it (the Snakefile; flutterfriction.workflow_plan): plain data, import paths.
+SCENES = PLAN.scenes
+FIGURES = PLAN.figures()  # figure -> (its scene, its plot function's path and caption)
 ALL_SCENES = list(SCENES)
 ALL_FIGURES = list(FIGURES)
 FIGURE_DATA = {f: scene.name for f, (scene, _) in FIGURES.items()}  # figure -> data it draws
-SWEEP_SCENES = [n for n, s in SCENES.items() if s.sweep is not None]
+SWEEP_SCENES = [n for n, s in SCENES.items() if s.sweep]
 # The slow solvers (~10-45 s each, the rest ~1 s) start first, so that the many short jobs
 # fill the other core around them instead of leaving a long tail.
 SLOW_SCENES = [n for n, s in SCENES.items() if s.slow]
@@ -27,8 +25,8 @@ PDF = [] if DRAFT else ["pdf"]
 # and sweeps keep a job each (they start first, and scatter on a cluster). In the quick preset
 # no scene is slow (0.3-2 s each), so every scene but the sweeps joins its part's batch.
 BATCHES = {
-    part: [s.name for s in scenes_of(part) if (DRAFT or not s.slow) and s.sweep is None]
-    for part in PARTS
+    part: [s.name for s in PLAN.scenes_of(part) if (DRAFT or not s.slow) and not s.sweep]
+    for part in PLAN.parts
 }
 BATCHES = {part: names for part, names in BATCHES.items() if names}
 BATCHED = {name: part for part, names in BATCHES.items() for name in names}
@@ -55,13 +53,13 @@ SINGLE_FIGURES = [
 
 def job_sources(*modules):
     """Source files of the package modules a job runs, with everything they import."""
-    return module_sources([*modules, "flutterfriction.io"], root=PKG)
+    return PLAN.sources(*modules, "flutterfriction.io")
 
 
 # A job depends on exactly the package modules it runs (its function's module and everything
 # that imports, transitively): editing one science module reruns only the scenes using it.
 SCENE_SOURCES = {
-    n: job_sources(s.compute.__module__, "flutterfriction.scenes", "flutterfriction.sources")
+    n: job_sources(s.module, "flutterfriction.scenes", "flutterfriction.sources")
     for n, s in SCENES.items()
 }
 # ... and the jobs importing the rod's compiled kernels wait for them to be compiled once.
@@ -202,12 +200,11 @@ def figure_timings(wildcards):
 
 def scene_compute(wildcards):
     """Import path of the scene's function: the job imports that module only."""
-    return import_path(SCENES[wildcards.scene].compute)
+    return SCENES[wildcards.scene].compute
 
 
 def scene_sweep(wildcards):
-    scene = SCENES[wildcards.scene]
-    return import_path(scene.sweep, scene.compute.__module__) if scene.sweep else ""
+    return SCENES[wildcards.scene].sweep
 
 
 def figure_plot(wildcards):

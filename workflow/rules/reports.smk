@@ -1,8 +1,11 @@
 # Notebooks (jupytext percent format) executed into HTML reports: one rule over the notebook's
 # name; each reads the data and figures of its part of the chapter.
 NOTEBOOK_INPUTS = {
-    part: ([s.name for s in scenes_of(part)], [f for s in scenes_of(part) for f in s.figures])
-    for part in PARTS
+    part: (
+        [s.name for s in PLAN.scenes_of(part)],
+        [f for s in PLAN.scenes_of(part) for f in s.figures],
+    )
+    for part in PLAN.parts
 }
 NOTEBOOK_REPORTS = list(NOTEBOOK_INPUTS)
 

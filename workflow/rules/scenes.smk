@@ -160,7 +160,7 @@ for _part in BATCHES:
             scenes=BATCHES[_part],
             # The resolved parameters: editing a scene's config reruns its part's batch.
             cfg={n: scene_params(config, n) for n in BATCHES[_part]},
-            compute={n: import_path(SCENES[n].compute) for n in BATCHES[_part]},
+            compute={n: SCENES[n].compute for n in BATCHES[_part]},
         script:
             "../scripts/solve_batch.py"
 
