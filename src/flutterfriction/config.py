@@ -5,7 +5,8 @@ from __future__ import annotations
 import copy
 import json
 import math
-from collections.abc import Iterable, Iterator, Mapping
+from collections import OrderedDict
+from collections.abc import Callable, Iterable, Iterator, Mapping
 from fractions import Fraction
 from pathlib import Path
 from typing import Any
@@ -491,6 +492,34 @@ def _lookup(tree: Any, path: tuple) -> Any:
     return tree
 
 
+#: A scene check's verdict (None: passed; else its one-line refusal) per check and parameters,
+#: for the process: the checks are pure functions of their parameters, and every preset that
+#: leaves a scene alone, Figs. 13 and 14 (which share theirs), and each configuration checked
+#: again (a test suite: ~90 checks of the same configuration) would otherwise solve the same
+#: small problems again. The newest :data:`CHECK_VERDICTS_KEPT` are kept.
+_CHECK_VERDICTS: OrderedDict[tuple[Any, str], str | None] = OrderedDict()
+CHECK_VERDICTS_KEPT = 1024
+
+
+def _check_verdict(check: Callable[[dict[str, Any]], None], params: dict[str, Any]
+                   ) -> str | None:
+    """``check(params)``'s verdict, computed once per distinct parameters (an error other
+    than the models' refusals propagates and is not kept)."""
+    key = (check, json.dumps(params, sort_keys=True, default=str))
+    if key in _CHECK_VERDICTS:
+        _CHECK_VERDICTS.move_to_end(key)
+        return _CHECK_VERDICTS[key]
+    try:
+        check(copy.deepcopy(params))
+        verdict = None
+    except _MODEL_ERRORS as exc:
+        verdict = " ".join(str(exc).split())
+    _CHECK_VERDICTS[key] = verdict
+    while len(_CHECK_VERDICTS) > CHECK_VERDICTS_KEPT:
+        _CHECK_VERDICTS.popitem(last=False)
+    return verdict
+
+
 def validate_config(config: dict[str, Any], schema_path: str | Path,
                     scenes: Iterable[str] | None = None) -> list[str]:
     """Every problem of a workflow configuration, one line each, before any job runs: the JSON
@@ -525,7 +554,6 @@ def validate_config(config: dict[str, Any], schema_path: str | Path,
         _check_preset_scenes(config)
     except ParameterError as exc:
         return [f"config: {exc}"]
-    checked: dict[tuple, str | None] = {}  # a scene check's verdict per parameters
     for fidelity in sorted(config.get("fidelity_presets", {})):
         resolved = copy.deepcopy(config)
         resolved["fidelity"] = fidelity
@@ -539,17 +567,9 @@ def validate_config(config: dict[str, Any], schema_path: str | Path,
                 if isinstance(scenes, Mapping) else None
             if check is not None and not found:
                 # the scene's own refusals of what it would find out only after costly work
-                # (once per distinct parameters: Figs. 13 and 14 share theirs, and so do
-                # presets that leave a scene alone)
-                key = (check, json.dumps(params, sort_keys=True, default=str))
-                if key not in checked:
-                    try:
-                        check(params)
-                        checked[key] = None
-                    except _MODEL_ERRORS as exc:
-                        checked[key] = " ".join(str(exc).split())
-                if checked[key] is not None:
-                    found.append(f"{prefix}scenes.{scene}: {checked[key]}")
+                verdict = _check_verdict(check, params)
+                if verdict is not None:
+                    found.append(f"{prefix}scenes.{scene}: {verdict}")
             lines += found
         seen = {p.split(": ", 1)[1] for p in problems}
         problems += [line for line in lines if line.split(": ", 1)[1] not in seen]
