@@ -44,7 +44,8 @@ def _saved(tmp_path, tag: str, draft: bool = False) -> list[bytes]:
     return out
 
 
-@pytest.mark.parametrize("draft", [False, True])
+# the paper figures (PDF and PNG, ~6 s here) with the slow tests; the quick ones stay fast
+@pytest.mark.parametrize("draft", [pytest.param(False, marks=pytest.mark.slow), True])
 def test_figures_are_the_same_bytes_with_shared_parses(tmp_path, monkeypatch, draft):
     @contextmanager
     def per_renderer():

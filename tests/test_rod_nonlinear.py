@@ -105,6 +105,7 @@ def test_follower_load_power_balance_is_consistent():
     assert dissipation == pytest.approx(v @ m.C @ v)
 
 
+@pytest.mark.slow  # ~5.5 s here
 def test_generalized_alpha_converges_at_second_order():
     """The structural integrator against a tight adaptive solution, on a gentle motion."""
     from flutterfriction.analysis.rod_dynamics import generalized_alpha

@@ -14,8 +14,9 @@ from flutterfriction.stress import (
 )
 
 
-# The slow areas (~40-120 s each) are marked slow.
-@pytest.mark.parametrize("area", [pytest.param(a, marks=pytest.mark.slow) if a in SLOW_AREAS
+# The slow areas (~40-120 s each) are marked slow, and so is the long integration (~6 s here).
+@pytest.mark.parametrize("area", [pytest.param(a, marks=pytest.mark.slow)
+                                  if a in {*SLOW_AREAS, "long integration"}
                                   else a for a in sorted(ALL_CASES)])
 def test_no_silent_wrong_answer(area):
     results = ALL_CASES[area]()
