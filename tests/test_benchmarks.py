@@ -104,6 +104,10 @@ def test_the_readme_timing_table_is_generated_from_benchmark_files(tmp_path):
     assert "CPU time of those jobs 42 s (previous main: 89 s)" in table
     slower = timing_markdown(after, before, {"x": {"before": 100.0, "after": 125.0}})
     assert "| x | 100 | 125 | 1.25x slower |" in slower
+    # a no-op rerun in tenths; the paired ratios' median beside the medians' ratio
+    noop = timing_markdown(after, before, {"no-op": {"before": 3.652, "after": 3.6,
+                                                     "paired": 0.9846}})
+    assert "| no-op | 3.7 | 3.6 | 1.01x faster (1.02x faster by the paired ratios) |" in noop
     readme = f"intro\n{TIMING_START}\nold\n{TIMING_END}\nrest\n"
     expected = f"intro\n{TIMING_START}\n{table}{TIMING_END}\nrest\n"
     assert replace_timing_block(readme, table) == expected

@@ -159,7 +159,9 @@ def timing_markdown(after: list[dict[str, Any]], before: list[dict[str, Any]] | 
         batches of cheap scenes replaced a job per scene) show "-" on the other.
     totals
         ``{what: {"before": s, "after": s}}``: whole-command wall times measured around the
-        runs (paper from clean, quick from clean, no-op, tests), medians.
+        runs (paper from clean, quick from clean, no-op, tests), medians; optionally
+        ``"paired"``, the median of the run-by-run ratios after/before (the host's speed
+        drifts between runs: the ratio the pairs measure, shown beside the medians' ratio).
     baseline
         What ``before`` is, as the table's headers name it (the previous main, or the commit
         a target is measured against, e.g. "7ecfb71").
@@ -169,8 +171,11 @@ def timing_markdown(after: list[dict[str, Any]], before: list[dict[str, Any]] | 
         lines += markdown_table(
             ["command (wall time; the median where several runs)", f"{baseline} [s]",
              "this main [s]", "ratio"],
-            [[what, _fmt(t.get("before"), ".0f"), _fmt(t.get("after"), ".0f"),
-              _speedup(t.get("before"), t.get("after"))] for what, t in totals.items()])
+            [[what, _seconds(t.get("before")), _seconds(t.get("after")),
+              _speedup(t.get("before"), t.get("after"))
+              + (f" ({_speedup(1.0, t['paired'])} by the paired ratios)"
+                 if t.get("paired") else "")]
+             for what, t in totals.items()])
         lines.append("")
     by_name = {j["job"]: j for j in before or []}
 
@@ -191,6 +196,11 @@ def timing_markdown(after: list[dict[str, Any]], before: list[dict[str, Any]] | 
     lines += markdown_table(["job", "wall [s]", "CPU [s]", "peak RSS [MB]",
                              f"{baseline} wall [s]", f"{baseline} CPU [s]"], rows)
     return "\n".join(lines) + "\n"
+
+
+def _seconds(x: float | None) -> str:
+    """A whole command's seconds: tenths below 10 s (a no-op rerun), whole seconds above."""
+    return "" if x is None else format(x, ".1f" if x < 10 else ".0f")
 
 
 def _speedup(before: float | None, after: float | None) -> str:
