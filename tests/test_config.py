@@ -567,3 +567,34 @@ def test_a_check_that_does_not_converge_is_one_problem_line_not_a_traceback():
                         r"discriminant's sign at g = [0-9.e+-]+ is not confirmed) \(.*\); "
                         r"use flutter_interval_isotropic \(isotropic solids\)", problems[0]), \
         problems[0]
+
+
+def test_a_scene_checks_verdict_is_computed_once_per_parameters():
+    """The configuration check keeps each scene check's verdict for the process (the checks
+    are pure functions of their parameters): the same parameters are not solved again, a
+    refusal is repeated word for word, and an error that is not a model's refusal propagates
+    and is not kept."""
+    from flutterfriction import config as cfg
+    from flutterfriction.errors import ParameterError
+
+    calls = []
+
+    def check(params):
+        calls.append(dict(params))
+        if params["P"] > 1:
+            raise ParameterError("P must be in [0, 1]\n  (the cycle's load range)")
+        if params["P"] < 0:
+            raise RuntimeError("not a refusal")
+
+    assert cfg._check_verdict(check, {"P": 0.5}) is None
+    assert cfg._check_verdict(check, {"P": 0.5}) is None
+    refusal = "P must be in [0, 1] (the cycle's load range)"
+    assert cfg._check_verdict(check, {"P": 2.0}) == refusal
+    assert cfg._check_verdict(check, {"P": 2.0}) == refusal
+    assert calls == [{"P": 0.5}, {"P": 2.0}]
+    assert cfg._check_verdict(check, {"P": 2}) == refusal  # another value: 2 is not 2.0
+    assert len(calls) == 3
+    for _ in range(2):
+        with pytest.raises(RuntimeError):
+            cfg._check_verdict(check, {"P": -1.0})
+    assert len(calls) == 5
