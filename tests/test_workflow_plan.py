@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import copy
 import json
+import os
 import shutil
 
 import pytest
@@ -173,3 +174,37 @@ def test_an_unhashable_configuration_is_checked_every_time(tmp_path, in_repo, co
     plan, problems = wp.workflow_plan(odd, ["workflow/config.yaml"], PKG, cache=tmp_path)
     assert plan is None and problems  # the schema refuses it
     assert list(tmp_path.iterdir()) == []
+
+
+def test_the_key_follows_the_schemas_beside_the_jobs_package(tmp_path, monkeypatch, config):
+    """Some loaders read their schema beside the package (<checkout>/workflow/schemas), not
+    under the working directory: in a setup where the two differ, both are in the key."""
+    checkout = tmp_path / "checkout"
+    shutil.copytree(PKG, checkout / "src" / "flutterfriction",
+                    ignore=shutil.ignore_patterns("__pycache__"))
+    shutil.copytree(ROOT / "workflow" / "schemas", checkout / "workflow" / "schemas")
+    monkeypatch.chdir(ROOT)
+    root = checkout / "src" / "flutterfriction"
+    key = wp.plan_key(config, ["workflow/config.yaml"], root)
+    schema = checkout / "workflow" / "schemas" / "reference.schema.yaml"
+    schema.write_text(schema.read_text() + "\n")
+    assert wp.plan_key(config, ["workflow/config.yaml"], root) != key
+
+
+def test_a_configuration_with_keys_json_would_merge_is_not_cached(in_repo, config):
+    assert wp.plan_key({**config, "cases": {1: "a"}}, ["workflow/config.yaml"], PKG) is None
+    assert wp.plan_key({**config, "cases": {"1": "a"}}, ["workflow/config.yaml"], PKG)
+
+
+def test_a_cache_hit_keeps_its_entry(tmp_path, in_repo, config, monkeypatch):
+    """An entry read is marked used: the most recently used entries are kept."""
+    monkeypatch.setattr(wp, "configuration_problems", lambda *a: [])
+    files = ["workflow/config.yaml"]
+    wp.workflow_plan(config, files, PKG, cache=tmp_path)
+    first = tmp_path / f"plan-{wp.plan_key(config, files, PKG)}.json"
+    os.utime(first, (0, 0))
+    wp.workflow_plan(config, files, PKG, cache=tmp_path)
+    assert first.stat().st_mtime > 0
+    mask = os.umask(0)
+    os.umask(mask)
+    assert first.stat().st_mode & 0o777 == 0o666 & ~mask  # as any file the workflow writes

@@ -19,11 +19,11 @@ configuration is cached: a bad one is checked again at every call and says why.
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import json
 import os
 import sys
-import tempfile
 from collections.abc import Iterable, Mapping
 from dataclasses import asdict, dataclass, field
 from importlib import metadata
@@ -33,7 +33,8 @@ from typing import Any
 #: Bumped when the cached data's shape changes (older entries are then never read).
 CACHE_FORMAT = 1
 #: The libraries whose versions enter the key: the configuration's checks compute with them.
-LIBRARIES = ("numpy", "scipy", "numba", "scikit-fem", "jsonschema", "PyYAML")
+LIBRARIES = ("numpy", "scipy", "numba", "llvmlite", "scikit-fem", "sympy", "mpmath",
+             "jsonschema", "jsonschema-specifications", "referencing", "PyYAML")
 #: How many entries the cache keeps (the newest; one per configuration and source state).
 KEEP = 8
 #: The workflow's files the configuration's check reads (relative to the working directory).
@@ -189,6 +190,15 @@ def configuration_problems(config: Mapping[str, Any], configfiles: Iterable[str]
     return problems
 
 
+def _str_keys(value: Any) -> bool:
+    """Whether every mapping key in ``value`` is a string."""
+    if isinstance(value, Mapping):
+        return all(isinstance(k, str) and _str_keys(v) for k, v in value.items())
+    if isinstance(value, list | tuple):
+        return all(_str_keys(v) for v in value)
+    return True
+
+
 def _version(name: str) -> str:
     try:
         return metadata.version(name)
@@ -202,15 +212,21 @@ def plan_key(config: Mapping[str, Any], configfiles: Iterable[str], root: Path) 
     is then checked every time)."""
     import flutterfriction
 
+    if not _str_keys(config):  # JSON writes the key 1 as "1": no cache for such a config
+        return None
     try:
-        resolved = json.dumps(config, sort_keys=True, default=repr, allow_nan=True)
-    except (TypeError, ValueError):  # keys of mixed types: no cache
+        resolved = json.dumps(config, sort_keys=True, allow_nan=True,
+                              default=lambda o: f"<{type(o).__qualname__}> {o!r}")
+    except (TypeError, ValueError):
         return None
     # the jobs' package and the one imported here (the same but in an unusual setup)
     packages = dict.fromkeys([Path(root).resolve(),
                               Path(flutterfriction.__file__).parent.resolve()])
     files = [p for pkg in packages for p in sorted(pkg.rglob("*.py"))]
-    files += [p for pattern in WORKFLOW_FILES for p in sorted(Path(".").glob(pattern))]
+    # the workflow's files where the check reads them: the working directory's, and the
+    # schemas some loaders find beside the package (<checkout>/workflow/schemas)
+    for base in dict.fromkeys([Path.cwd(), *(pkg.parents[1] for pkg in packages)]):
+        files += [p for pattern in WORKFLOW_FILES for p in sorted(base.glob(pattern))]
     files += [Path(p) for p in dict.fromkeys(map(str, configfiles))]
     h = hashlib.sha256()
     for item in (str(CACHE_FORMAT), sys.version, *map(str, packages), resolved,
@@ -255,7 +271,10 @@ def workflow_plan(config: Mapping[str, Any], configfiles: Iterable[str], root: P
         try:
             data = json.loads(entry.read_text(encoding="utf-8"))
             if data.get("key") == key:
-                return WorkflowPlan.from_json(data["plan"], root), []
+                plan = WorkflowPlan.from_json(data["plan"], root)
+                with contextlib.suppress(OSError):
+                    os.utime(entry)  # used: kept before entries written since
+                return plan, []
         except (OSError, ValueError, KeyError, TypeError, AttributeError):
             pass  # no entry, or an unreadable one: worked out anew
     problems = configuration_problems(config, configfiles)
@@ -268,17 +287,14 @@ def workflow_plan(config: Mapping[str, Any], configfiles: Iterable[str], root: P
 
 
 def _store(entry: Path, data: dict[str, Any]) -> None:
-    """Write one entry atomically (concurrent Snakemake processes on a cluster may write the
-    same one) and keep the newest :data:`KEEP`; a cache that cannot be written is no cache."""
+    """Write one entry atomically, readable as any file the workflow writes (concurrent
+    Snakemake processes on a cluster may write the same one), and keep the :data:`KEEP` most
+    recently used; a cache that cannot be written is no cache."""
+    from flutterfriction.io import atomic_path
+
     try:
-        entry.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(prefix=".plan-", suffix=".json", dir=entry.parent)
-        try:
-            with os.fdopen(fd, "w", encoding="utf-8") as fh:
-                json.dump(data, fh)
-            os.replace(tmp, entry)
-        finally:
-            Path(tmp).unlink(missing_ok=True)
+        with atomic_path(entry) as tmp, open(tmp, "w", encoding="utf-8") as fh:
+            json.dump(data, fh)
         old = sorted(entry.parent.glob("plan-*.json"), key=lambda p: p.stat().st_mtime)
         for p in old[:-KEEP]:
             p.unlink(missing_ok=True)
