@@ -208,3 +208,16 @@ def test_a_cache_hit_keeps_its_entry(tmp_path, in_repo, config, monkeypatch):
     mask = os.umask(0)
     os.umask(mask)
     assert first.stat().st_mode & 0o777 == 0o666 & ~mask  # as any file the workflow writes
+
+
+def test_a_scene_function_a_job_cannot_import_is_a_problem_line(tmp_path, in_repo, config,
+                                                                 monkeypatch):
+    from flutterfriction import registry
+
+    monkeypatch.setattr(wp, "configuration_problems", lambda *a: [])
+    odd = registry.Scene("odd", lambda p: {}, "rods")
+    monkeypatch.setattr(registry, "SCENES", {**registry.SCENES, "odd": odd})
+    plan, problems = wp.workflow_plan(config, ["workflow/config.yaml"], PKG, cache=tmp_path)
+    assert plan is None and len(problems) == 1
+    assert problems[0].startswith("registry: ") and "is not a module-level name" in problems[0]
+    assert list(tmp_path.iterdir()) == []

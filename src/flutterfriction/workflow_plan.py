@@ -280,7 +280,10 @@ def workflow_plan(config: Mapping[str, Any], configfiles: Iterable[str], root: P
     problems = configuration_problems(config, configfiles)
     if problems:
         return None, problems
-    plan = build_plan(root)
+    try:
+        plan = build_plan(root)
+    except ValueError as exc:  # a scene's function that a job cannot import by name
+        return None, [f"registry: {exc}"]
     if entry is not None:
         _store(entry, {"key": key, "plan": plan.to_json()})
     return plan, []
