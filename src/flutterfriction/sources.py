@@ -13,7 +13,7 @@ from __future__ import annotations
 import ast
 import importlib
 import re
-from collections.abc import Iterable
+from collections.abc import Callable, Iterable
 from functools import cache
 from pathlib import Path
 from typing import Any
@@ -101,19 +101,30 @@ def module_sources(modules: Iterable[str], root: Path = ROOT) -> list[str]:
     root
         The package directory (``src/flutterfriction`` of the checkout the workflow runs).
     """
+    seen = import_closure(modules, lambda m: module_file(m, root) is not None,
+                          lambda m: _imports(m, root), root)
+    return sorted(str(module_file(m, root)) for m in seen)
+
+
+def import_closure(modules: Iterable[str], known: Callable[[str], bool],
+                   imports: Callable[[str], Iterable[str]], root: Path) -> set[str]:
+    """``modules``, their parent packages and every package module they import, transitively:
+    ``known(m)`` says whether ``m`` is a module of the package, ``imports(m)`` what it imports
+    directly (from its file, or from a cached import graph:
+    :meth:`flutterfriction.workflow_plan.WorkflowPlan.sources`)."""
     seen: set[str] = set()
     todo = []
     for m in modules:
-        if module_file(m, root) is None:
+        if not known(m):
             raise ValueError(f"{m!r} is not a module of {root}")
         todo += _parents(m)
     while todo:
         m = todo.pop()
-        if m in seen or module_file(m, root) is None:
+        if m in seen or not known(m):
             continue
         seen.add(m)
-        todo.extend(_imports(m, root) - seen)
-    return sorted(str(module_file(m, root)) for m in seen)
+        todo.extend(i for i in imports(m) if i not in seen)
+    return seen
 
 
 def import_path(obj: Any, module: str | None = None) -> str:

@@ -104,20 +104,10 @@ class WorkflowPlan:
     def sources(self, *modules: str) -> list[str]:
         """The same list as :func:`flutterfriction.sources.module_sources` of ``modules``:
         their files and those of every package module they import, transitively."""
-        from flutterfriction.sources import _parents
+        from flutterfriction.sources import import_closure
 
-        seen: set[str] = set()
-        todo: list[str] = []
-        for m in modules:
-            if m not in self.modules:
-                raise ValueError(f"{m!r} is not a module of {self.root}")
-            todo += _parents(m)
-        while todo:
-            m = todo.pop()
-            if m in seen or m not in self.modules:
-                continue
-            seen.add(m)
-            todo.extend(i for i in self.modules[m][1] if i not in seen)
+        seen = import_closure(modules, self.modules.__contains__,
+                              lambda m: self.modules[m][1], self.root)
         return sorted(str(self.root / self.modules[m][0]) for m in seen)
 
     def to_json(self) -> dict[str, Any]:
