@@ -387,8 +387,15 @@ def test_one_state_rhs_is_the_batched_definition(extra):
         n = m.n_dof
         batched = np.concatenate([y[n:], m.accelerations(y[:n], y[n:], 5.5)])
         assert np.abs(m.rhs(0.0, y, 5.5) - batched).max() <= 1e-12 * np.abs(batched).max()
+        # the compiled (M, g) of the generalized-alpha residual (M symmetric, whole)
+        M, g = m.dynamic_terms(y[:n], y[n:], 5.5)
+        M_c, g_c = m.dynamic_terms_at(5.5)(y[:n], y[n:])
+        assert np.abs(M_c - M).max() <= 1e-12 * np.abs(M).max()
+        assert np.abs(g_c - g).max() <= 1e-12 * np.abs(g).max()
     with pytest.raises(ConvergenceError, match="positive definite"):
         m.rhs(0.0, np.full(2 * m.n_dof, np.nan), 5.5)
+    with pytest.raises(ParameterError, match="shape"):
+        m.dynamic_terms_at(5.5)(0.0, np.zeros(m.n_dof))
 
 
 @pytest.mark.parametrize("extra", [{}, {"kappa": 0.01, "tip_mass": 0.02}])

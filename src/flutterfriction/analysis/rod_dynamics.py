@@ -382,10 +382,12 @@ def generalized_alpha(model: NonlinearRod, P: float, y0: NDArray, t_end: float, 
         vn = v + dt * ((1 - gamma) * a + gamma * a_new)
         return a_new, qn, vn
 
+    terms = model.dynamic_terms_at(P)  # compiled, as the scipy integrators' right-hand side
+
     def residual(acc_new):
         _, qn, vn = advance(acc_new)
         count["n"] += 1
-        M, g = model.dynamic_terms(qn, vn, P)
+        M, g = terms(qn, vn)
         return M @ acc_new + g
 
     for k in range(1, steps + 1):

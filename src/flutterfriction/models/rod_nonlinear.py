@@ -258,6 +258,29 @@ class NonlinearRod:
 
         return f
 
+    def dynamic_terms_at(self, P: float):
+        """``(q, v) -> (M, g)``: :meth:`dynamic_terms` for one real state at the load ``P``
+        [N], compiled (:func:`flutterfriction.models.rod_kernel._assemble`, its arguments
+        bound once; ~10x cheaper than the batched definition, which
+        ``tests/test_rod_nonlinear.py`` checks it against): for an implicit structural
+        integrator's residuals."""
+        from flutterfriction.models.rod_kernel import _assemble  # numba: imported where used
+
+        args = self.kernel_args(P)
+        n = self.n_dof
+        y = np.empty(2 * n)
+
+        def terms(q: NDArray, v: NDArray) -> tuple[NDArray, NDArray]:
+            if np.shape(q) != (n,) or np.shape(v) != (n,):  # (a number would broadcast)
+                raise ParameterError(f"q and v must have shape ({n},), got {np.shape(q)}, "
+                                     f"{np.shape(v)}")
+            y[:n], y[n:] = q, v
+            M, g = _assemble(y, *args)[:2]
+            # the kernel fills M's upper triangle (its Cholesky reads only that)
+            return np.triu(M) + np.triu(M, 1).T, g
+
+        return terms
+
     def jacobians(self, Y: NDArray, P: float) -> tuple[NDArray, NDArray]:
         """``(J, f_P)``: the Jacobian ``d y'/d y`` (m, N, N) and ``d y'/d P`` (m, N) of
         :meth:`rhs` at the ``m`` real states ``Y`` (N, m), differentiated by hand and compiled
