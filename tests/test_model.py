@@ -100,3 +100,22 @@ def test_equations_of_motion_refuse_non_finite_or_misshapen_input(state, P, name
         p.equations_of_motion(state, P)
     unchecked = p.equations_of_motion([0.1, 0, 0, 0], 1.0, check=False)
     assert np.array_equal(unchecked, p.equations_of_motion([0.1, 0, 0, 0], 1.0))
+
+
+def test_the_bound_right_hand_side_is_the_equations_of_motion():
+    """ZieglerPendulum.motion_at (an integrator's right-hand side, constants bound once) gives
+    the same numbers, bit for bit, as equations_of_motion for one state and as its batched
+    form, with both loads; a non-finite load is refused when it is bound."""
+    p = ZieglerPendulum(**{**LIST47, "m3": 0.05, "h": 0.02, "c1": 0.003, "c2": 0.006})
+    X = np.random.default_rng(7).normal(size=(4, 9))
+    f = p.motion_at(2.3, 0.7)
+    batched = p.equations_of_motion(X, 2.3, 0.7)
+    for k in range(X.shape[1]):
+        one = f(0.0, X[:, k])
+        assert np.array_equal(one, p.equations_of_motion(X[:, k], 2.3, 0.7))
+        assert np.allclose(one, batched[:, k], rtol=1e-14, atol=0.0)
+    for bad in (math.nan, math.inf):
+        with pytest.raises(ParameterError, match="^P "):
+            p.motion_at(bad)
+        with pytest.raises(ParameterError, match="^H "):
+            p.motion_at(1.0, bad)

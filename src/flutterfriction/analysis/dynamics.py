@@ -140,7 +140,7 @@ def simulate(pendulum: ZieglerPendulum, P: float, state0: ArrayLike, t_end: floa
                              f"time units l2 sqrt(m2/k2) of this pendulum), got {t_end:g}")
     if method in ("Radau", "BDF", "LSODA"):  # implicit: give them the analytic Jacobian
         kwargs["jac"] = lambda t, x: jacobian(pendulum, x, P, H)
-    sol = solve_ivp(_counted(lambda t, x: pendulum.equations_of_motion(x, P, H, check=False)),
+    sol = solve_ivp(_counted(pendulum.motion_at(P, H)),
                     (0.0, t_end), x0, method=method, t_eval=t_eval, rtol=rtol, atol=atol,
                     **kwargs)
     if not sol.success:
@@ -224,7 +224,7 @@ def limit_cycle(pendulum: ZieglerPendulum, P: float, state0: ArrayLike, H: float
     crossings: list[tuple[float, NDArray]] = []
     steps = 0
     while t0 < t_end:
-        sol = solve_ivp(_counted(lambda t, y: unit.equations_of_motion(y, P, H, check=False)),
+        sol = solve_ivp(_counted(unit.motion_at(P, H)),
                         (t0, t0 + step), x,
                         method=method, events=(section, runaway), rtol=rtol, atol=atol)
         if not sol.success:

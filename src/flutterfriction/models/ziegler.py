@@ -401,18 +401,44 @@ class ZieglerPendulum:
         state = np.asarray(state, dtype=float)
         # One state (an integrator's call, ~1e6 per limit cycle): Python floats and math's
         # functions, ~3x cheaper than numpy's on scalars; several states: numpy. Same formulas.
-        sin, cos = (math.sin, math.cos) if state.ndim == 1 else (np.sin, np.cos)
-        a1, a2, w1, w2 = state.tolist() if state.ndim == 1 else state
-        s, c = sin(a1 - a2), cos(a1 - a2)
-        w = (self.m2 * self.l2 + self.m3 * self.h) * self.l1
-        I1 = self.m1 * self.d**2 + (self.m2 + self.m3) * self.l1**2
-        I2 = self.m2 * self.l2**2 + self.m3 * self.h**2
-        # Generalised forces moved to the right-hand side of eq. (10): M(alpha) alpha'' = f.
-        f1 = (-w * w2**2 * s - self.k1 * a1 - self.k2 * (a1 - a2)
-              - self.c1 * w1 - self.c2 * (w1 - w2) + P * self.l1 * s + H * self.l1 * sin(a1))
-        f2 = (w * w1**2 * s + self.k2 * (a1 - a2) - self.c2 * (w2 - w1)
-              + H * self.l2 * sin(a2))
-        det = I1 * I2 - (w * c) ** 2
-        acc1 = (I2 * f1 - w * c * f2) / det
-        acc2 = (I1 * f2 - w * c * f1) / det
-        return np.array([w1, w2, acc1, acc2])
+        if state.ndim == 1:
+            return np.array(self._motion(P, H, math.sin, math.cos)(*state.tolist()))
+        return np.array(self._motion(P, H, np.sin, np.cos)(*state))
+
+    def motion_at(self, P: float = 0.0, H: float = 0.0):
+        """``f(t, state)``: :meth:`equations_of_motion` for one state, unchecked, with the
+        pendulum's constants and the loads bound once (an integrator's right-hand side:
+        ~3.3 us a call against ~4.9 us, the same numbers). ``P``, ``H`` [N] are checked
+        here, once."""
+        P, H = check_real("P", P), check_real("H", H)
+        motion = self._motion(P, H, math.sin, math.cos)
+        array = np.array
+
+        def f(t: float, state: NDArray) -> NDArray:
+            return array(motion(*state.tolist()))
+
+        return f
+
+    def _motion(self, P: float, H: float, sin, cos):
+        """Eq. (10) solved for the accelerations: ``(a1, a2, w1, w2) -> (w1, w2, a1'', a2'')``
+        with ``sin``, ``cos`` of math (floats) or numpy (arrays); the one definition of the
+        equations of motion."""
+        m1, m2, m3, l1, l2 = self.m1, self.m2, self.m3, self.l1, self.l2
+        k1, k2, c1, c2 = self.k1, self.k2, self.c1, self.c2
+        w = (m2 * l2 + m3 * self.h) * l1
+        I1 = m1 * self.d**2 + (m2 + m3) * l1**2
+        I2 = m2 * l2**2 + m3 * self.h**2
+
+        def motion(a1, a2, w1, w2):
+            s, c = sin(a1 - a2), cos(a1 - a2)
+            # Generalised forces moved to the right-hand side of eq. (10): M(alpha) alpha'' = f.
+            f1 = (-w * w2**2 * s - k1 * a1 - k2 * (a1 - a2)
+                  - c1 * w1 - c2 * (w1 - w2) + P * l1 * s + H * l1 * sin(a1))
+            f2 = (w * w1**2 * s + k2 * (a1 - a2) - c2 * (w2 - w1)
+                  + H * l2 * sin(a2))
+            det = I1 * I2 - (w * c) ** 2
+            acc1 = (I2 * f1 - w * c * f2) / det
+            acc2 = (I1 * f2 - w * c * f1) / det
+            return w1, w2, acc1, acc2
+
+        return motion

@@ -441,7 +441,7 @@ def pendulum_work_precision(params: dict[str, Any]) -> dict[str, Any]:
                 kw["jac"] = lambda t, x: dy.jacobian(pc, x, P)
 
             def one(method=method, rtol=rtol, kw=kw):
-                s = solve_ivp(lambda t, x: pc.equations_of_motion(x, P, check=False),
+                s = solve_ivp(pc.motion_at(P),
                               (0, 1.5 * ref.period_s), x0, method=method, rtol=rtol,
                               atol=rtol * 1e-2, events=section, **kw)
                 te = [(t, y) for t, y in zip(s.t_events[0], s.y_events[0], strict=True)
