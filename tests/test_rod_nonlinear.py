@@ -396,6 +396,8 @@ def test_one_state_rhs_is_the_batched_definition(extra):
         m.rhs(0.0, np.full(2 * m.n_dof, np.nan), 5.5)
     with pytest.raises(ParameterError, match="shape"):
         m.dynamic_terms_at(5.5)(0.0, np.zeros(m.n_dof))
+    with pytest.raises(ParameterError, match="real"):
+        m.dynamic_terms_at(5.5)(np.zeros(m.n_dof) + 1e-30j, np.zeros(m.n_dof))
 
 
 @pytest.mark.parametrize("extra", [{}, {"kappa": 0.01, "tip_mass": 0.02}])

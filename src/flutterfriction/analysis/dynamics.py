@@ -2,7 +2,8 @@
 with hinge viscosity, limit-cycle detection on a Poincaré section, and a periodic-orbit solve
 by shooting as the independent check.
 
-The right-hand side is :meth:`~flutterfriction.models.ziegler.ZieglerPendulum.equations_of_motion`;
+The right-hand side is :meth:`~flutterfriction.models.ziegler.ZieglerPendulum.equations_of_motion`
+(bound once per integration: :meth:`~flutterfriction.models.ziegler.ZieglerPendulum.motion_at`);
 its Jacobian is derived once with sympy from the same equations (analytic, exact) and compiled.
 """
 

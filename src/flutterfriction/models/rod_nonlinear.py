@@ -274,6 +274,9 @@ class NonlinearRod:
             if np.shape(q) != (n,) or np.shape(v) != (n,):  # (a number would broadcast)
                 raise ParameterError(f"q and v must have shape ({n},), got {np.shape(q)}, "
                                      f"{np.shape(v)}")
+            if np.iscomplexobj(q) or np.iscomplexobj(v):  # (its imaginary part would be lost)
+                raise ParameterError("q and v must be real here; complex steps go through "
+                                     "dynamic_terms")
             y[:n], y[n:] = q, v
             M, g = _assemble(y, *args)[:2]
             # the kernel fills M's upper triangle (its Cholesky reads only that)
