@@ -296,15 +296,14 @@ def paradox_map(params: dict[str, Any]) -> dict[str, Any]:
         raise ParameterError(f"n_grid must be >= 5, got {n}")
     lc, lm, yd = (np.linspace(*r, n) for r in _paradox_map_ranges(params))
 
-    def ratio(p: ZieglerPendulum, c: float) -> float:
-        return cfd.flutter_gamma_limit(p, c) / cf.flutter_divergence_gammas(p.groups())[0]
-
-    def ratios(p: ZieglerPendulum) -> list[float]:
-        """:func:`ratio` along the map's row of damping ratios (the row's pendulum and
-        undamped load made once, not at each of its 81 points: the scene 2.5 s -> 1.1 s, the
-        same numbers)."""
+    def ratios(p: ZieglerPendulum, cs) -> list[float]:
+        """The ratio at the damping ratios ``cs`` of one pendulum (its undamped load made once
+        per row of the map, not at each of its 81 points: the scene 2.5 s -> 1.1 s, the same
+        numbers)."""
         undamped = cf.flutter_divergence_gammas(p.groups())[0]
-        return [cfd.flutter_gamma_limit(p, 10**c) / undamped for c in lc]
+        return [cfd.flutter_gamma_limit(p, c) / undamped for c in cs]
+
+    row = [10**c for c in lc]
 
     def pend_mass(log_m: float) -> ZieglerPendulum:
         return p0.with_(m1=p0.m2 * 10**log_m)
@@ -312,8 +311,8 @@ def paradox_map(params: dict[str, Any]) -> dict[str, Any]:
     def pend_d(y: float) -> ZieglerPendulum:
         return p0.with_(d=y * p0.l1)
 
-    mass_map = [ratios(pend_mass(m)) for m in lm]
-    d_map = [ratios(pend_d(y)) for y in yd]
+    mass_map = [ratios(pend_mass(m), row) for m in lm]
+    d_map = [ratios(pend_d(y), row) for y in yd]
     free_mass = [cfd.paradox_free_damping_ratio(pend_mass(m).groups()) for m in lm]
     free_d = [cfd.paradox_free_damping_ratio(pend_d(y).groups()) for y in yd]
     eps = check_positive("eps_check", params.get("eps_check", 1e-4))
@@ -324,7 +323,7 @@ def paradox_map(params: dict[str, Any]) -> dict[str, Any]:
         pd = with_viscosity(p, eps, pt["c_ratio"])
         numeric = damped_flutter_load(pd, "routh") / follower_critical_loads(p)[0]
         quantities[f"check_{i}"] = quantity(
-            ratio(p, pt["c_ratio"]), numeric, "closed form, eps -> 0",
+            ratios(p, [pt["c_ratio"]])[0], numeric, "closed form, eps -> 0",
             f"Routh-Hurwitz at eps = {eps:g} over eigenvalue coalescence", "")
     return {"log10_c": lc.tolist(), "log10_mass_ratio": lm.tolist(), "d_ratio": yd.tolist(),
             "check_points": params.get("check_points", []),
