@@ -22,6 +22,10 @@ from flutterfriction.errors import (
 )
 
 TOP_LEVEL_KEYS = {"fidelity", "fidelity_presets", "scenes", "sweep_parts"}
+#: The workflow's configuration schema (in a checkout, beside the package): the configuration
+#: check reads it, and so do the scenes' Python entry points (:func:`scene_problems`).
+CONFIG_SCHEMA = Path(__file__).resolve().parents[2] / "workflow" / "schemas" / \
+    "config.schema.yaml"
 
 _MERGE_TAG = "tag:yaml.org,2002:merge"
 _FLOAT_TAG = "tag:yaml.org,2002:float"
@@ -484,6 +488,60 @@ def _rod_scene_problems(scene: str, params: dict[str, Any], prefix: str) -> list
     return lines
 
 
+def _scene_value_problems(scene: str, params: dict[str, Any], prefix: str,
+                          check: Callable[[dict[str, Any]], None] | None) -> list[str]:
+    """One scene's parameters past its schema: non-finite numbers, the physical constraints
+    (:func:`_physical_problems`), the rod solver's ranges (:func:`_rod_scene_problems`) and,
+    if those pass, the scene's own ``check`` (its refusals of what it would find out only
+    after costly work)."""
+    found = _physical_problems(scene, params, prefix)
+    found += _rod_scene_problems(scene, params, prefix)
+    if check is not None and not found:
+        verdict = _check_verdict(check, params)
+        if verdict is not None:
+            found.append(f"{prefix}scenes.{scene}: {verdict}")
+    return found
+
+
+_SCHEMAS: dict[tuple[str, float], dict[str, Any]] = {}
+
+
+def _schema_at(path: str | Path) -> dict[str, Any]:
+    """The schema file ``path``, parsed once per process and version of the file."""
+    path = Path(path)
+    key = (str(path.resolve()), path.stat().st_mtime)
+    if key not in _SCHEMAS:
+        with open(path, encoding="utf-8") as fh:
+            _SCHEMAS[key] = safe_load(fh)
+    return _SCHEMAS[key]
+
+
+def scene_problems(scene: str, params: dict[str, Any],
+                   check: Callable[[dict[str, Any]], None] | None = None,
+                   schema_path: str | Path = CONFIG_SCHEMA) -> list[str]:
+    """Every problem of one scene's parameters as the configuration check finds it, one line
+    each naming the key (``scenes.<scene>.<key>: ...``): the scene's section of the schema
+    (types: an integer is not 2.5, True or "3"; ranges; unknown keys), non-finite numbers,
+    the physical constraints and the solvers' ranges, then ``check`` (the scene's own
+    refusals of costly work). The scenes' Python entry points
+    (:func:`flutterfriction.registry.build_scene`) run it before any work, as the workflow
+    does before any job. Without the schema file (a package installed without its
+    checkout) the schema part is skipped. An empty list means valid."""
+    if not isinstance(params, dict):
+        return [f"scenes.{scene}: the parameters must be a mapping, got {type(params).__name__}"]
+    if Path(schema_path).is_file():
+        schema = _schema_at(schema_path)
+        section = ((schema.get("properties") or {}).get("scenes") or {}).get(
+            "properties", {}).get(scene)
+        if section is not None:
+            wrapped = {"$defs": schema.get("$defs", {}), "type": "object",
+                       "properties": {scene: section}}
+            lines = _schema_problems({scene: params}, wrapped, "scenes.")
+            if lines:
+                return lines
+    return _scene_value_problems(scene, params, "", check)
+
+
 def _lookup(tree: Any, path: tuple) -> Any:
     for p in path:
         if not isinstance(tree, dict) or p not in tree:
@@ -561,16 +619,9 @@ def validate_config(config: dict[str, Any], schema_path: str | Path,
         prefix = f"config (fidelity {fidelity}): "
         lines = _schema_problems(resolved, schema, prefix)
         for scene, params in resolved["scenes"].items():
-            found = _physical_problems(scene, params, prefix)
-            found += _rod_scene_problems(scene, params, prefix)
             check = getattr(scenes.get(scene), "check", None) \
                 if isinstance(scenes, Mapping) else None
-            if check is not None and not found:
-                # the scene's own refusals of what it would find out only after costly work
-                verdict = _check_verdict(check, params)
-                if verdict is not None:
-                    found.append(f"{prefix}scenes.{scene}: {verdict}")
-            lines += found
+            lines += _scene_value_problems(scene, params, prefix, check)
         seen = {p.split(": ", 1)[1] for p in problems}
         problems += [line for line in lines if line.split(": ", 1)[1] not in seen]
     return problems

@@ -379,15 +379,39 @@ def sweep_of(name: str) -> Sweep:
     return sweep
 
 
+def checked_params(name: str, params: dict[str, Any]) -> dict[str, Any]:
+    """``params`` of scene ``name`` with its chapter lists named (``rod: list119``) resolved,
+    refused before any work as the workflow's configuration check refuses them
+    (:func:`flutterfriction.config.scene_problems`: the schema's types and ranges, non-finite
+    numbers, the geometry, the scene's own check): a :class:`ParameterError` naming every
+    offending key in one line."""
+    from flutterfriction.config import expand_parameter_lists, scene_problems
+
+    sc = scene(name)
+    if not isinstance(params, dict):
+        raise ParameterError(f"scenes.{name}: the parameters must be a mapping, got "
+                             f"{type(params).__name__}")
+    holder = {"scenes": {name: dict(params)}}
+    problems = expand_parameter_lists(holder)
+    params = holder["scenes"][name]
+    problems = problems or scene_problems(name, params, sc.check)
+    if problems:
+        raise ParameterError("; ".join(p.removeprefix("config: ") for p in problems))
+    return params
+
+
 def build_scene(name: str, params: dict[str, Any]) -> dict[str, Any]:
-    """Compute scene ``name`` from its parameters; the result records the parameters it used."""
-    return _scenes.build_scene(name, params, scene(name).compute)
+    """Compute scene ``name`` from its parameters (checked first: :func:`checked_params`);
+    the result records the parameters it used."""
+    return _scenes.build_scene(name, checked_params(name, params), scene(name).compute)
 
 
 def build_scene_part(name: str, params: dict[str, Any], part: int, n_parts: int
                      ) -> dict[str, Any]:
-    """Block ``part`` of ``n_parts`` of the sweep scene ``name``."""
-    return _scenes.build_scene_part(name, params, part, n_parts, sweep_of(name))
+    """Block ``part`` of ``n_parts`` of the sweep scene ``name`` (its parameters checked
+    first, as :func:`build_scene`'s)."""
+    sweep = sweep_of(name)
+    return _scenes.build_scene_part(name, checked_params(name, params), part, n_parts, sweep)
 
 
 def combine_scene_parts(name: str, params: dict[str, Any], parts: list[dict[str, Any]]

@@ -13,6 +13,7 @@ from flutterfriction.analysis import rod as ar
 from flutterfriction.errors import (
     ConvergenceError,
     ParameterError,
+    check_integer,
     check_nonnegative,
     check_positive,
     check_real,
@@ -109,8 +110,9 @@ def _branch_scene(params: dict[str, Any], tan_alpha: float, scene: str) -> dict[
     g_undamped = RodGroups(tan_alpha=tan_alpha)
     p_max = check_positive("p_max", params.get("p_max", 35.0))
     p = np.linspace(0.0, p_max, n_points(params))
-    n_modes = int(params.get("n_modes", 2))
+    n_modes = check_integer("n_modes", params.get("n_modes", 2), 1, 16)
     n_fe = _fe_n(params)
+    p_load = _load_of(params, rod)  # refused before the branches' seconds of work
     cases, quantities = {}, {}
     for name, g in (("undamped", g_undamped), ("damped", g_damped)):
         w = ar.branches(g, p, n_modes=n_modes)
@@ -118,11 +120,10 @@ def _branch_scene(params: dict[str, Any], tan_alpha: float, scene: str) -> dict[
         quantities.update(q)
         cases[name] = {"groups": vars(g), "re": w.real.T.tolist(), "im": w.imag.T.tolist(),
                        "critical": exact.as_dict()}
-    if "P_N" in params:  # list (119): "P = 5.5 N (inside the flutter region)"
+    if p_load is not None:  # list (119): "P = 5.5 N (inside the flutter region)"
         from flutterfriction.analysis.rod import fe_eigenvalues
         from flutterfriction.analysis.stability import classify
 
-        p_load = _load_of(params, rod)
         exact = ar.eigenvalues(p_load, g_damped, n_modes=3)
         quantities[f"regime_at_{params['P_N']:g}N"] = quantity(
             str(classify(exact)), str(classify(fe_eigenvalues(g_damped, p_load, n_fe))),
@@ -158,7 +159,7 @@ def fig12(params: dict[str, Any]) -> dict[str, Any]:
     stated = check_nonnegative("stated_tan_alpha",
                                params.get("stated_tan_alpha", FIG12_STATED_TAN_ALPHA))
     rod = _rod(params)
-    n_modes = int(params.get("n_modes", 2))
+    n_modes = check_integer("n_modes", params.get("n_modes", 2), 1, 16)
     groups = {"undamped": RodGroups(tan_alpha=stated),
               "damped": RodGroups(tan_alpha=stated, eta=rod.groups().eta,
                                   gamma=rod.groups().gamma)}
