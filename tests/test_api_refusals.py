@@ -101,3 +101,84 @@ def test_a_guess_on_the_imaginary_axis_reaches_its_flutter_root_whatever_its_las
     # the two guesses give the pair's two roots of the upper half-plane, not one root twice
     assert np.sort(roots.real) == pytest.approx([-3.5526589, 3.5526589], rel=1e-7)
     assert roots.imag == pytest.approx([67.9754791, 67.9754791], rel=1e-7)
+
+
+# An outside audit of the dynamics, the rod's FE twin and the acoustic helpers: NaN tolerances
+# integrated without end, t_max = 1e300 for minutes, None gave AttributeErrors, strings were
+# read as numbers, and rtol = -1 called a real spectrum complex.
+_P9 = dict(l1=0.1, l2=0.1, d=0.1, h=0.0, m1=0.2, m2=0.2, m3=0.0, k1=0.189, k2=0.189,
+           c1=0.006, c2=0.006)
+_X0 = [0.01, 0.01, 0.0, 0.0]
+
+
+def _dynamics_calls():
+    from flutterfriction.analysis import dynamics as dy
+    from flutterfriction.analysis import ziegler as az
+
+    p = ZieglerPendulum(**_P9)
+    nan = float("nan")
+    return [
+        (lambda: dy.simulate(p, 3.9, _X0, 1.0, rtol=nan), "rtol"),
+        (lambda: dy.simulate(p, 3.9, _X0, 1.0, rtol=-1.0), r"rtol must be in \[1e-14, 0.1\]"),
+        (lambda: dy.simulate(p, 3.9, _X0, 1.0, atol="1"), "atol must be a real number"),
+        (lambda: dy.simulate(p, 3.9, _X0, 1.0, method="bogus"), "method must be one of"),
+        (lambda: dy.simulate(p, 3.9, _X0, 1.0, first_step=nan), "first_step"),
+        (lambda: dy.simulate(p, 3.9, _X0, 1.0, max_step=0.0), "max_step must be > 0"),
+        (lambda: dy.simulate(p, 3.9, _X0, 1.0, t_eval=[5.0]), r"t_eval must be instants in"),
+        (lambda: dy.simulate(p, 3.9, _X0, 1.0, t_eval=[nan]), "t_eval must be finite"),
+        (lambda: dy.simulate(p, 3.9, _X0, 1.0, t_eval=["0.5"]), "t_eval must be a real"),
+        (lambda: dy.simulate(None, 3.9, _X0, 1.0), "pendulum must be a ZieglerPendulum"),
+        (lambda: dy.limit_cycle(p, 3.915, [0.5, 0.5, 0, 0], tol=1e-20),
+         r"tol must be in \[1e-13, 0.01\]"),
+        (lambda: dy.limit_cycle(p, 1.0, [0.5, 0.5, 0, 0], t_max=1e300), r"t_max must be in"),
+        (lambda: dy.limit_cycle(p, 1.0, [0.5, 0.5, 0, 0], chunk=1e-300), r"chunk must be in"),
+        (lambda: dy.limit_cycle(p, 1.0, [0.5, 0.5, 0, 0], max_steps=2.5), "max_steps"),
+        (lambda: dy.limit_cycle(None, 1.0, _X0), "pendulum must be a ZieglerPendulum"),
+        (lambda: dy.limit_cycle_by_continuation(p, 3.9, 2.61, tol=0.0), "tol must be in"),
+        (lambda: dy.ziegler_limit_cycle(p, 3.915, 0.1, tol=nan), "tol"),
+        (lambda: dy.ziegler_limit_cycle(p, 3.915, 0.1, tol=10.0), "tol must be in"),
+        (lambda: dy.ziegler_limit_cycle(None, 3.915, 0.1), "pendulum must be a Ziegler"),
+        (lambda: dy.jacobian(p, [nan, 0, 0, 0], 1.0), "state must be 4 finite numbers"),
+        (lambda: dy.jacobian(p, [0, 0, 0, 0], nan), "P must be finite"),
+        (lambda: dy.jacobian(p, [0, 0, 0, 0], True), "P must be a real number"),
+        (lambda: az.regime(None), "pendulum must be a ZieglerPendulum"),
+        (lambda: az.spectrum(None), "pendulum must be a ZieglerPendulum"),
+        (lambda: az.linear_response(None, 1.0, 0.0, _X0, [0.1]), "pendulum must be a Ziegler"),
+        (lambda: az.linear_response(p, 1.0, 0.0, _X0, ["1"]), "times must be a real"),
+        (lambda: az.linear_response(p, 1.0, 0.0, _X0, [True]), "times must be a real"),
+    ]
+
+
+@pytest.mark.parametrize("k", range(27))
+def test_the_dynamics_refuse_bad_arguments_by_name_before_integrating(k):
+    call, match = _dynamics_calls()[k]
+    with pytest.raises(ParameterError, match=match) as err:
+        call()
+    assert "\n" not in str(err.value)
+
+
+def test_the_dynamics_still_take_good_options():
+    from flutterfriction.analysis import dynamics as dy
+
+    p = ZieglerPendulum(**_P9)
+    sol = dy.simulate(p, 3.9, _X0, 0.5, t_eval=[0.0, 0.25, 0.5], method="Radau", rtol=1e-8,
+                      atol=1e-10, first_step=1e-4, max_step=0.1)
+    assert sol.t.tolist() == [0.0, 0.25, 0.5] and np.all(np.isfinite(sol.y))
+    assert dy.jacobian(p, np.zeros(4), 1.0).shape == (4, 4)
+
+
+def test_the_fe_twin_and_the_acoustic_helpers_refuse_off_range_arguments():
+    from flutterfriction.analysis import rod as ar
+
+    with pytest.raises(ParameterError, match=r"n_elements must be an integer in \[1, 200\]"):
+        ar.fe_critical_loads(RodGroups(tan_alpha=1.0), 500, p_max=10.0)
+    real = np.diag([1.0, 2.0, 3.0])
+    rotation = np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
+    assert not ac.has_complex_pair(real) and ac.has_complex_pair(rotation)
+    for rtol in (-1.0, float("nan"), 1.0):
+        with pytest.raises(ParameterError, match=r"rtol must be"):
+            ac.has_complex_pair(real, rtol=rtol)
+    for bad in ([["1"] * 3] * 3, np.eye(3, dtype=bool), np.ones((2, 2)),
+                np.full((3, 3), np.nan)):
+        with pytest.raises(ParameterError, match="A must be"):
+            ac.has_complex_pair(bad)

@@ -19,6 +19,7 @@ from flutterfriction.errors import (
     ConvergenceError,
     ParameterError,
     check_finite_array,
+    check_finite_reals,
     check_integer,
     check_real,
     shown_beside,
@@ -72,6 +73,7 @@ def flutters_somewhere(E: NDArray, P: ArrayLike, Q: ArrayLike, directions: NDArr
     elasticity) ``|disc(B)| <= 4e-16 ||B||^6``; every fluttering tensor has
     ``disc(B) < -1.3e-6 ||B||^6``; ``rtol`` = 1e-12 sits between, and the counts equal those
     of the eigenvalues (a pair with ``|Im| > 1e-7 |c^2|``) at every anisotropy."""
+    rtol = _check_rtol(rtol)
     n = np.asarray(directions, dtype=float)
     # in blocks of directions: the tensors of the whole map (6561 x 200) would take 94 MB, and
     # the deviator as much again
@@ -120,11 +122,31 @@ def acoustic_tensors(E: NDArray, P: ArrayLike, Q: ArrayLike, directions: NDArray
     return Ael[:, None] - np.einsum("mi,mk->mik", p, q)[:, None] / g[None, :, None, None]
 
 
+def _check_rtol(rtol: object) -> float:
+    """A relative threshold in [0, 1) (an outside audit: -1 called a real spectrum complex,
+    NaN a complex one real)."""
+    rtol = check_real("rtol", rtol)
+    if not 0.0 <= rtol < 1.0:
+        raise ParameterError(f"rtol must be in [0, 1), got {rtol!r}")
+    return rtol
+
+
+def _real_stack(name: str, A: object) -> NDArray:
+    """``A`` as a new float array of finite real 3x3 matrices (..., 3, 3): numbers only (an
+    outside audit's ``"1"`` entries were read as 1.0)."""
+    B = check_finite_reals(name, A)
+    if B.ndim < 2 or B.shape[-2:] != (3, 3):
+        raise ParameterError(f"{name} must be real 3x3 matrices (shape (..., 3, 3)), got shape "
+                             f"{B.shape}")
+    return B
+
+
 def has_complex_pair(A: NDArray, rtol: float = 1e-12) -> NDArray:
     """Whether each real 3x3 matrix of the stack ``A`` (..., 3, 3) has a complex-conjugate
     pair of eigenvalues: the discriminant of its deviator below ``-rtol ||B||^6`` (see
     :func:`flutters_somewhere` for why the deviator and for the measured margins)."""
-    B = np.array(A, dtype=float)  # a copy, shifted in place
+    rtol = _check_rtol(rtol)
+    B = _real_stack("A", A)  # a copy, shifted in place
     t = np.trace(B, axis1=-2, axis2=-1) / 3
     for i in range(3):
         B[..., i, i] -= t

@@ -26,10 +26,12 @@ from flutterfriction.errors import (
     ConvergenceError,
     ParameterError,
     check_finite_array,
+    check_finite_reals,
+    check_integer,
     check_positive,
     check_real,
 )
-from flutterfriction.models.ziegler import ZieglerPendulum
+from flutterfriction.models.ziegler import ZieglerPendulum, check_pendulum
 
 _PARAM_NAMES = "l1 l2 d h m1 m2 m3 k1 k2 c1 c2 P H"
 
@@ -58,19 +60,57 @@ def _jacobian_function():
 
 def jacobian(pendulum: ZieglerPendulum, state: ArrayLike, P: float, H: float = 0.0) -> NDArray:
     """Analytic Jacobian of the nonlinear equations of motion (eq. 10) at ``state``."""
-    p = pendulum
+    p = check_pendulum(pendulum)
+    P, H, x = _checked_start(P, H, state, "state")
     params = (p.l1, p.l2, p.d, p.h, p.m1, p.m2, p.m3, p.k1, p.k2, p.c1, p.c2, P, H)
-    return np.array(_jacobian_function()(tuple(np.asarray(state, dtype=float)), params),
-                    dtype=float)
+    return np.array(_jacobian_function()(tuple(x), params), dtype=float)
 
 
 
-def _checked_start(P: float, H: float, state0: ArrayLike) -> tuple[float, float, NDArray]:
+def _checked_start(P: float, H: float, state0: ArrayLike, name: str = "state0"
+                   ) -> tuple[float, float, NDArray]:
     """The loads and the start state, refused (one line naming them) unless finite; the
     integrations then call the equations of motion unchecked."""
     P, H = check_real("P", P), check_real("H", H)
-    return P, H, check_finite_array("state0", state0, (4,),
+    return P, H, check_finite_array(name, state0, (4,),
                                     "4 finite numbers [a1, a2, a1_dot, a2_dot]")
+
+
+#: The integrators :func:`simulate` and :func:`limit_cycle` accept (scipy's ``solve_ivp``).
+METHODS = ("RK23", "RK45", "DOP853", "Radau", "BDF", "LSODA")
+#: Relative tolerances of an integration: below ~100 machine epsilons scipy raises them
+#: itself (with a warning), at 1 and above nothing is resolved.
+RTOL_RANGE = (1e-14, 0.1)
+
+
+def _check_integration(method: object, rtol: object, atol: object) -> tuple[float, float]:
+    """The integrator and its tolerances, refused in one line naming them (an outside audit:
+    ``rtol = nan`` integrated without end, ``-1`` ran with a warning, an unknown method or a
+    string tolerance came back as scipy's or numpy's own error)."""
+    if method not in METHODS:
+        raise ParameterError(f"method must be one of {list(METHODS)}, got {method!r}")
+    rtol, atol = check_real("rtol", rtol), check_real("atol", atol)
+    if not RTOL_RANGE[0] <= rtol <= RTOL_RANGE[1]:
+        raise ParameterError(f"rtol must be in [{RTOL_RANGE[0]:g}, {RTOL_RANGE[1]:g}], got "
+                             f"{rtol!r}")
+    if not atol > 0:
+        raise ParameterError(f"atol must be > 0, got {atol!r}")
+    return rtol, atol
+
+
+def _check_solver_options(kwargs: dict, t_end: float) -> dict:
+    """``solve_ivp``'s step options (``first_step``, ``max_step``: positive and finite) and
+    ``t_eval`` (finite instants in [0, t_end]) refused in one line where bad."""
+    for name in ("first_step", "max_step"):
+        if name in kwargs:
+            kwargs[name] = check_positive(name, kwargs[name], "s")
+    if kwargs.get("t_eval") is not None:
+        t = np.atleast_1d(check_finite_reals("t_eval", kwargs["t_eval"]))
+        if t.ndim != 1 or np.any(t < 0) or np.any(t > t_end):
+            raise ParameterError(f"t_eval must be instants in [0, t_end = {t_end:g}] s, got "
+                                 f"{t.size} values in [{t.min():g}, {t.max():g}]")
+        kwargs["t_eval"] = t
+    return kwargs
 
 #: The longest motion :func:`simulate` integrates, in the pendulum's time unit tau =
 #: l2 sqrt(m2/k2) (eq. 17): 1e4 tau take ~10 s of work (§2.9's cycle, DOP853 at rtol 1e-10),
@@ -133,8 +173,11 @@ def simulate(pendulum: ZieglerPendulum, P: float, state0: ArrayLike, t_end: floa
     ``(0, t_end]``, ``t_end`` [s] at most :data:`SIMULATE_MAX_TIME_UNITS` time units of the
     pendulum (refused beyond, and infinite: an outside audit's ``t_end = inf`` ran until
     killed)."""
+    check_pendulum(pendulum)
     P, H, x0 = _checked_start(P, H, state0)
     t_end = check_positive("t_end", t_end, "s")
+    rtol, atol = _check_integration(method, rtol, atol)
+    kwargs = _check_solver_options({**kwargs, "t_eval": t_eval}, t_end)
     limit = SIMULATE_MAX_TIME_UNITS * time_unit(pendulum)
     if t_end > limit:
         raise ParameterError(f"t_end must be in (0, {limit:.4g}] s ({SIMULATE_MAX_TIME_UNITS:g} "
@@ -142,8 +185,7 @@ def simulate(pendulum: ZieglerPendulum, P: float, state0: ArrayLike, t_end: floa
     if method in ("Radau", "BDF", "LSODA"):  # implicit: give them the analytic Jacobian
         kwargs["jac"] = lambda t, x: jacobian(pendulum, x, P, H)
     sol = solve_ivp(_counted(pendulum.motion_at(P, H)),
-                    (0.0, t_end), x0, method=method, t_eval=t_eval, rtol=rtol, atol=atol,
-                    **kwargs)
+                    (0.0, t_end), x0, method=method, rtol=rtol, atol=atol, **kwargs)
     if not sol.success:
         raise ConvergenceError(f"time integration failed: {sol.message}")
     return sol
@@ -211,12 +253,23 @@ def limit_cycle(pendulum: ZieglerPendulum, P: float, state0: ArrayLike, H: float
 
     section.direction = -1.0
     runaway.terminal = True
+    check_pendulum(pendulum)
     P, H, x = _checked_start(P, H, state0)
-    for name, value in (("tol", tol), ("t_max", t_max), ("rtol", rtol), ("atol", atol),
-                        ("chunk", chunk)):
+    rtol, atol = _check_integration(method, rtol, atol)
+    tol = _check_cycle_tol(tol)
+    max_steps = check_integer("max_steps", max_steps, 1, LIMIT_CYCLE_MAX_STEPS)
+    for name, value in (("t_max", t_max), ("chunk", chunk)):
         if value is not None and not check_real(name, value) > 0:
             raise ParameterError(f"{name} must be > 0, got {value!r}")
     tau = time_unit(pendulum)
+    # bounded in simulated time as simulate is (an outside audit: t_max = 1e300 and chunks
+    # of 1e-300 s integrated for minutes)
+    for name, value, low, high in (("t_max", t_max, 0.0, SIMULATE_MAX_TIME_UNITS),
+                                   ("chunk", chunk, 1e-3, SIMULATE_MAX_TIME_UNITS)):
+        if value is not None and not low * tau < value <= high * tau:
+            raise ParameterError(f"{name} must be in ({low * tau:.4g}, {high * tau:.4g}] s "
+                                 f"({low:g} to {high:g} time units l2 sqrt(m2/k2) of this "
+                                 f"pendulum), got {value!r}")
     unit = in_time_unit(pendulum)
     x = x * np.array([1.0, 1.0, tau, tau])
     t_end = TRANSIENT_T_MAX if t_max is None else t_max / tau
@@ -254,6 +307,23 @@ def limit_cycle(pendulum: ZieglerPendulum, P: float, state0: ArrayLike, H: float
                 f"(alpha1 = {crossings[-1][1][0]:.4g} rad)")
     raise ConvergenceError(f"no limit cycle converged to {tol:g} within t = {t_end * tau:g} s "
                            f"simulated{last}")
+
+
+#: Most integration steps :func:`limit_cycle` may be given (``max_steps``; its default 2e6).
+LIMIT_CYCLE_MAX_STEPS = 10**8
+#: Tolerances of a converged cycle (relative agreement of two section crossings, or of a
+#: continued orbit's load): below 1e-13 two crossings differ by their own rounding and the
+#: test is never met (an outside audit: 1e-20 integrated to the time bound); above 1e-2 it
+#: accepts a transient as a cycle.
+CYCLE_TOL_RANGE = (1e-13, 1e-2)
+
+
+def _check_cycle_tol(tol: object, name: str = "tol") -> float:
+    tol = check_real(name, tol)
+    if not CYCLE_TOL_RANGE[0] <= tol <= CYCLE_TOL_RANGE[1]:
+        raise ParameterError(f"{name} must be in [{CYCLE_TOL_RANGE[0]:g}, "
+                             f"{CYCLE_TOL_RANGE[1]:g}] (relative), got {tol!r}")
+    return tol
 
 
 #: Largest number of maxima of alpha1 per period that :func:`limit_cycle` recognises (an
@@ -420,6 +490,11 @@ def limit_cycle_by_continuation(pendulum: ZieglerPendulum, P: float, P_flu: floa
     like ``exp(-Re s t)`` with ``Re s ~ P - P_flu``. Shooting integrates periods below
     ``4 (2 pi / Omega)`` and trial loads below ``4 max(P, P_flu)`` only (the cycles of the
     §2.9 pendulum shorten with amplitude)."""
+    check_pendulum(pendulum)
+    tol = _check_cycle_tol(tol)
+    _check_integration("Radau", rtol, atol)
+    max_steps = check_integer("max_steps", max_steps, 1, 10_000)
+    A_start = check_positive("A_start", A_start, "rad")
     omega, mode = linear_flutter_mode(pendulum, P_flu)
     if not np.all(np.abs(mode) < 1e6):
         # the flutter mode hardly moves alpha1 (an outside audit: c2 = 0 gave alpha2/alpha1
@@ -548,8 +623,10 @@ def ziegler_limit_cycle(pendulum: ZieglerPendulum, P: float, alpha0: float, *,
         spectrum,
     )
 
+    check_pendulum(pendulum)
     P = check_real(P_name, P)
     alpha0 = check_real(alpha0_name, alpha0)
+    tol = _check_cycle_tol(tol)
     if not 0 < abs(alpha0) <= np.pi:
         raise ParameterError(f"{alpha0_name} must be non-zero and within half a turn "
                              f"(0 < |alpha0| <= 180 deg), got {np.degrees(alpha0):g} deg")

@@ -177,6 +177,7 @@ def fe_critical_loads(g: RodGroups, n_elements: int, p_max: float = 80.0,
     p_max = _check_p_max(p_max)
     step = _check_step(step, p_max)
     check_groups(g)
+    _check_mesh(n_elements)  # (500 elements scanned for minutes; an outside audit)
     if g.damped and _damping(g) < DAMPING_FLOOR:
         # Below the floor the crossing's growth rate is round-off of the FE spectrum (measured
         # by an outside audit: 9.808 for the exact 10.93885 at eta = 1e-12, no convergence with

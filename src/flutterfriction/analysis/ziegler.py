@@ -28,10 +28,11 @@ from flutterfriction.errors import (
     ConvergenceError,
     ParameterError,
     check_finite_array,
+    check_finite_reals,
     check_integer,
     check_real,
 )
-from flutterfriction.models.ziegler import DimensionlessMatrices, ZieglerPendulum
+from flutterfriction.models.ziegler import DimensionlessMatrices, ZieglerPendulum, check_pendulum
 from flutterfriction.results import CriticalLoads  # noqa: F401  (re-exported)
 
 
@@ -41,9 +42,7 @@ def _dimensionless(pendulum: ZieglerPendulum) -> DimensionlessMatrices:
 
     Loads come out in units of ``k2/l1`` (gamma, eta), so no SI scale can overflow; they are
     converted to newtons by one multiplication at the end."""
-    if not isinstance(pendulum, ZieglerPendulum):
-        raise ParameterError(f"pendulum must be a ZieglerPendulum, got {type(pendulum).__name__}")
-    pendulum.check_numerical_range()
+    check_pendulum(pendulum).check_numerical_range()
     return pendulum.dimensionless_matrices()
 
 
@@ -425,7 +424,7 @@ def _spectrum(pendulum: ZieglerPendulum, P: float, H: float
               ) -> tuple[NDArray, tuple[Fraction, Fraction, Fraction] | None]:
     """:func:`spectrum`, and the undamped pendulum's exact biquadratic (None when damped), which
     :func:`regime` then uses without forming it again."""
-    K = _finite_stiffness(pendulum, P, H)
+    K = _finite_stiffness(check_pendulum(pendulum), P, H)
     coefficients = None
     if not is_damped(pendulum):
         coefficients = _undamped_biquadratic(pendulum, check_real("P", P), check_real("H", H))
@@ -472,6 +471,7 @@ def regime(pendulum: ZieglerPendulum, P: float = 0.0, H: float = 0.0) -> Regime:
     root exactly on the imaginary axis, e.g. s = 0 at H_cr) the counts give no verdict and
     the eigenvalues decide (undamped too). A damped pendulum outside the model's numerical range
     is refused (:class:`ParameterError`), as its critical loads are."""
+    check_pendulum(pendulum)
     P = check_real("P", P)
     H = check_real("H", H)
     if not is_damped(pendulum):
@@ -510,10 +510,12 @@ def linear_response(pendulum: ZieglerPendulum, P: float, H: float, state0: Array
     -------
     ndarray, shape (n, 4)
     """
+    check_pendulum(pendulum)
     P = check_real("P", P)
     H = check_real("H", H)
     x0 = check_finite_array("state0", state0, (4,), "4 finite numbers [a1, a2, a1_dot, a2_dot]")
-    t = np.atleast_1d(np.asarray(times, dtype=float))
+    t = check_finite_reals("times", times)
+    t = np.atleast_1d(np.asarray(t, dtype=float))
     if t.ndim != 1 or not np.all(np.isfinite(t)):
         raise ParameterError(f"times must be a 1-D array of finite instants [s], got shape "
                              f"{t.shape}")

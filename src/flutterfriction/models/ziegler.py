@@ -447,3 +447,11 @@ class ZieglerPendulum:
             return w1, w2, acc1, acc2
 
         return motion
+
+
+def check_pendulum(pendulum: object, name: str = "pendulum") -> ZieglerPendulum:
+    """``pendulum`` if it is a :class:`ZieglerPendulum`, else a :class:`ParameterError` naming
+    ``name`` (an outside audit: ``None`` gave AttributeErrors deep in the solvers)."""
+    if not isinstance(pendulum, ZieglerPendulum):
+        raise ParameterError(f"{name} must be a ZieglerPendulum, got {type(pendulum).__name__}")
+    return pendulum
