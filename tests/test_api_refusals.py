@@ -182,3 +182,45 @@ def test_the_fe_twin_and_the_acoustic_helpers_refuse_off_range_arguments():
                 np.full((3, 3), np.nan)):
         with pytest.raises(ParameterError, match="A must be"):
             ac.has_complex_pair(bad)
+
+
+def test_more_entry_points_refuse_by_name():
+    """The same audit: an unhashable argument reached a cache, strings were read as states and
+    loads, a repeated load divided by zero, and None gave an AttributeError."""
+    from flutterfriction.analysis import dynamics as dy
+    from flutterfriction.analysis import rod as ar
+    from flutterfriction.analysis import ziegler as az
+
+    p = ZieglerPendulum(**_P9)
+    g = RodGroups(tan_alpha=1.0)
+    for call, match in [
+        (lambda: az.damped_divergence_load({}), "pendulum must be a ZieglerPendulum"),
+        (lambda: az.damped_divergence_load(p, method=[1]), "method must be 'algebraic' or"),
+        (lambda: dy.tip_acceleration(p, [["0.1", 0, 0, 0]], 1.0), "states must be a real"),
+        (lambda: dy.tip_acceleration(p, [[0.1, 0, 0]], 1.0), r"states must have shape \(n, 4\)"),
+        (lambda: dy.tip_acceleration(p, [[0.1, 0, 0, 0]], "1"), "P must be a real number"),
+        (lambda: ar.branches(g, [1.0, 1.0, 1.0]), "strictly increasing or strictly decr"),
+        (lambda: ar.branches(g, ["1", "2"]), "p_values must be a real"),
+        (lambda: ar.branches(g, [1 + 1j, 2]), "p_values must be a real"),
+        (lambda: ar.continue_critical_loads(g, None), "previous must be the RodCriticalLoads"),
+        (lambda: ar.continue_critical_loads(None, None), "g must be a RodGroups"),
+    ]:
+        with pytest.raises(ParameterError, match=match):
+            call()
+    assert az.damped_divergence_load(p) == az.damped_divergence_load(p, "algebraic") > 0
+    acc = dy.tip_acceleration(p, np.array([[0.1, 0.0, 0.0, 0.0]]), 1.0)
+    assert acc.shape == (1, 2) and np.all(np.isfinite(acc))
+    assert ar.branches(g, [2.0, 1.0]).shape == (2, 4)  # decreasing loads are a branch too
+
+
+def test_cli_refuses_an_integer_of_thousands_of_digits_in_one_short_line():
+    import contextlib
+    import io
+
+    from flutterfriction.cli import main
+
+    err = io.StringIO()
+    with contextlib.redirect_stderr(err), pytest.raises(SystemExit) as exit_:
+        main(["limit-cycle", "beck", "--elements", "9" * 5000])
+    assert exit_.value.code == 2
+    assert "an integer of 5000 digits" in err.getvalue() and len(err.getvalue()) < 1000

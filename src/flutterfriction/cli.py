@@ -153,7 +153,10 @@ def _integer(text: str) -> int:
     word = text.strip()
     if not PLAIN_INTEGER.fullmatch(word):
         hint = " (no '_' digit separators: write the digits only)" if "_" in word else ""
-        raise argparse.ArgumentTypeError(f"not an integer: {text!r}{hint}")
+        raise argparse.ArgumentTypeError(f"not an integer: {text[:40]!r}{hint}")
+    if len(word.lstrip("+-")) > 18:  # (5000 digits: Python's own conversion limit, echoed)
+        raise argparse.ArgumentTypeError(f"an integer of {len(word.lstrip('+-'))} digits is "
+                                         "beyond any allowed range")
     return int(word)
 
 

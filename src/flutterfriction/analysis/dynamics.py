@@ -413,7 +413,13 @@ def shoot_periodic_orbit(pendulum: ZieglerPendulum, P: float, guess: LimitCycle,
 def tip_acceleration(pendulum: ZieglerPendulum, states: NDArray, P: float,
                      H: float = 0.0) -> NDArray:
     """Acceleration of the loaded end C [m/s^2], shape (n, 2), from states (n, 4) of eq. (10)."""
-    x = np.asarray(states, dtype=float).T
+    check_pendulum(pendulum)
+    P, H = check_real("P", P), check_real("H", H)
+    x = np.atleast_2d(check_finite_reals("states", states))
+    if x.ndim != 2 or x.shape[1] != 4:
+        raise ParameterError(f"states must have shape (n, 4) ([a1, a2, a1_dot, a2_dot] rows), "
+                             f"got {np.shape(states)}")
+    x = x.T
     dx = pendulum.equations_of_motion(x, P, H)
     a1, a2, w1, w2 = x
     acc1, acc2 = dx[2], dx[3]

@@ -60,7 +60,12 @@ from flutterfriction.analysis.rod_windows import (
     _windows_between_two_pairs,
 )
 from flutterfriction.analysis.stability import Regime
-from flutterfriction.errors import ConvergenceError, ParameterError, check_positive
+from flutterfriction.errors import (
+    ConvergenceError,
+    ParameterError,
+    check_finite_reals,
+    check_positive,
+)
 from flutterfriction.models.rod import GROUP_RANGES, RodGroups
 
 #: The rod solver's public names (the helpers of eq. 118 and the scan's range live in
@@ -436,6 +441,10 @@ def continue_critical_loads(g: RodGroups, previous: RodCriticalLoads) -> RodCrit
     tan(alpha) 0.5 -> 0.7 gave ``p_div = None`` for 40.4658), and a window opening below the
     followed load is missed: use :func:`critical_loads` (every interval) where the regime
     structure may change, as the stability map does."""
+    check_groups(g)
+    if not isinstance(previous, RodCriticalLoads):
+        raise ParameterError(f"previous must be the RodCriticalLoads of a nearby rod, got "
+                             f"{type(previous).__name__}")
     if previous.p_flu is None:
         raise ConvergenceError("continuation needs a previous flutter load")
     out = {"p_flu": None, "omega_flu": None, "p_div": None, "omega_div": None}
@@ -469,10 +478,16 @@ def branches(g: RodGroups, p_values: NDArray, n_modes: int = 2,
     roots refined on eq. (118) at the same load, which are the complete set of the
     ``2 n_modes`` roots of smallest modulus.
     """
-    p_values = np.asarray(p_values, dtype=float)
+    p_values = np.atleast_1d(check_finite_reals("p_values", p_values))
     if p_values.ndim != 1 or p_values.size == 0:
         raise ParameterError(f"p_values must be a non-empty 1-d array of loads, got shape "
                              f"{p_values.shape}")
+    steps = np.diff(p_values)
+    if steps.size and not (np.all(steps > 0) or np.all(steps < 0)):
+        # the predictor extrapolates along the loads (an outside audit: a repeated load
+        # divided by zero and ended in a numpy error)
+        raise ParameterError("p_values must be strictly increasing or strictly decreasing "
+                             "loads (a branch is followed along them)")
     if p_values.size > MAX_BRANCH_LOADS:  # (1e7 loads ran for minutes; an outside audit)
         raise ParameterError(f"p_values must hold at most {MAX_BRANCH_LOADS} loads (~1 ms "
                              f"each), got {p_values.size}")

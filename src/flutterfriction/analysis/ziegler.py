@@ -242,14 +242,23 @@ def damped_flutter_load(pendulum: ZieglerPendulum, method: str = "routh") -> flo
 
 # Memoised (the pendulum is a frozen dataclass): the configuration check and the §2.9 scenes
 # ask for the same pendulum's load 3-5 times in one process, ~65 ms each (the exact scan).
-@functools.lru_cache(maxsize=256)
 def damped_divergence_load(pendulum: ZieglerPendulum, method: str = "algebraic") -> float:
     """Divergence load [N] with viscous hinges: the follower load at which the unstable pair
     becomes real. ``method``: ``"algebraic"`` (Routh/Sturm root counts and the resultant of the
     characteristic polynomial; the default: exact verdicts at any ratio the model accepts) or
     ``"eigenvalues"`` (refused, ConvergenceError, where the exact verdicts do not confirm it:
     at extreme length ratios its round-off moved the load by up to 0.67, measured). The scan
-    starts at the damped flutter load from the exact Routh criterion."""
+    starts at the damped flutter load from the exact Routh criterion. Computed once per
+    pendulum and method (the arguments checked before the cache: an outside audit's ``{}``
+    gave "unhashable type")."""
+    check_pendulum(pendulum)
+    if not isinstance(method, str) or method not in ("algebraic", "eigenvalues"):
+        raise ParameterError(f"method must be 'algebraic' or 'eigenvalues', got {method!r}")
+    return _damped_divergence_load(pendulum, method)
+
+
+@functools.lru_cache(maxsize=256)
+def _damped_divergence_load(pendulum: ZieglerPendulum, method: str) -> float:
     args = _damped_args(pendulum)
     start = flutter_onset(*args, method="routh", load_max=_window(pendulum))
     # Doubling until the double range ends (~15 s at worst, bounded): an outside audit found
