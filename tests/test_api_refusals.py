@@ -224,3 +224,20 @@ def test_cli_refuses_an_integer_of_thousands_of_digits_in_one_short_line():
         main(["limit-cycle", "beck", "--elements", "9" * 5000])
     assert exit_.value.code == 2
     assert "an integer of 5000 digits" in err.getvalue() and len(err.getvalue()) < 1000
+
+
+def test_subnormal_lam_and_start_angle_are_refused_and_close_bounds_shown_in_full():
+    from flutterfriction.analysis import dynamics as dy
+
+    P6, Q6, n = [1, -0.5, -0.5, 0, 0, 0.8], [0.6, -0.3, -0.3, 0, 0, -0.8], [1, 0, 0]
+    with pytest.raises(ParameterError, match="lam must be 0 or >= 2.23e-308"):
+        ac.isotropic_acoustic(1e-320, 1.0, P6, Q6, n)
+    assert ac.isotropic_acoustic(0.0, 1.0, P6, Q6, n) is not None
+    p = ZieglerPendulum(**_P9)
+    with pytest.raises(ParameterError, match="alpha0 must be at least 2.23e-308 rad"):
+        dy.ziegler_limit_cycle(p, 3.9, 1e-322)
+    # the §2.9 pendulum's damped flutter load is 2.6100000000000003 N: "(2.61, ...), got 2.61"
+    # read as a refusal of a value inside the interval
+    with pytest.raises(ParameterError, match=r"\(2\.6100000000000003, 9\.914235042\) N .* got "
+                                             r"2\.61$"):
+        dy.ziegler_limit_cycle(p, 2.61, 0.1)

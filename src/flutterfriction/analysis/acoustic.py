@@ -586,6 +586,9 @@ def isotropic_acoustic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike, n: Arr
         raise ParameterError(f"{nm['mu']} must be in [{RANGE_MIN:g}, {RANGE_MAX:g}], got {mu!r}")
     if not -RANGE_MAX <= lam <= RANGE_MAX:
         raise ParameterError(f"{nm['lam']} must be in [-1e+300, 1e+300], got {lam!r}")
+    if 0.0 < abs(lam) < NORMAL_MIN:  # (an outside audit: lam = 1e-320 was taken, its digits lost)
+        raise ParameterError(f"{nm['lam']} must be 0 or >= {NORMAL_MIN:.3g} in magnitude (a "
+                             f"subnormal double has lost digits), got {lam!r}")
     lr = lam / mu  # finite: |lam| <= 1e300, mu >= 1e-300 gives at most 1e600 -> inf, refused
     if not (lr > -2.0 / 3.0 and lr <= LAM_OVER_MU_MAX):
         raise ParameterError(

@@ -23,6 +23,7 @@ from scipy.optimize import root
 
 from flutterfriction.analysis.events import from_the_section
 from flutterfriction.errors import (
+    NORMAL_MIN,
     ConvergenceError,
     ParameterError,
     check_finite_array,
@@ -30,6 +31,7 @@ from flutterfriction.errors import (
     check_integer,
     check_positive,
     check_real,
+    shown_beside,
 )
 from flutterfriction.models.ziegler import ZieglerPendulum, check_pendulum
 
@@ -636,6 +638,10 @@ def ziegler_limit_cycle(pendulum: ZieglerPendulum, P: float, alpha0: float, *,
     if not 0 < abs(alpha0) <= np.pi:
         raise ParameterError(f"{alpha0_name} must be non-zero and within half a turn "
                              f"(0 < |alpha0| <= 180 deg), got {np.degrees(alpha0):g} deg")
+    if abs(alpha0) < NORMAL_MIN:  # (1e-320 deg was taken, its digits lost; an outside audit)
+        raise ParameterError(f"{alpha0_name} must be at least {NORMAL_MIN:.3g} rad "
+                             f"({math.degrees(NORMAL_MIN):.3g} deg) in magnitude (a subnormal "
+                             f"double has lost digits), got {math.degrees(alpha0):.3g} deg")
     pendulum.check_numerical_range()
     # Eq. (10) in the time unit tau multiplies two torques (the mass matrix's determinant is
     # ~ k2^2 there): k2 = 1e-170 N m underflowed it to 0 (a ZeroDivisionError), 1e-160 to
@@ -651,9 +657,13 @@ def ziegler_limit_cycle(pendulum: ZieglerPendulum, P: float, alpha0: float, *,
     P_flu = damped_flutter_load(pendulum, "routh")
     P_div = damped_divergence_load(pendulum)
     if not P_flu < P < P_div:
+        # all the digits where the short forms would read alike (an outside audit: "must lie
+        # in (2.61, 9.91) N, got 2.61" for the flutter load 2.6100000004)
+        lo, hi = (repr(b) if f"{b:.10g}" == f"{P:.10g}" else f"{b:.10g}" for b in (P_flu, P_div))
         raise ParameterError(
-            f"{P_name} must lie in the damped flutter interval ({P_flu:.10g}, {P_div:.10g}) N "
-            f"(flutter load P_flu, divergence load P_div), got {P:g}")
+            f"{P_name} must lie in the damped flutter interval ({lo}, {hi}) N "
+            f"(flutter load P_flu, divergence load P_div), got "
+            f"{shown_beside(P, (P_flu, P_div), '.10g')}")
     tau = time_unit(pendulum)
     unit = in_time_unit(pendulum)  # every integration below in units of tau
     growth = float(spectrum(unit, P).real.max())
