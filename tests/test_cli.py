@@ -652,3 +652,14 @@ def test_a_full_disk_is_one_line_and_minus_zero_is_zero(capsys):
                                    "left on device")
     code, out, _ = _run(capsys, [*_args(h="-0"), "--json"])
     assert code == 0 and '"h": 0.0' in out
+
+
+@pytest.mark.parametrize(("over", "text"), [
+    ({"k1": "1e308"}, "--k1, --k2: the ratio k1/k2"),
+    ({"k2": "1e-300"}, "--k1, --k2: the ratio k1/k2"),
+    ({"m1": "-0.3"}, "--m1 must be > 0 kg"),
+])
+def test_a_models_refusal_names_every_option_it_is_about(capsys, over, text):
+    """Outside audit: a pair was named "--k1, k2" (the second without its dashes)."""
+    code, out, err = _run_exit(capsys, _args(**over))
+    assert code == 2 and out == "" and text in err and len(err.strip().splitlines()) == 1

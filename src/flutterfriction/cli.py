@@ -727,9 +727,12 @@ def _as_options(names: Iterable[str]) -> Iterator[None]:
         yield
     except ParameterError as exc:
         message, fields = str(exc), set(names)
-        key = message.split()[0].rstrip(":,") if message.split() else ""
-        if key in fields:
-            raise ParameterError("--" + key.replace("_", "-") + message[len(key):]) from None
+        # the leading names, "k1:" or a pair "k1, k2:" (an outside audit: "--k1, k2: ...")
+        head = re.match(r"(\w+(?:, \w+)*)(?=[:\s])", message)
+        keys = head.group(1).split(", ") if head else []
+        if keys and all(k in fields for k in keys):
+            named = ", ".join("--" + k.replace("_", "-") for k in keys)
+            raise ParameterError(named + message[head.end():]) from None
         raise
 
 
