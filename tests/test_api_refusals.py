@@ -241,3 +241,15 @@ def test_subnormal_lam_and_start_angle_are_refused_and_close_bounds_shown_in_ful
     with pytest.raises(ParameterError, match=r"\(2\.6100000000000003, 9\.914235042\) N .* got "
                                              r"2\.61$"):
         dy.ziegler_limit_cycle(p, 2.61, 0.1)
+
+
+def test_an_overflowing_motion_is_a_convergence_error_not_pythons_overflow():
+    from flutterfriction.analysis import dynamics as dy
+    from flutterfriction.errors import ConvergenceError
+
+    p = ZieglerPendulum(**_P9)
+    for P, x0 in ((1e150, _X0), (1.0, [0.0, 0.0, 1e200, 0.0])):
+        with pytest.raises(ConvergenceError, match="left the double range"):
+            dy.simulate(p, P, x0, 1.0)
+        with pytest.raises(ConvergenceError, match="left the double range"):
+            dy.limit_cycle(p, P, x0)
