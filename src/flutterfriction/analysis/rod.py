@@ -270,7 +270,8 @@ def critical_loads(g: RodGroups, p_max: float = 80.0, n_elements: int | None = N
     n_elements : int, optional
         FE elements of the bracketing scan (default :func:`_scan_elements`).
     step : float
-        Largest step of the scan, in (0, :data:`SCAN_STEP`] and >= p_max/1e6.
+        Largest step of the scan, in [p_max/:data:`SCAN_POINTS_MAX`, :data:`SCAN_STEP`]
+        (p_max/1e5 to 0.25).
 
     Returns
     -------
