@@ -62,10 +62,20 @@ def _jacobian_function():
 
 def jacobian(pendulum: ZieglerPendulum, state: ArrayLike, P: float, H: float = 0.0) -> NDArray:
     """Analytic Jacobian of the nonlinear equations of motion (eq. 10) at ``state``."""
-    p = check_pendulum(pendulum)
     P, H, x = _checked_start(P, H, state, "state")
-    params = (p.l1, p.l2, p.d, p.h, p.m1, p.m2, p.m3, p.k1, p.k2, p.c1, p.c2, P, H)
-    return np.array(_jacobian_function()(tuple(x), params), dtype=float)
+    return jacobian_at(pendulum, P, H)(0.0, x)
+
+
+def jacobian_at(pendulum: ZieglerPendulum, P: float, H: float = 0.0
+                ) -> Callable[[float, NDArray], NDArray]:
+    """``jac(t, x)``: :func:`jacobian` at the loads ``P``, ``H`` [N], checked once, for an
+    implicit integrator's many calls (unchecked per call, as :meth:`ZieglerPendulum.motion_at`:
+    the work-precision study times them)."""
+    p = check_pendulum(pendulum)
+    params = (p.l1, p.l2, p.d, p.h, p.m1, p.m2, p.m3, p.k1, p.k2, p.c1, p.c2,
+              check_real("P", P), check_real("H", H))
+    fn = _jacobian_function()
+    return lambda t, x: np.array(fn(tuple(x), params), dtype=float)
 
 
 
@@ -87,10 +97,15 @@ RTOL_RANGE = (1e-14, 0.1)
 
 def _check_integration(method: object, rtol: object, atol: object) -> tuple[float, float]:
     """The integrator and its tolerances, refused in one line naming them (an outside audit:
-    ``rtol = nan`` integrated without end, ``-1`` ran with a warning, an unknown method or a
-    string tolerance came back as scipy's or numpy's own error)."""
+    an unknown method came back as scipy's own error; see :func:`_check_tolerances`)."""
     if method not in METHODS:
         raise ParameterError(f"method must be one of {list(METHODS)}, got {method!r}")
+    return _check_tolerances(rtol, atol)
+
+
+def _check_tolerances(rtol: object, atol: object) -> tuple[float, float]:
+    """An integration's tolerances (an outside audit: ``rtol = nan`` integrated without end,
+    ``-1`` ran with a warning, a string came back as numpy's own error)."""
     rtol, atol = check_real("rtol", rtol), check_real("atol", atol)
     if not RTOL_RANGE[0] <= rtol <= RTOL_RANGE[1]:
         raise ParameterError(f"rtol must be in [{RTOL_RANGE[0]:g}, {RTOL_RANGE[1]:g}], got "
@@ -199,7 +214,7 @@ def simulate(pendulum: ZieglerPendulum, P: float, state0: ArrayLike, t_end: floa
         raise ParameterError(f"t_end must be in (0, {limit:.4g}] s ({SIMULATE_MAX_TIME_UNITS:g} "
                              f"time units l2 sqrt(m2/k2) of this pendulum), got {t_end:g}")
     if method in ("Radau", "BDF", "LSODA"):  # implicit: give them the analytic Jacobian
-        kwargs["jac"] = lambda t, x: jacobian(pendulum, x, P, H)
+        kwargs["jac"] = jacobian_at(pendulum, P, H)
     with _overflow_refused():
         sol = solve_ivp(_counted(pendulum.motion_at(P, H)),
                         (0.0, t_end), x0, method=method, rtol=rtol, atol=atol, **kwargs)
@@ -275,15 +290,12 @@ def limit_cycle(pendulum: ZieglerPendulum, P: float, state0: ArrayLike, H: float
     rtol, atol = _check_integration(method, rtol, atol)
     tol = _check_cycle_tol(tol)
     max_steps = check_integer("max_steps", max_steps, 1, LIMIT_CYCLE_MAX_STEPS)
-    for name, value in (("t_max", t_max), ("chunk", chunk)):
-        if value is not None and not check_real(name, value) > 0:
-            raise ParameterError(f"{name} must be > 0, got {value!r}")
     tau = time_unit(pendulum)
     # bounded in simulated time as simulate is (an outside audit: t_max = 1e300 and chunks
     # of 1e-300 s integrated for minutes)
     for name, value, low, high in (("t_max", t_max, 0.0, SIMULATE_MAX_TIME_UNITS),
                                    ("chunk", chunk, 1e-3, SIMULATE_MAX_TIME_UNITS)):
-        if value is not None and not low * tau < value <= high * tau:
+        if value is not None and not low * tau < check_real(name, value) <= high * tau:
             raise ParameterError(f"{name} must be in ({low * tau:.4g}, {high * tau:.4g}] s "
                                  f"({low:g} to {high:g} time units l2 sqrt(m2/k2) of this "
                                  f"pendulum), got {value!r}")
@@ -516,7 +528,7 @@ def limit_cycle_by_continuation(pendulum: ZieglerPendulum, P: float, P_flu: floa
     §2.9 pendulum shorten with amplitude)."""
     check_pendulum(pendulum)
     tol = _check_cycle_tol(tol)
-    _check_integration("Radau", rtol, atol)
+    _check_tolerances(rtol, atol)
     max_steps = check_integer("max_steps", max_steps, 1, 10_000)
     A_start = check_positive("A_start", A_start, "rad")
     omega, mode = linear_flutter_mode(pendulum, P_flu)

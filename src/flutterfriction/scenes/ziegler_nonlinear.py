@@ -438,7 +438,7 @@ def pendulum_work_precision(params: dict[str, Any]) -> dict[str, Any]:
         for rtol in sorted(params["rtols"], reverse=True):
             kw = {}
             if method in ("Radau", "BDF", "LSODA"):
-                kw["jac"] = lambda t, x: dy.jacobian(pc, x, P)
+                kw["jac"] = dy.jacobian_at(pc, P)
 
             def one(method=method, rtol=rtol, kw=kw):
                 s = solve_ivp(pc.motion_at(P),
