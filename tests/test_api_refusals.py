@@ -253,3 +253,47 @@ def test_an_overflowing_motion_is_a_convergence_error_not_pythons_overflow():
             dy.simulate(p, P, x0, 1.0)
         with pytest.raises(ConvergenceError, match="left the double range"):
             dy.limit_cycle(p, P, x0)
+
+
+def test_acoustic_eigenvalues_beyond_the_documented_range_are_refused():
+    """isotropic_acoustic promises results within [1e-300, 1e300]: the elastic eigenvalue
+    lam + 2 mu = 3e300 passed (an audit); 3e299 is still answered."""
+    Z, n = [0.0] * 6, [1.0, 0.0, 0.0]
+    with pytest.raises(ParameterError, match=r"lam, mu: the eigenvalues .* got 3e\+300"):
+        ac.isotropic_acoustic(1e300, 1e300, Z, Z, n, 1.0)
+    eta = ac.isotropic_acoustic(1e299, 1e299, Z, Z, n, 1.0).eigenvalues
+    assert max(abs(z) for z in eta) == pytest.approx(3e299, rel=1e-12)
+
+
+def test_a_negative_zero_viscosity_is_read_as_zero():
+    import math
+
+    p = ZieglerPendulum(**{**_P9, "c1": -0.0, "c2": -0.0})
+    assert math.copysign(1.0, p.c1) == 1.0 and math.copysign(1.0, p.c2) == 1.0
+
+
+@pytest.mark.parametrize("period, match", [
+    (float("nan"), "period must be finite"), (-1.0, "period must be > 0 s"),
+    ("1", "period must be a real number"), (1e300, r"period must be in \(0, "),
+])
+def test_section_return_names_its_period_not_simulates_t_end(period, match):
+    from flutterfriction.analysis import dynamics as dy
+
+    with pytest.raises(ParameterError, match=match):
+        dy.section_return(ZieglerPendulum(**_P9), 3.0, [0.1, 0.0, 0.0, 0.0], period)
+
+
+@pytest.mark.parametrize("call, match", [
+    (lambda: ac.cubic_discriminant(np.eye(3) * (1 + 1j)), "A must be a stack of real 3x3"),
+    (lambda: ac.flutter_interval_bruteforce(np.zeros((3, 3, 3, 3)), np.eye(3), np.eye(3),
+                                            [1, 0, 0], None), "g_max must be a real number"),
+    (lambda: ac.isotropic_acoustic(1, 1, [1, 0, 0, 0, 0, 0], [1, 0, 0, 0, 0, 0], [1, 0, 0],
+                                   names=5), "names must be a dict"),
+    (lambda: ac.flutters_somewhere(np.zeros((3, 3, 3, 3)), np.eye(3), np.eye(3), None, [1.0]),
+     "directions must be finite numbers"),
+])
+def test_acoustic_helpers_refuse_wrong_types_by_name(call, match):
+    """An audit: these raised numpy's or Python's TypeError, not a refusal naming the
+    parameter."""
+    with pytest.raises(ParameterError, match=match):
+        call()

@@ -86,7 +86,7 @@ def check_nonnegative(name: str, value: object, unit: str = "") -> float:
     if 0.0 < x < NORMAL_MIN:
         raise ParameterError(f"{name} must be 0 or >= {NORMAL_MIN:.3g}{_unit(unit)} (a "
                              f"subnormal double has lost digits), got {x!r}")
-    return x
+    return x + 0.0  # -0.0 read as 0.0 (it passes "x >= 0"; printed, it read "-0")
 
 
 def check_integer(name: str, value: object, low: int, high: int | None = None) -> int:

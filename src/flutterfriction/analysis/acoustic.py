@@ -37,7 +37,10 @@ def cubic_discriminant(A: NDArray) -> NDArray:
     """Discriminant of ``det(A - eta I)`` from the invariants of ``A`` (..., 3, 3): positive for
     three distinct real eigenvalues, negative for a complex-conjugate pair (flutter), zero at a
     coalescence. No eigenvalue is computed."""
-    A = np.asarray(A, dtype=float)
+    A = np.asarray(A)
+    if A.dtype.kind not in "iuf":  # (an audit: a complex stack raised numpy's TypeError)
+        raise ParameterError(f"A must be a stack of real 3x3 matrices, got dtype {A.dtype}")
+    A = A.astype(float, copy=False)  # (no copy of the flutter map's ~1e6 tensors)
     if A.ndim < 2 or A.shape[-2:] != (3, 3) or not np.all(np.isfinite(A)):
         # (an outside review: NaN matrices gave NaN, and has_complex_pair "no pair")
         raise ParameterError(f"A must be a stack of finite 3x3 matrices, got shape {A.shape}"
@@ -74,7 +77,8 @@ def flutters_somewhere(E: NDArray, P: ArrayLike, Q: ArrayLike, directions: NDArr
     ``disc(B) < -1.3e-6 ||B||^6``; ``rtol`` = 1e-12 sits between, and the counts equal those
     of the eigenvalues (a pair with ``|Im| > 1e-7 |c^2|``) at every anisotropy."""
     rtol = _check_rtol(rtol)
-    n = np.asarray(directions, dtype=float)
+    # (an audit: directions=None raised numpy's TypeError; acoustic_tensors checks the rest)
+    n = check_finite_array("directions", directions, _shape(directions), "finite numbers")
     # in blocks of directions: the tensors of the whole map (6561 x 200) would take 94 MB, and
     # the deviator as much again
     return np.concatenate([
@@ -361,7 +365,8 @@ def flutter_interval_bruteforce(E: NDArray, P: ArrayLike, Q: ArrayLike, n: Array
     ``P = Q`` with isotropic elasticity) has real eigenvalues: no interval (an audit: P = Q gave
     a ConvergenceError, and the closed forms a spurious interval 3e-8 wide, at a double root
     of the discriminant)."""
-    g_max, decades = float(g_max), float(decades)
+    # real numbers (an audit: g_max=None raised float()'s TypeError)
+    g_max, decades = check_real("g_max", g_max), check_real("decades", decades)
     if not (np.isfinite(g_max) and g_max > 0):
         raise ParameterError(f"g_max must be finite and > 0, got {g_max}")
     if not (np.isfinite(decades) and 0.0 < decades <= 300.0):
@@ -574,6 +579,10 @@ def isotropic_acoustic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike, n: Arr
     ``[1e-300, 1e300]`` are refused (:class:`ParameterError` naming the parameter and its
     range), so no result is ever rounded to 0, inf or NaN. ``names`` relabels the parameters
     in messages (e.g. ``{"lam": "--lam"}``)."""
+    if names is not None and not (isinstance(names, dict) and all(
+            isinstance(k, str) and isinstance(v, str) for k, v in names.items())):
+        raise ParameterError(f"names must be a dict of parameter names to labels (str to str), "
+                             f"got {names!r}")
     nm = {k: k for k in ("lam", "mu", "P", "Q", "n", "g")} | (names or {})
     if g is not None:
         g = check_real(nm["g"], g)
@@ -708,6 +717,10 @@ def isotropic_acoustic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike, n: Arr
     if not all(math.isfinite(z.real) and math.isfinite(z.imag) for z in eta):
         raise ParameterError(f"{nm['g']}: the eigenvalues leave the float range, |g| must be "
                              f"larger than {g!r}")
+    if max(abs(z) for z in eta) > RANGE_MAX:  # the elastic part, ~ lam + 2 mu (an audit: 3e300)
+        raise ParameterError(
+            f"{nm['lam']}, {nm['mu']}: the eigenvalues (~ lam + 2 mu) must stay below "
+            f"{RANGE_MAX:g} in magnitude, got {max(abs(z) for z in eta):.3g}")
     # the pair is complex exactly inside the interval (the factored discriminant): any
     # imaginary part is flutter, however narrow the interval (a threshold on |Im| called a
     # genuine pair 1 +- 9e-8 i stable; the review of this change). A real pair's smaller root

@@ -580,6 +580,13 @@ def section_return(pendulum: ZieglerPendulum, P: float, state: ArrayLike, period
     orbit. Of the crossings in that window, the one nearest ``state`` (a cycle may have two or
     three maxima of alpha1 per period: the first crossing after half a period was 27 % short
     on one, found by an outside audit)."""
+    check_pendulum(pendulum)
+    period = check_positive("period", period, "s")  # (not simulate's t_end: an audit)
+    limit = SIMULATE_MAX_TIME_UNITS * time_unit(pendulum) / 1.5  # 1.5 periods are simulated
+    if period > limit:
+        raise ParameterError(f"period must be in (0, {limit:.4g}] s (1.5 periods within the "
+                             f"{SIMULATE_MAX_TIME_UNITS:g} time units l2 sqrt(m2/k2) simulate "
+                             f"allows), got {period:g}")
     section = from_the_section(lambda t, x: x[2])  # ``state`` is on the section
     x0 = np.asarray(state, dtype=float)
     sol = simulate(pendulum, P, x0, 1.5 * period, method=method, rtol=rtol, atol=atol,
