@@ -105,6 +105,24 @@ def test_follower_load_power_balance_is_consistent():
     assert dissipation == pytest.approx(v @ m.C @ v)
 
 
+def test_power_balance_of_many_states_equals_the_kinematic_matrices():
+    """power_balance integrates the velocities x_dot = G v as vectors; G itself
+    (:meth:`NonlinearRod.kinematics`) applied to v must give the same powers, with
+    Kelvin-Voigt damping and for a batch of states."""
+    rod = Rod(length=ROD.length, B=ROD.B, rho=ROD.rho, D=ROD.D, kappa=1e-3, tip_mass=0.2)
+    m = NonlinearRod(rod, 4)
+    rng = np.random.default_rng(7)
+    q, v = rng.normal(size=(m.n_dof, 5)), 20 * rng.normal(size=(m.n_dof, 5))
+    _, _, G, G_tip = m.kinematics(q)
+    xdot, xdot_tip = np.einsum("qmci,im->qmc", G, v), np.einsum("mci,im->mc", G_tip, v)
+    power = -5.5 * (np.cos(q[-1]) * xdot_tip[:, 0] + np.sin(q[-1]) * xdot_tip[:, 1])
+    dissipation = np.einsum("im,ij,jm->m", v, m.C, v) + rod.kappa * np.einsum(
+        "q,qmc,qmc->m", m.w, xdot, xdot)
+    got = m.power_balance(q, v, 5.5)
+    np.testing.assert_allclose(got[0], power, rtol=1e-13, atol=1e-13 * np.abs(power).max())
+    np.testing.assert_allclose(got[1], dissipation, rtol=1e-13)
+
+
 @pytest.mark.slow  # ~5.5 s here
 def test_generalized_alpha_converges_at_second_order():
     """The structural integrator against a tight adaptive solution, on a gentle motion."""
