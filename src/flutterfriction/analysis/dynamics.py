@@ -78,7 +78,6 @@ def jacobian_at(pendulum: ZieglerPendulum, P: float, H: float = 0.0
     return lambda t, x: np.array(fn(tuple(x), params), dtype=float)
 
 
-
 def _checked_start(P: float, H: float, state0: ArrayLike, name: str = "state0"
                    ) -> tuple[float, float, NDArray]:
     """The loads and the start state, refused (one line naming them) unless finite; the
@@ -694,7 +693,7 @@ def ziegler_limit_cycle(pendulum: ZieglerPendulum, P: float, alpha0: float, *,
     if not P_flu < P < P_div:
         # all the digits where the short forms would read alike (an outside audit: "must lie
         # in (2.61, 9.91) N, got 2.61" for the flutter load 2.6100000004)
-        lo, hi = (repr(b) if f"{b:.10g}" == f"{P:.10g}" else f"{b:.10g}" for b in (P_flu, P_div))
+        lo, hi = (shown_beside(b, (P,), ".10g") for b in (P_flu, P_div))
         raise ParameterError(
             f"{P_name} must lie in the damped flutter interval ({lo}, {hi}) N "
             f"(flutter load P_flu, divergence load P_div), got "

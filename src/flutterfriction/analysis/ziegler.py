@@ -523,9 +523,8 @@ def linear_response(pendulum: ZieglerPendulum, P: float, H: float, state0: Array
     P = check_real("P", P)
     H = check_real("H", H)
     x0 = check_finite_array("state0", state0, (4,), "4 finite numbers [a1, a2, a1_dot, a2_dot]")
-    t = check_finite_reals("times", times)
-    t = np.atleast_1d(np.asarray(t, dtype=float))
-    if t.ndim != 1 or not np.all(np.isfinite(t)):
+    t = np.atleast_1d(check_finite_reals("times", times))  # real and finite
+    if t.ndim != 1:
         raise ParameterError(f"times must be a 1-D array of finite instants [s], got shape "
                              f"{t.shape}")
     A = first_order_matrix(pendulum.mass_matrix(), _finite_stiffness(pendulum, P, H),
