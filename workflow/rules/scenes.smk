@@ -182,9 +182,12 @@ for _part in FIGURE_BATCHES:
             f"results/logs/plot/{_part}.log",
         benchmark:
             f"results/benchmarks/plot_{_part}.tsv"
-        # before the notebooks and the one-figure jobs: the batches are the longest plot jobs
-        # (2-5 s), and one started last leaves a serial tail (its notebook waits for it)
-        priority: 3
+        # before the notebooks and the one-figure jobs, the most figures first: the batches are
+        # the longest plot jobs (~0.5-1 s a figure; the paper run's rods batch, 9 figures, took
+        # 11 s), and one started last leaves a serial tail (its notebook waits for it; measured
+        # on 2026-11-30: started among the one-figure jobs, the rods and Ziegler batches ran
+        # until the notebooks' turn)
+        priority: 3 + len(FIGURE_BATCHES[_part]) / 100
         conda:
             "../envs/flutterfriction.yaml"
         resources:
