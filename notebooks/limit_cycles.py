@@ -171,16 +171,8 @@ display(Markdown(quantities_table(scene("limit_cycle_amplitude")["quantities"], 
 # rates:
 
 # %%
-from flutterfriction.analysis import rod as ar  # noqa: E402
-from flutterfriction.models.rod import Rod  # noqa: E402
-
-rod119 = Rod(**scene("beck_limit_cycle")["params"]["rod"])
-P_d = ar.critical_loads(rod119.groups()).p_flu * rod119.load_unit
-rows = []
-for f in (1.05, 1.1, 1.2, 1.5, 5.5 / P_d):
-    w = ar.eigenvalues(f * P_d / rod119.load_unit, rod119.groups(), n_modes=3)
-    s_max = w[np.argmax(w.real)] / rod119.time_scale
-    rows.append(f"| {f * P_d:.3f} | {f:.3f} | {s_max.real:.4f} | {abs(s_max.imag):.2f} |")
+rows = [f"| {r['P_N']:.3f} | {r['load_ratio']:.3f} | {r['growth_rate']:.4f} | "
+        f"{r['frequency']:.2f} |" for r in scene("beck_branch")["growth_rates"]]
 display(Markdown("| P [N] | P / P_flu | growth rate [1/s] | frequency [rad/s] |\n|---|---|---|---|\n"
                  + "\n".join(rows)))
 

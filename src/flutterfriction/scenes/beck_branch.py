@@ -215,8 +215,32 @@ def beck_branch(params: dict[str, Any]) -> dict[str, Any]:
                          "first_correction": b.first_correction, "log": b.log,
                          "stopped_by": b.stopped_by},
     }
+    data["growth_rates"] = growth_rates(rod, P_cycle)
     data["quantities"] = branch_quantities(data)
     return data
+
+
+#: Loads of :func:`growth_rates`, as multiples of the damped flutter load (plus ``P_cycle``).
+GROWTH_RATE_FACTORS = (1.05, 1.1, 1.2, 1.5)
+
+
+def growth_rates(rod: Rod, P_cycle: float) -> list[dict[str, float]]:
+    """The flutter mode's linear growth rate and frequency [1/s, rad/s] on the exact theory
+    (eq. 118, Kelvin–Voigt) at :data:`GROWTH_RATE_FACTORS` times the damped flutter load
+    ``P_d`` and at ``P_cycle``: why the branch starts from a Newton solve and not a
+    transient (near ``P_d`` the relaxation time ``1/(2 sigma)`` is minutes; the notebook
+    shows the table, from here, not from a second computation)."""
+    from flutterfriction.analysis import rod as ar
+
+    g, u = rod.groups(), rod.load_unit
+    P_d = float(ar.critical_loads(g).p_flu * u)
+    rows = []
+    for f in (*GROWTH_RATE_FACTORS, P_cycle / P_d):
+        w = ar.eigenvalues(f * P_d / u, g, n_modes=3)
+        s = w[np.argmax(w.real)] / rod.time_scale
+        rows.append({"P_N": f * P_d, "load_ratio": f, "growth_rate": float(s.real),
+                     "frequency": float(abs(s.imag))})
+    return rows
 
 
 def branch_quantities(data: dict[str, Any]) -> dict[str, Any]:
