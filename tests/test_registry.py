@@ -177,7 +177,7 @@ def test_the_longest_jobs_start_first_in_both_presets(tmp_path):
         for rule, block in jobs:
             line = next((x for x in block.splitlines() if x.strip().startswith("priority:")),
                         "priority: 0")
-            priority.setdefault(rule, set()).add(int(line.split(":")[1]))
+            priority.setdefault(rule, set()).add(float(line.split(":")[1]))
         for part in PARTS:
             batch = priority.get(f"solve_{part}")
             if batch is None:
@@ -187,3 +187,9 @@ def test_the_longest_jobs_start_first_in_both_presets(tmp_path):
         notebook = max(priority["notebook"])
         assert all(min(p) > notebook for r, p in priority.items() if r.startswith("plot")), \
             (preset, priority)
+        # the notebooks longest first (one priority each), the figure batches before the
+        # one-figure jobs (an arbitrary order among equals left a long job for last)
+        assert len(priority["notebook"]) == len(PARTS), (preset, priority["notebook"])
+        singles = max(priority.get("plot", {3.0}))
+        assert all(min(p) > singles for r, p in priority.items()
+                   if r.startswith("plot_") and r != "plot"), (preset, priority)
