@@ -286,3 +286,17 @@ def stop_rate_limit_timers():
     for thread in threading.enumerate():
         if isinstance(thread, threading.Timer):
             thread.cancel()
+
+
+# The notebooks run last, after every figure, on both cores: the longest first, so that the run
+# does not end on one long notebook with the other core idle (measured on 2026-11-30, seconds,
+# paper / quick: limit_cycles 5.2 / 4.9, ziegler_paradox 5.0 / 4.2, ziegler 4.4 / 3.7, rods
+# 4.2 / 3.4, solids 3.0 / 2.7; in the order Snakemake picked, the paper run ended ~5 s on one
+# core). Below the figures' priority 3: a figure is never delayed by a notebook.
+_NOTEBOOKS_LONGEST_FIRST = ("limit_cycles", "ziegler_paradox", "ziegler", "rods", "solids")
+
+
+def notebook_priority(wildcards):
+    order = _NOTEBOOKS_LONGEST_FIRST
+    rank = order.index(wildcards.nb) if wildcards.nb in order else len(order)
+    return 1 - rank / (len(order) + 1)
