@@ -66,7 +66,7 @@ from flutterfriction.errors import (
     check_finite_reals,
     check_positive,
 )
-from flutterfriction.models.rod import GROUP_RANGES, RodGroups
+from flutterfriction.models.rod import GROUP_RANGES, Rod, RodGroups
 
 #: The rod solver's public names (the helpers of eq. 118 and the scan's range live in
 #: rod_exact and rod_scan; they are public here too, where the callers have always found them).
@@ -74,7 +74,7 @@ __all__ = [
     "DAMPING_FLOOR", "GROUP_RANGES", "LAST_INTERVAL_RTOL", "MAX_BRANCH_LOADS", "MAX_ELEMENTS",
     "P_MAX_LIMIT", "REGIME_CHECK_POINTS", "SCAN_STEP", "RodCriticalLoads", "branches",
     "check_groups", "continue_critical_loads", "critical_loads", "eigenvalues",
-    "eigenvalues_along",
+    "eigenvalues_along", "fastest_mode",
     "fe_critical_loads", "fe_eigenvalues", "refine_eigenvalues",
 ]
 
@@ -545,3 +545,11 @@ def _orient_splits(roots: NDArray, pred: NDArray) -> None:
         cj, ck = np.conj(roots[n - 1 - j]), np.conj(roots[n - 1 - k])
         if abs(roots[k] - cj) + abs(roots[j] - ck) < abs(roots[j] - cj) + abs(roots[k] - ck):
             roots[j], roots[k] = roots[k], roots[j]
+
+
+def fastest_mode(rod: Rod, P: float) -> complex:
+    """The exact eigenvalue (eq. 118, among :func:`eigenvalues`' three lowest mode pairs) with
+    the largest real part at the load ``P`` [N], in 1/s: its real part the growth rate, its
+    imaginary part the pulsation [rad/s]."""
+    w = eigenvalues(P / rod.load_unit, rod.groups(), n_modes=3) / rod.time_scale
+    return complex(w[np.argmax(w.real)])

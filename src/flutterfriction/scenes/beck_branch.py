@@ -232,12 +232,10 @@ def growth_rates(rod: Rod, P_cycle: float) -> list[dict[str, float]]:
     shows the table, from here, not from a second computation)."""
     from flutterfriction.analysis import rod as ar
 
-    g, u = rod.groups(), rod.load_unit
-    P_d = float(ar.critical_loads(g).p_flu * u)
+    P_d = float(ar.critical_loads(rod.groups()).p_flu * rod.load_unit)
     rows = []
     for f in (*GROWTH_RATE_FACTORS, P_cycle / P_d):
-        w = ar.eigenvalues(f * P_d / u, g, n_modes=3)
-        s = w[np.argmax(w.real)] / rod.time_scale
+        s = ar.fastest_mode(rod, f * P_d)
         rows.append({"P_N": f * P_d, "load_ratio": f, "growth_rate": float(s.real),
                      "frequency": float(abs(s.imag))})
     return rows

@@ -740,8 +740,7 @@ def beck_linearisation(params: dict[str, Any]) -> dict[str, Any]:
     u = rod.load_unit
     exact_flu = ar.critical_loads(RodGroups()).p_flu * u
     exact_flu_d = ar.critical_loads(rod.groups()).p_flu * u
-    w = ar.eigenvalues(P / u, rod.groups(), n_modes=3) / rod.time_scale
-    s_exact = w[np.argmax(w.real)]
+    s_exact = ar.fastest_mode(rod, P)
     rows = []
     for n in meshes:
         m = NonlinearRod(rod, n)
@@ -833,8 +832,7 @@ def beck_hopf(params: dict[str, Any]) -> dict[str, Any]:
     normal_form = {}
     for k in range(len(A)):
         P_eq = P_exact + (P[k] - b.P_flu)
-        w = ar.eigenvalues(P_eq / u, rod.groups(), n_modes=3) / rod.time_scale
-        sigma = float(w[np.argmax(w.real)].real)
+        sigma = ar.fastest_mode(rod, P_eq).real
         normal_form[str(k)] = {"A": float(A[k]), "P": float(P[k]),
                                "max_modulus": b.max_floquet_modulus[k],
                                "slow_decay": b.slow_decay[k],
