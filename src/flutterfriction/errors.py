@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import functools
+import inspect
 import math
 import re
 import sys
@@ -41,6 +43,46 @@ class ParameterError(ValueError):
 
 class ConvergenceError(RuntimeError):
     """A solver did not reach its tolerance; raised instead of returning a wrong root or NaN."""
+
+
+class SignatureError(ParameterError, TypeError):
+    """A model built with an unknown, missing or repeated parameter: a :class:`ParameterError`
+    (one line naming it and the allowed names, as every entry point refuses bad input) and a
+    ``TypeError`` (what Python raises for a wrong call, which callers may expect)."""
+
+
+def named_parameters(cls: type) -> type:
+    """Class decorator for a model dataclass: its ``__init__`` refuses an unknown, missing or
+    repeated parameter, or too many positional ones, with a :class:`SignatureError` naming
+    them and the allowed names, before the dataclass's own checks (an outside review: an
+    unknown keyword of ``ZieglerPendulum`` or ``Rod`` was the dataclass's bare TypeError)."""
+    init = cls.__init__
+    params = [p for p in inspect.signature(init).parameters.values() if p.name != "self"]
+    names = [p.name for p in params]
+    required = [p.name for p in params if p.default is inspect.Parameter.empty]
+
+    @functools.wraps(init)
+    def __init__(self: Any, *args: Any, **kwargs: Any) -> None:
+        where = cls.__name__
+        unknown = sorted(set(kwargs) - set(names))
+        if unknown:
+            raise SignatureError(f"{where}: unknown parameter(s) {unknown}; allowed: {names}")
+        if len(args) > len(names):
+            raise SignatureError(f"{where} takes at most {len(names)} parameters {names}, "
+                                 f"got {len(args)} positional")
+        twice = sorted(set(names[:len(args)]) & set(kwargs))
+        if twice:
+            raise SignatureError(f"{where}: parameter(s) {twice} given twice (by position "
+                                 f"and by name); order: {names}")
+        given = set(names[:len(args)]) | set(kwargs)
+        missing = [n for n in required if n not in given]
+        if missing:
+            raise SignatureError(f"{where}: missing parameter(s) {missing}; required: "
+                                 f"{required}, optional: {[n for n in names if n not in required]}")
+        init(self, *args, **kwargs)
+
+    cls.__init__ = __init__
+    return cls
 
 
 def check_real(name: str, value: object) -> float:

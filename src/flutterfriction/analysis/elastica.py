@@ -57,6 +57,7 @@ from flutterfriction.errors import (
     check_integer,
     check_positive,
     check_real,
+    named_parameters,
 )
 
 #: Gauss–Legendre rule used for every integral along the rod (per subinterval): the integrands
@@ -66,6 +67,7 @@ _GL_NODES, _GL_WEIGHTS = np.polynomial.legendre.leggauss(24)
 _GL_PANELS = 16
 
 
+@named_parameters
 @dataclass(frozen=True)
 class ElasticaLoads:
     """The loads of Fig. 9, dead (fixed in direction and size) [N, N/m].

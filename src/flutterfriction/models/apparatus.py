@@ -36,9 +36,11 @@ from flutterfriction.errors import (
     check_finite_array,
     check_nonnegative,
     check_positive,
+    named_parameters,
 )
 
 
+@named_parameters
 @dataclass(frozen=True)
 class FrictionLever:
     """The pendulum as a lever pressing its wheel on the sliding plate (Fig. 18, lower part).

@@ -20,9 +20,11 @@ from flutterfriction.errors import (
     ParameterError,
     check_finite_array,
     check_positive,
+    named_parameters,
 )
 
 
+@named_parameters
 @dataclass(frozen=True)
 class CoulombContact:
     """Normal and tangential spring stiffnesses [N/m] and friction coefficient, all > 0."""

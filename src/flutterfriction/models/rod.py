@@ -31,7 +31,12 @@ from dataclasses import dataclass, fields
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from flutterfriction.errors import ParameterError, check_nonnegative, check_positive
+from flutterfriction.errors import (
+    ParameterError,
+    check_nonnegative,
+    check_positive,
+    named_parameters,
+)
 
 #: Largest follower load of the nonlinear rod's cycle solvers (the ``limit-cycle beck`` command
 #: and the beck_limit_cycle scene), in units of the linearised rod's damped flutter load: at 3
@@ -67,6 +72,7 @@ ROD_UNITS = {"length": "m", "B": "N m^2", "rho": "kg/m", "D": "N m^2 s", "kappa"
              "tip_mass": "kg"}
 
 
+@named_parameters
 @dataclass(frozen=True)
 class RodGroups:
     """Dimensionless parameters of eq. (106) (the load ``p`` varies and is not stored)."""
@@ -84,6 +90,7 @@ class RodGroups:
         return self.eta > 0 or self.gamma > 0
 
 
+@named_parameters
 @dataclass(frozen=True)
 class Rod:
     """A Beck (``tip_mass = 0``) or Pflüger rod in SI units.

@@ -30,7 +30,13 @@ import numpy as np
 from numpy.polynomial import legendre
 from numpy.typing import NDArray
 
-from flutterfriction.errors import ConvergenceError, ParameterError, check_integer, check_real
+from flutterfriction.errors import (
+    ConvergenceError,
+    ParameterError,
+    check_integer,
+    check_real,
+    named_parameters,
+)
 from flutterfriction.models.rod import Rod
 
 
@@ -69,6 +75,7 @@ _NOT_POSITIVE = ("the rod's mass matrix is not positive definite at this state (
                  "factorisation failed)")
 
 
+@named_parameters
 @dataclass
 class NonlinearRod:
     """The discretised rod: ``rod`` (SI), ``n_elements`` P2 elements, ``n_gauss`` points each."""

@@ -30,6 +30,7 @@ from flutterfriction.errors import (
     check_nonnegative,
     check_positive,
     check_real,
+    named_parameters,
     shown_beside,
 )
 
@@ -80,6 +81,7 @@ class DimensionlessMatrices(NamedTuple):
     G_dead: Matrix
 
 
+@named_parameters
 @dataclass(frozen=True)
 class PendulumGroups:
     """Dimensionless groups of eq. (17).
@@ -126,6 +128,7 @@ class PendulumGroups:
         return self.equal_rods and self.rho1 == 1.0 and self.y1 == 1.0 and self.rho2 == 0.0
 
 
+@named_parameters
 @dataclass(frozen=True)
 class ZieglerPendulum:
     """Ziegler double pendulum (chapter §2.1, Fig. 2), SI units.
