@@ -79,15 +79,24 @@ def plot_fig01(data: dict[str, Any]) -> Figure:
     y = np.array(rod["x"])
     names = ("1: straight", r"2: end rotated by $\theta_0$ at $v = 0$",
              r"3: end translated by $v_0$", r"4: end rotated back at $v = v_0$")
+    ends = []
     for shape, (v, th), colour, name in zip(rod["shapes"], rod["states"], STATES, names,
                                             strict=True):
         ax.plot(shape, y, color=colour, lw=2.0, label=name, zorder=4)
         t = np.array([np.sin(th), np.cos(th)])
         tip = np.array([v, l])
-        # two states share each tip position (1, 2 at v = 0; 3, 4 at v0): heads drawn at the
-        # tip coincided (a review), so the head sits on the force's line above the tip
-        ax.plot(*np.array([tip, tip + 0.12 * l * t]).T, color=colour, lw=1.4)
+        ends.append(tip)
+        # two states share each end position (1, 2 at v = 0; 3, 4 at v0): heads drawn at the
+        # end coincided (a review), so the head sits on the force's line above the end, joined
+        # to it by a dotted line of action; a solid one read as the rod going on to the head
+        # (a later review), so the ends are marked too
+        ax.plot(*np.array([tip, tip + 0.1 * l * t]).T, color=ROD, lw=0.9, ls=(0, (1, 1.5)),
+                zorder=3)
         _arrow(ax, tip + 0.26 * l * t, tip + 0.1 * l * t, colour)
+    for tip in np.unique(np.round(ends, 12), axis=0):
+        ax.add_patch(Circle(tip, 0.014 * l, fc="white", ec=ROD, lw=1.0, zorder=6))
+    ax.plot([], [], color=ROD, lw=0.9, ls=(0, (1, 1.5)), marker="o", ms=5, mfc="white",
+            mec=ROD, mew=1.0, label="the end; P on its line of action\n(the head drawn above it)")
     ax.add_patch(Polygon([[-0.08 * l, 0], [0.08 * l, 0], [0.08 * l, -0.04 * l],
                           [-0.08 * l, -0.04 * l]], fc="0.75", ec=ROD, lw=0.8))
     ax.set_aspect("equal")
