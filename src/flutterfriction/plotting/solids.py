@@ -395,7 +395,18 @@ def plot_flutter_map(data: dict[str, Any]) -> Figure:
     ax3.set_ylabel("directions that flutter [%]")
     ax3.set_title(f"(c) flutter appears with anisotropy\n(share of the ±{off[-1]:g}° patch)",
                   fontsize=8)
-    text = _case_text(data.get("params", {}).get("plane_case", {}))
+    params = data.get("params", {})
+    lines = []
+    text = _case_text(params.get("plane_case", {}))
     if text:
-        fig.suptitle(f"(a): {text}, n in the $(e_1, e_3)$ plane", fontsize=7.5)
+        lines.append(f"(a): {text}, n in the $(e_1, e_3)$ plane")
+    dp = params.get("anisotropy", {})
+    if {"lam", "mu", "sigma", "friction_deg", "dilatancy_deg"} <= set(dp):
+        # (b), (c) have their own material (a fresh-eyes review: only (a)'s was given)
+        sig = ", ".join(f"{x:g}" for x in dp["sigma"])
+        lines.append(f"(b), (c): Drucker–Prager, λ = {dp['lam']:g} Pa, μ = {dp['mu']:g} Pa, "
+                     f"stress diag({sig}) Pa, friction angle {dp['friction_deg']:g}°, "
+                     f"dilatancy angle {dp['dilatancy_deg']:g}°")
+    if lines:
+        fig.suptitle("\n".join(lines), fontsize=7.5)
     return fig
