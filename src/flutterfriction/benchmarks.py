@@ -37,6 +37,17 @@ FAMILY_SETTINGS = {
 }
 
 
+#: Families whose points are not joined: along them nothing is a cost (the lines zigzagged in
+#: wall time; a fresh-eyes review).
+UNJOINED = {"pendulum flutter load", "pendulum damped flutter load"}
+#: What a family's relative error measures, where it is not one number (the y label).
+FAMILY_ERRORS = {
+    "rod limit cycle (one period)": "relative error [-]\n(the larger of period and amplitude)",
+    "rod limit cycle: mesh (vs finest)": "relative error [-]\n(largest of amplitude, period, "
+                                         "rotation)",
+}
+
+
 def _row(family: str, method: str, setting: Any, error: float | None, wall_s: float | None
          ) -> dict[str, Any]:
     return {"family": family, "method": method, "setting": setting,

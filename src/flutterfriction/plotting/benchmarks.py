@@ -8,7 +8,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.figure import Figure
 
-from flutterfriction.benchmarks import FAMILY_SETTINGS
+from flutterfriction.benchmarks import FAMILY_ERRORS, FAMILY_SETTINGS, UNJOINED
 from flutterfriction.plotting import tidy_log_axis
 
 FLOOR = 1e-17  # errors of exactly 0 (agreement to the last bit) are drawn here
@@ -31,14 +31,25 @@ def plot_work_precision(runs: list[dict[str, Any]]) -> Figure:
             mine = sorted((r for r in rows if r["method"] == method),
                           key=lambda r: (r["setting"] is None, r["setting"] or 0.0,
                                          r["wall_s"]))
-            ax.loglog([r["wall_s"] for r in mine], [max(r["error"], FLOOR) for r in mine],
-                      "o-", ms=3.5, lw=1, color=f"C{k % 10}", label=READABLE.get(method, method))
+            x, y = [r["wall_s"] for r in mine], [max(r["error"], FLOOR) for r in mine]
+            ax.loglog(x, y, "o" if family in UNJOINED else "o-", ms=3.5, lw=1,
+                      color=f"C{k % 10}", label=READABLE.get(method, method))
+            if FAMILY_SETTINGS.get(family, "").startswith("the number of elements") \
+                    and len(mine) <= 4:  # a few points: each named by its mesh
+                for i, (r, xi, yi) in enumerate(zip(mine, x, y, strict=True)):
+                    # below right of a point, below left of the last (inside the axes)
+                    last = i == len(mine) - 1
+                    ax.annotate(f"{r['setting']:g} el.", (xi, yi),
+                                xytext=(-6, -3) if last else (6, -3), textcoords="offset points",
+                                fontsize=7, ha="right" if last else "left", va="top")
+                ax.margins(y=0.15)  # room for the labels inside the frame
         tidy_log_axis(ax.xaxis, [r["wall_s"] for r in rows])
         tidy_log_axis(ax.yaxis, [max(r["error"], FLOOR) for r in rows])
         sweep = FAMILY_SETTINGS.get(family)
-        ax.set_title(family + (f"\nalong each line: {sweep}" if sweep else ""), fontsize=8)
+        along = "each point" if family in UNJOINED else "along each line"
+        ax.set_title(family + (f"\n{along}: {sweep}" if sweep else ""), fontsize=8)
         ax.set_xlabel("wall time [s]")
-        ax.set_ylabel("relative error [-]")
+        ax.set_ylabel(FAMILY_ERRORS.get(family, "relative error [-]"))
         if len(ax.get_lines()) > 4:  # under the panel: inside, eight methods covered lines
             ax.legend(fontsize=7, ncol=2, loc="upper center", bbox_to_anchor=(0.5, -0.2))
         else:

@@ -202,7 +202,8 @@ def plot_fig10(data: dict[str, Any]) -> Figure:
             ax.add_patch(Circle(tip, 0.025, fc="0.3", ec="0.1", zorder=2.5))
         # the symbols the legend would otherwise leave unexplained (a review)
         ax.plot([], [], ls="none", marker=r"$\rightarrow$", ms=11, color="0.2",
-                label="the follower load P at the end, tangent to the rod")
+                label="the follower load P at the end, tangent to the rod\n(drawn in the "
+                      "colour of its mode)")
         if name == "pfluger":
             ax.plot([], [], ls="none", marker="o", ms=8, mfc="0.3", mec="0.1",
                     label="the tip mass M")
@@ -247,9 +248,11 @@ def plot_fig23(data: dict[str, Any]) -> Figure:
         _arrow(ax, o, o + 0.35 * R * vec, "k", lw=1.2)
         ax.annotate(name, o + 0.45 * R * vec, ha="center", va="center")
     sv = data["singular_values"]
-    ax.text(0.02, 0.02, "jump of the gradient across the plane (eq. 171):\n"
-            r"$[[\nabla\dot{\mathbf{u}}]] = 2\,\mathbf{f}_1\otimes\mathbf{f}_2$, "
-            f"singular values {sv[0]:.3g}, {sv[1]:.1e} (rank one)",
+    # (at unit amplitude, as eq. 171: the lattice drawn with s has s times it; a review)
+    ax.text(0.02, 0.02, "jump of the gradient across the plane (eq. 171, unit amplitude;\n"
+            f"drawn: s = {data['amplitude']:g} times it): "
+            r"$[[\nabla\dot{\mathbf{u}}]] = 2\,\mathbf{f}_1\otimes\mathbf{f}_2$,"
+            f"\nsingular values {sv[0]:.3g}, {sv[1]:.1e} (rank one)",
             transform=ax.transAxes, fontsize=8, va="bottom")
     ax.set_aspect("equal")
     ax.set_xlim(-2.0 * R, 2.0 * R)

@@ -44,6 +44,8 @@ def _coulomb_panel(ax: Axes, data: dict[str, Any]) -> None:
         ax.annotate("", s + v, s, arrowprops={"arrowstyle": "-|>", "color": col, "lw": 1.8})
         ax.annotate(name, s + 1.05 * v, color=col, fontsize=9, ha=ha, va="bottom")
     ax.set_ylim(p[:, 1].min() - 0.4 * L, max(p[:, 1].max(), s[1]) + 1.45 * L)
+    # the cone drawn to the frame (the default margin left a white strip inside it; a review)
+    ax.set_xlim(-0.05 * pn[-1], pn[-1])
     ax.set_xlabel(r"normal force $p_N$ [N]")
     ax.set_ylabel(r"tangential force $p_T$ [N]")
     ax.set_aspect("equal")
