@@ -406,7 +406,7 @@ def plot_beck_work_precision(data: dict[str, Any]) -> Figure:
         # the target inside the frame (on the frame's top edge it did not show)
         ax.set_ylim(top=max(ax.get_ylim()[1], 3e-3))
         tidy_log_axis(ax.xaxis, [r["wall_s"] for r in data["runs"] if not r["failed"]])
-        ax.set_xlabel("wall time for one period [s]")
+        ax.set_xlabel("wall time for one period [s] (one run each, shared machine)")
         ax.set_ylabel(f"relative error of the {label} [-]")
     handles, labels = axes[0].get_legend_handles_labels()
     # long handles: the mesh's line style (dashed: 8 elements) shows between the markers
