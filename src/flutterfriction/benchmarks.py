@@ -42,8 +42,8 @@ FAMILY_SETTINGS = {
 UNJOINED = {"pendulum flutter load", "pendulum damped flutter load"}
 #: What a family's relative error measures, where it is not one number (the y label).
 FAMILY_ERRORS = {
-    "rod limit cycle (one period)": "relative error [-]\n(the larger of period and amplitude)",
-    "rod limit cycle: mesh (vs finest)": "relative error [-]\n(largest of amplitude, period, "
+    "rod limit cycle (one period)": "larger relative error [-]\n(period, tip amplitude)",
+    "rod limit cycle: mesh (vs finest)": "largest relative error [-]\n(tip amplitude, period, "
                                          "rotation)",
 }
 
