@@ -40,6 +40,9 @@ FAMILY_SETTINGS = {
 #: Families whose points are not joined: along them nothing is a cost (the lines zigzagged in
 #: wall time; a fresh-eyes review).
 UNJOINED = {"pendulum flutter load", "pendulum damped flutter load"}
+#: Families whose points are each named by their setting: few, and one line only (the FE
+#: family's three lines of four points in the quick preset overlapped).
+NAMED_POINTS = {"rod limit cycle: mesh (vs finest)": "{:g} el."}
 #: What a family's relative error measures, where it is not one number (the y label).
 FAMILY_ERRORS = {
     "rod limit cycle (one period)": "larger relative error [-]\n(period, tip amplitude)",

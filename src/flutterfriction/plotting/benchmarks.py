@@ -8,7 +8,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.figure import Figure
 
-from flutterfriction.benchmarks import FAMILY_ERRORS, FAMILY_SETTINGS, UNJOINED
+from flutterfriction.benchmarks import FAMILY_ERRORS, FAMILY_SETTINGS, NAMED_POINTS, UNJOINED
 from flutterfriction.plotting import tidy_log_axis
 
 FLOOR = 1e-17  # errors of exactly 0 (agreement to the last bit) are drawn here
@@ -34,12 +34,11 @@ def plot_work_precision(runs: list[dict[str, Any]]) -> Figure:
             x, y = [r["wall_s"] for r in mine], [max(r["error"], FLOOR) for r in mine]
             ax.loglog(x, y, "o" if family in UNJOINED else "o-", ms=3.5, lw=1,
                       color=f"C{k % 10}", label=READABLE.get(method, method))
-            if FAMILY_SETTINGS.get(family, "").startswith("the number of elements") \
-                    and len(mine) <= 4:  # a few points: each named by its mesh
+            if family in NAMED_POINTS:
                 for i, (r, xi, yi) in enumerate(zip(mine, x, y, strict=True)):
                     # below right of a point, below left of the last (inside the axes)
                     last = i == len(mine) - 1
-                    ax.annotate(f"{r['setting']:g} el.", (xi, yi),
+                    ax.annotate(NAMED_POINTS[family].format(r["setting"]), (xi, yi),
                                 xytext=(-6, -3) if last else (6, -3), textcoords="offset points",
                                 fontsize=7, ha="right" if last else "left", va="top")
                 ax.margins(y=0.15)  # room for the labels inside the frame
