@@ -33,6 +33,11 @@ plt.rcParams.update({
 })
 
 REGIME_COLOURS = {"stable": "#d8ecd3", "flutter": "#fbe0b8", "divergence": "#f4c7c3"}
+#: One colour per time integrator in every work-precision figure (a review: the same solver
+#: had two colours in work_precision and beck_work_precision); the meshes by line style.
+INTEGRATOR_COLOURS = {"LSODA": "C0", "BDF": "C1", "Radau": "C2", "generalized-alpha": "C3",
+                      "DOP853": "C4", "RK45": "C5"}
+MESH_STYLES = ("-", "--", ":")
 
 
 #: A pendulum's parameters in the order and units of list (47) (SI).

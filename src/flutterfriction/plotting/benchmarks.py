@@ -9,7 +9,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from flutterfriction.benchmarks import FAMILY_ERRORS, FAMILY_SETTINGS, NAMED_POINTS, UNJOINED
-from flutterfriction.plotting import tidy_log_axis
+from flutterfriction.plotting import INTEGRATOR_COLOURS, MESH_STYLES, tidy_log_axis
 
 FLOOR = 1e-17  # errors of exactly 0 (agreement to the last bit) are drawn here
 #: Legend names for the studies' short method names (a review read "routh", "beck_damped")
@@ -26,14 +26,23 @@ def plot_work_precision(runs: list[dict[str, Any]]) -> Figure:
     fig, axes = plt.subplots(nrows, ncols, figsize=(9.6, 3.6 * nrows), squeeze=False)
     for ax, family in zip(axes.flat, families, strict=False):
         rows = [r for r in runs if r["family"] == family and r["error"] is not None]
+        # an integrator's colour as in its own study's figure, its mesh ("LSODA, 8 el.") by
+        # the line style; other methods by their order
+        meshes = sorted({m.partition(", ")[2] for m in (r["method"] for r in rows)
+                         if m.partition(", ")[0] in INTEGRATOR_COLOURS},
+                        key=lambda w: float(w.split()[0]) if w else 0.0)
         for k, method in enumerate(dict.fromkeys(r["method"] for r in rows)):
+            base, _, mesh = method.partition(", ")
+            colour = INTEGRATOR_COLOURS.get(base, f"C{k % 10}")
+            style = MESH_STYLES[meshes.index(mesh) % len(MESH_STYLES)] if mesh in meshes \
+                else "-"
             # In the order of the setting (what varies along the line), else of the cost.
             mine = sorted((r for r in rows if r["method"] == method),
                           key=lambda r: (r["setting"] is None, r["setting"] or 0.0,
                                          r["wall_s"]))
             x, y = [r["wall_s"] for r in mine], [max(r["error"], FLOOR) for r in mine]
-            ax.loglog(x, y, "o" if family in UNJOINED else "o-", ms=3.5, lw=1,
-                      color=f"C{k % 10}", label=READABLE.get(method, method))
+            ax.loglog(x, y, "o", ls="none" if family in UNJOINED else style, ms=3.5, lw=1,
+                      color=colour, label=READABLE.get(method, method))
             if family in NAMED_POINTS:
                 for i, (r, xi, yi) in enumerate(zip(mine, x, y, strict=True)):
                     # below right of a point, below left of the last (inside the axes)

@@ -8,7 +8,13 @@ import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.figure import Figure
 
-from flutterfriction.plotting import REGIME_COLOURS, list119, tidy_log_axis
+from flutterfriction.plotting import (
+    INTEGRATOR_COLOURS,
+    MESH_STYLES,
+    REGIME_COLOURS,
+    list119,
+    tidy_log_axis,
+)
 
 
 def _mode_of_branch(im: np.ndarray) -> np.ndarray:
@@ -388,8 +394,9 @@ def plot_beck_work_precision(data: dict[str, Any]) -> Figure:
     """Errors of the period and of the tip amplitude over one return to the Poincaré section,
     against wall time, for each integrator and mesh."""
     fig, axes = plt.subplots(1, 2, figsize=(9.5, 4.8), sharex=True, layout="constrained")
-    styles = {4: "-", 8: "--", 16: ":"}
-    colours = {"LSODA": "C0", "BDF": "C1", "Radau": "C2", "generalized-alpha": "C3"}
+    meshes = sorted({r["mesh"] for r in data["runs"]})
+    styles = dict(zip(meshes, MESH_STYLES, strict=False))
+    colours = INTEGRATOR_COLOURS
     keys = sorted({(r["method"], r["mesh"]) for r in data["runs"]})
     for ax, key, label in zip(axes, ("period_error", "amplitude_error"),
                               ("period", "tip amplitude"), strict=True):
