@@ -616,3 +616,29 @@ def test_undamped_spectrum_beyond_the_coefficients_range():
         s = np.sort(np.abs(spectrum(p, P)))
         assert s[:2] == pytest.approx([(2 * P) ** -0.5] * 2, rel=1e-14)
         assert s[2:] == pytest.approx([P ** 0.5] * 2, rel=1e-14)
+
+
+@pytest.mark.parametrize("P", [9e307, 1e308, 1.79e308])
+def test_undamped_spectrum_up_to_the_largest_double(P):
+    """An outside audit: above P = DBL_MAX/2 load units the root ``-(b/a)/2 (1 + ...)`` overflowed
+    in the product before its halving, and the first-order eigenvalues' round-off was returned
+    (the slow pair +-3.1e145 instead of +-7.1e-155 at 1e308; at -1e308 a positive real part
+    where regime() said stable). The exact biquadratic's roots, as above."""
+    p = ZieglerPendulum(l1=1, l2=1, d=1, h=0, m1=2, m2=1, m3=0, k1=1, k2=1)
+    s = np.sort(np.abs(spectrum(p, P)))
+    assert s[:2] == pytest.approx([(2 * P) ** -0.5] * 2, rel=1e-14)
+    assert s[2:] == pytest.approx([P ** 0.5] * 2, rel=1e-14)
+    # a compressive follower load P < 0 of this size: purely imaginary roots, stable
+    s = spectrum(p, -P)
+    assert np.all(s.real == 0.0) and regime(p, -P).value == "stable"
+
+
+def test_undamped_spectrum_whose_squares_leave_the_double_range_is_refused():
+    """P = 5e307, H = 1e308 load units: s^2 = 2.15e308 is beyond the double range (mpmath,
+    50 digits); refused in one line naming both loads, not the first-order eigenvalues'
+    round-off."""
+    p = ZieglerPendulum(l1=1, l2=1, d=1, h=0, m1=2, m2=1, m3=0, k1=1, k2=1)
+    with pytest.raises(ParameterError, match=r"P = 5e\+307, H = 1e\+308 N .*double range"):
+        spectrum(p, 5e307, 1e308)
+    with pytest.raises(ParameterError, match=r"double range"):
+        regime(p, 5e307, 1e308)

@@ -351,7 +351,8 @@ def _undamped_spectrum(pendulum: ZieglerPendulum, a: Fraction, b: Fraction, c: F
     except (OverflowError, ZeroDivisionError):
         lams = _biquadratic_roots_by_ratios(a, b, c, disc)
     unit = math.sqrt(pendulum.k2) / (math.sqrt(pendulum.m2) * pendulum.l2)
-    root = np.sqrt(np.array(lams, dtype=complex)) * unit
+    with np.errstate(over="ignore", invalid="ignore"):  # (an infinite root: None below)
+        root = np.sqrt(np.array(lams, dtype=complex)) * unit
     s = np.concatenate([root, -root])
     if not np.all(np.isfinite(s)):
         return None
@@ -370,8 +371,10 @@ def _biquadratic_roots_by_ratios(a: Fraction, b: Fraction, c: Fraction, disc: Fr
         return [r, -r] if c < 0 else [complex(0.0, r), complex(0.0, -r)]
     if disc >= 0:
         # q = -(b/2)(1 + sqrt(disc/b^2)); lam1 = q/a, lam2 = c/q
+        # (b/2a, not b/a then halved: b/a times root overflowed for |b/a| > DBL_MAX/2, an
+        # outside audit at P = 1e308 load units)
         root = 1.0 + math.sqrt(float(disc / (b * b)))
-        return [-float(b / a) * root / 2, -2 * float(c / b) / root]
+        return [-float(b / (2 * a)) * root, -2 * float(c / b) / root]
     w = math.sqrt(float(-disc / (4 * a * a)))
     re = -float(b / (2 * a))
     return [complex(re, w), complex(re, -w)]
@@ -437,9 +440,19 @@ def _spectrum(pendulum: ZieglerPendulum, P: float, H: float
     coefficients = None
     if not is_damped(pendulum):
         coefficients = _undamped_biquadratic(pendulum, check_real("P", P), check_real("H", H))
-        s = _undamped_spectrum(pendulum, *coefficients)
-        if s is not None:
-            return s, coefficients
+        try:
+            s = _undamped_spectrum(pendulum, *coefficients)
+        except OverflowError:
+            s = None
+        if s is None:
+            # the exact roots leave the double range: the first-order matrix's eigenvalues
+            # there are round-off (an outside audit: at P = 1e308 load units they gave the
+            # slow pair as +-3.1e145 instead of +-7e-155, and a positive real part where
+            # regime() said stable)
+            raise ParameterError(f"the loads P = {P!r}, H = {H!r} N put the squared "
+                                 f"eigenvalues s^2 beyond the double range (load unit "
+                                 f"k2/l1 = {pendulum.load_unit:.3g} N)")
+        return s, coefficients
     try:
         with np.errstate(over="ignore", invalid="ignore"):
             s = state_eigenvalues(pendulum.mass_matrix(), K, pendulum.viscosity_matrix())
