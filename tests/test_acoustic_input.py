@@ -102,3 +102,91 @@ def test_check_finite_array_takes_real_numbers_only(value):
     with pytest.raises(ParameterError, match=r"^n must be a finite array of shape \(3,\)"):
         check_finite_array("n", value, (3,))
     assert check_finite_array("n", [1, 2.5, np.float32(3)], (3,)).tolist() == [1.0, 2.5, 3.0]
+
+
+# ---------------------------------------------------------------- scale (an outside audit)
+@pytest.mark.parametrize("s", [1e-100, 1e-60, 1e40, 1e100])
+def test_the_general_functions_are_homogeneous_in_the_scale_of_E(s):
+    """An outside audit: the brute-force interval came out empty at E x 1e-100 (its quartic's
+    coefficients underflowed, no warning) and a LinAlgError at 1e40. Every function of the
+    general anisotropic section is homogeneous: A_el scales as |E|, the moduli g as
+    |E| |P| |Q|; they compute in units of powers of two near these, so the answers scale to
+    round-off (measured <= 2e-15; asserted 1e-13)."""
+    n = np.array([1.0, 0.0, 0.0])
+    (interval,) = ac.flutter_interval_bruteforce(E * s, P, Q, n, g_max=100.0 * s)
+    assert np.array(interval) / s == pytest.approx(SHIPPED_INTERVAL, rel=1e-13)
+    dirs = np.array([[1.0, 0.0, 0.0], [0.6, 0.8, 0.0], [0.0, 0.6, 0.8]])
+    g = ac.localization_moduli(E * s, P, Q, dirs)
+    assert g / s == pytest.approx(ac.localization_moduli(E, P, Q, dirs), rel=1e-13)
+    A = ac.acoustic_tensors(E * s, P, Q, dirs, np.array([0.5, 2.0]) * s)
+    assert A / s == pytest.approx(ac.acoustic_tensors(E, P, Q, dirs, np.array([0.5, 2.0])),
+                                  rel=1e-13, abs=1e-13)
+
+
+@pytest.mark.parametrize("t", [1e-150, 1e75, 1e140])
+def test_the_localization_moduli_scale_with_P_and_Q(t):
+    """The audit: P, Q x 1e160 gave the moduli NaN and the maximum -inf with no warning; at
+    these scales (|E| |P| |Q| up to 1e280) each is t^2 times the unit case, and the flutter
+    directions of a scan are the same."""
+    dirs = np.array([[1.0, 0.0, 0.0], [0.6, 0.8, 0.0], [0.0, 0.6, 0.8]])
+    g = ac.localization_moduli(E, P * t, Q * t, dirs) / t**2
+    assert g == pytest.approx(ac.localization_moduli(E, P, Q, dirs), rel=1e-13)
+    top, n_top = ac.max_localization_modulus(E, P * t, Q * t, n_search=50)
+    top1, n1 = ac.max_localization_modulus(E, P, Q, n_search=50)
+    assert top / t**2 == pytest.approx(top1, rel=1e-12)
+    gs = np.array([0.01, 0.1, 1.0, 10.0])
+    assert np.array_equal(ac.flutters_somewhere(E, P * t, Q * t, dirs, gs * t**2),
+                          ac.flutters_somewhere(E, P, Q, dirs, gs))
+
+
+@pytest.mark.parametrize("args", [(1e300, 1e300, 1.0), (1.0, 1e-200, 1e-200), (1.0, 1e160, 1e160)])
+def test_moduli_whose_scale_leaves_the_double_range_are_refused(args):
+    """|E| |P| |Q| beyond [1e-300, 1e300]: refused in one line naming E, P and Q, never a
+    NaN, an infinity or an empty answer."""
+    e, p, q = args
+    dirs = np.array([[1.0, 0.0, 0.0]])
+    for call in (lambda: ac.localization_moduli(E * e, P * p, Q * q, dirs),
+                 lambda: ac.max_localization_modulus(E * e, P * p, Q * q, n_search=10),
+                 lambda: ac.flutters_somewhere(E * e, P * p, Q * q, dirs, np.array([1.0])),
+                 lambda: ac.flutter_interval_bruteforce(E * e, P * p, Q * q, dirs[0],
+                                                        g_max=1e-290)):
+        with pytest.raises(ParameterError, match=r"E, P and Q .*scale .*outside \[1e-300"):
+            call()
+
+
+def test_a_tensor_that_overflows_at_a_tiny_modulus_is_refused_naming_g_values():
+    with pytest.raises(ParameterError, match=r"^g_values: .*double range"):
+        ac.acoustic_tensors(E, P, Q, np.array([[1.0, 0.0, 0.0]]), np.array([1e-310]))
+
+
+# ------------------------------------------------- physical tensors (an outside audit)
+@pytest.mark.parametrize("bad, match", [
+    (-E, r"E must be positive definite"),
+    (so.isotropic_elasticity(1.0, 1.0) * 0.0, r"E must be a non-zero"),
+    (np.eye(9).reshape(3, 3, 3, 3), r"E must have the minor symmetries"),
+    (so.isotropic_elasticity(-0.5, 1.0) - 0.7 * np.einsum("ij,kl->ijkl", np.eye(3), np.eye(3)),
+     r"E must be positive definite"),
+])
+def test_an_elasticity_that_is_not_one_is_refused(bad, match):
+    """eq. (146): E maps symmetric strains to symmetric stresses (minor symmetries) and is
+    positive definite (as isotropic_elasticity asks mu > 0, 3 lam + 2 mu > 0); the audit found
+    -E accepted. The last case: lam = -1.2, mu = 1, 3 lam + 2 mu < 0."""
+    dirs = np.array([[1.0, 0.0, 0.0]])
+    for call in (lambda: ac.localization_moduli(bad, P, Q, dirs),
+                 lambda: ac.flutter_interval_bruteforce(bad, P, Q, dirs[0], g_max=10.0),
+                 lambda: so.acoustic_tensor(bad, P, Q, 1.0, dirs[0])):
+        with pytest.raises(ParameterError, match=match):
+            call()
+
+
+def test_a_flow_tensor_that_is_not_symmetric_is_refused():
+    """eq. (147): P is a symmetric second-order tensor, and so is Q (the gradient of f in the
+    symmetric stress); the audit found a non-symmetric P accepted."""
+    skew = P + np.array([[0.0, 0.1, 0.0], [-0.1, 0.0, 0.0], [0.0, 0.0, 0.0]])
+    dirs = np.array([[1.0, 0.0, 0.0]])
+    with pytest.raises(ParameterError, match=r"^P must be a symmetric"):
+        ac.localization_moduli(E, skew, Q, dirs)
+    with pytest.raises(ParameterError, match=r"^Q must be a symmetric"):
+        ac.flutter_interval_bruteforce(E, P, skew, dirs[0], g_max=10.0)
+    with pytest.raises(ParameterError, match=r"^P must be a symmetric"):
+        so.plastic_modulus(0.0, E, skew, Q)

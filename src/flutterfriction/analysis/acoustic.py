@@ -27,6 +27,8 @@ from flutterfriction.errors import (
 from flutterfriction.models.solid import (
     AMBIGUOUS_RTOL,
     acoustic_vectors,
+    check_elasticity,
+    check_flow_tensor,
     elastic_acoustic_tensor,
     exact_flutter_factors,
     voigt_to_tensor,
@@ -82,7 +84,8 @@ def flutters_somewhere(E: NDArray, P: ArrayLike, Q: ArrayLike, directions: NDArr
     # in blocks of directions: the tensors of the whole map (6561 x 200) would take 94 MB, and
     # the deviator as much again
     return np.concatenate([
-        np.any(has_complex_pair(acoustic_tensors(E, P, Q, n[i:i + 256], g_values), rtol), axis=1)
+        np.any(has_complex_pair(_unit_acoustic_tensors(E, P, Q, n[i:i + 256], g_values)[0],
+                                rtol), axis=1)
         for i in range(0, len(n), 256)]) if len(n) else np.zeros(0, dtype=bool)
 
 
@@ -99,8 +102,8 @@ def _stack_inputs(E: NDArray, P: ArrayLike, Q: ArrayLike, directions: NDArray
                   ) -> tuple[NDArray, NDArray, NDArray, NDArray]:
     """``E``, ``P``, ``Q`` and the directions (m, 3) of the vectorised functions, checked: finite,
     of their shapes, no zero direction (an audit: NaN in, NaN out; a LinAlgError for n = 0)."""
-    E = check_finite_array("E", E, (3, 3, 3, 3))
-    P, Q = (check_finite_array(k, v, (3, 3)) for k, v in (("P", P), ("Q", Q)))
+    E = check_elasticity(E)
+    P, Q = check_flow_tensor("P", P), check_flow_tensor("Q", Q)
     n = check_finite_array("directions", directions, _shape(directions), "finite numbers")
     if n.ndim != 2 or n.shape[1] != 3:
         raise ParameterError(f"directions must be an array of shape (m, 3), got shape {n.shape}")
@@ -109,21 +112,75 @@ def _stack_inputs(E: NDArray, P: ArrayLike, Q: ArrayLike, directions: NDArray
     return E, P, Q, n
 
 
-def acoustic_tensors(E: NDArray, P: ArrayLike, Q: ArrayLike, directions: NDArray,
-                     g_values: NDArray) -> NDArray:
-    """The acoustic tensors ``A(n; g)`` of eq. (163) (rho = 1) for every direction and every
-    ``g``, shape (directions, g values, 3, 3), vectorised. ``g_values``: a 1-d array of finite,
-    non-zero moduli."""
+def _exponent(A: NDArray) -> int:
+    """``e`` with ``max |A| = m 2^e``, ``m`` in [1/2, 1) (0 for a zero array): dividing by
+    ``2^e`` is exact, so the scaled computations below give the same bits at ordinary scales."""
+    return math.frexp(float(np.max(np.abs(A))))[1]
+
+
+#: ``2^k`` of the moduli's scale (``|E| |P| |Q|``) is kept within [RANGE_MIN, RANGE_MAX]:
+#: log2 of 1e300 is 996.6.
+_SCALE_EXPONENT_MAX = 996
+
+
+def _unit_inputs(E: NDArray, P: NDArray, Q: NDArray) -> tuple[NDArray, NDArray, NDArray,
+                                                               int, int]:
+    """``E``, ``P``, ``Q`` divided by powers of two near their largest entries, and the
+    exponents ``kE`` (``A_el`` scales as ``2^kE``) and ``k`` (the moduli ``g``, which scale as
+    ``|E| |P| |Q|``, as ``2^k``). Every function of this section is homogeneous in them, and in
+    these units their products stay in range: an outside audit found, at ``P, Q x 1e160``, the
+    localization moduli NaN and ``-inf`` with no warning, and the brute-force interval empty
+    at ``E x 1e-100`` (its quartic's coefficients underflowed) and a LinAlgError at ``1e40``.
+    Refused where the moduli's scale itself leaves [1e-300, 1e300]."""
+    kE, kP, kQ = _exponent(E), _exponent(P), _exponent(Q)
+    k = kE + kP + kQ
+    if abs(k) > _SCALE_EXPONENT_MAX:
+        raise ParameterError(
+            f"E, P and Q put the plastic moduli's scale |E| |P| |Q| ~ "
+            f"1e{round(k * math.log10(2.0))} outside "
+            f"[{RANGE_MIN:g}, {RANGE_MAX:g}] (the double range of the moduli g): rescale them")
+    return np.ldexp(E, -kE), np.ldexp(P, -kP), np.ldexp(Q, -kQ), kE, k
+
+
+def _in_range(name: str, x: NDArray, k: int) -> NDArray:
+    """``x 2^k``, refused (naming ``name``) where it overflows."""
+    with np.errstate(over="ignore"):
+        out = np.ldexp(x, k)
+    if not np.all(np.isfinite(out)):
+        raise ParameterError(f"{name} leave the double range at these E, P, Q: rescale them")
+    return out
+
+
+def _unit_acoustic_tensors(E: NDArray, P: ArrayLike, Q: ArrayLike, directions: NDArray,
+                           g_values: NDArray) -> tuple[NDArray, int]:
+    """:func:`acoustic_tensors` in units of ``2^kE`` (``A_el``'s scale), and ``kE``."""
     E, P, Q, n = _stack_inputs(E, P, Q, directions)
     g = check_finite_array("g_values", g_values, _shape(g_values), "finite numbers")
     if g.ndim != 1 or np.any(g == 0.0):
         raise ParameterError(f"g_values must be a 1-d array of non-zero moduli (A has "
                              f"p (x) q / g), got shape {g.shape}"
                              + (", a zero" if np.any(g == 0.0) else ""))
+    E, P, Q, kE, k = _unit_inputs(E, P, Q)
     Ael = np.einsum("ijkl,mj,ml->mik", E, n, n)
     p = np.einsum("ij,mj->mi", np.einsum("ijkl,kl->ij", E, P), n)
     q = np.einsum("kl,ml->mk", np.einsum("ijkl,ij->kl", E, Q), n)
-    return Ael[:, None] - np.einsum("mi,mk->mik", p, q)[:, None] / g[None, :, None, None]
+    mg, eg = np.frexp(g)  # 2^k / g without forming 1/g (g may be subnormal)
+    with np.errstate(over="ignore", invalid="ignore"):
+        ratio = np.ldexp(1.0 / mg, k - eg)
+        A = Ael[:, None] - np.einsum("mi,mk->mik", p, q)[:, None] * ratio[None, :, None, None]
+    if not np.all(np.isfinite(A)):
+        raise ParameterError("g_values: the acoustic tensors A = A_el - p (x) q / g leave the "
+                             "double range (a modulus g too small for these E, P, Q)")
+    return A, kE
+
+
+def acoustic_tensors(E: NDArray, P: ArrayLike, Q: ArrayLike, directions: NDArray,
+                     g_values: NDArray) -> NDArray:
+    """The acoustic tensors ``A(n; g)`` of eq. (163) (rho = 1) for every direction and every
+    ``g``, shape (directions, g values, 3, 3), vectorised. ``g_values``: a 1-d array of finite,
+    non-zero moduli."""
+    A, kE = _unit_acoustic_tensors(E, P, Q, directions, g_values)
+    return _in_range("the acoustic tensors", A, kE)
 
 
 def _check_rtol(rtol: object) -> float:
@@ -154,6 +211,10 @@ def has_complex_pair(A: NDArray, rtol: float = 1e-12) -> NDArray:
     t = np.trace(B, axis1=-2, axis2=-1) / 3
     for i in range(3):
         B[..., i, i] -= t
+    # each matrix divided by a power of two near its largest entry (exact): ||B||^6 and the
+    # discriminant, of degree 6, overflowed from entries ~1e51 (an outside audit's scales)
+    _, e = np.frexp(np.max(np.abs(B), axis=(-2, -1)))
+    B = np.ldexp(B, -e[..., None, None])
     scale = np.einsum("...ij,...ij->...", B, B) ** 3
     return cubic_discriminant(B) < -rtol * scale
 
@@ -186,16 +247,21 @@ def fibonacci_sphere(n: int) -> NDArray:
 def localization_moduli(E: NDArray, P: ArrayLike, Q: ArrayLike, directions: NDArray) -> NDArray:
     """``g_cr^E(n)`` of eq. (166) for many directions at once (vectorised), rho = 1."""
     E, P, Q, n = _stack_inputs(E, P, Q, directions)
+    E, P, Q, _, k = _unit_inputs(E, P, Q)  # g scales as |E| |P| |Q| = 2^k
     Ael = np.einsum("ijkl,mj,ml->mik", E, n, n)
     EP = np.einsum("ijkl,kl->ij", E, P)
     EQt = np.einsum("ijkl,ij->kl", E, Q)
     p = np.einsum("ij,mj->mi", EP, n)
     q = np.einsum("kl,ml->mk", EQt, n)
     try:
-        return np.einsum("mi,mi->m", q, np.linalg.solve(Ael, p[..., None])[..., 0])
+        g = np.einsum("mi,mi->m", q, np.linalg.solve(Ael, p[..., None])[..., 0])
     except np.linalg.LinAlgError:
         raise ParameterError("E must give a non-singular elastic acoustic tensor A_el(n) for "
                              "every direction (eq. 166 needs its inverse)") from None
+    if not np.all(np.isfinite(g)):  # an A_el(n) singular to round-off: LAPACK gave inf/NaN
+        raise ParameterError("E must give a non-singular elastic acoustic tensor A_el(n) for "
+                             "every direction (eq. 166 needs its inverse)")
+    return _in_range("the localization moduli g_cr^E", g, k)
 
 
 def _angles_to_n(x: NDArray) -> NDArray:
@@ -209,6 +275,8 @@ def max_localization_modulus(E: NDArray, P: ArrayLike, Q: ArrayLike,
     then Nelder–Mead refinement from the best few grid points (the modulus often has several
     symmetric maxima). ``n_search`` in [1, :data:`FIBONACCI_MAX`]."""
     grid = fibonacci_sphere(check_integer("n_search", n_search, 1, FIBONACCI_MAX))
+    E, P, Q, _ = _stack_inputs(E, P, Q, grid[:1])
+    E, P, Q, _, k = _unit_inputs(E, P, Q)  # searched in units of 2^k, scaled back at the end
     vals = localization_moduli(E, P, Q, grid)
     best_val, best_n = -np.inf, grid[0]
     for i in np.argsort(vals)[-5:]:
@@ -219,7 +287,7 @@ def max_localization_modulus(E: NDArray, P: ArrayLike, Q: ArrayLike,
                                                       "maxiter": 4000})
         if -res.fun > best_val:
             best_val, best_n = -res.fun, _angles_to_n(res.x)
-    return float(best_val), best_n
+    return float(_in_range("the localization modulus", np.float64(best_val), k)), best_n
 
 
 def discriminant_polynomial(E: NDArray, P: ArrayLike, Q: ArrayLike, n: ArrayLike
@@ -375,6 +443,11 @@ def flutter_interval_bruteforce(E: NDArray, P: ArrayLike, Q: ArrayLike, n: Array
     if not (lo <= 1e300 and hi <= 1e300):  # 1/g beyond the floats (an audit: a LinAlgError)
         raise ParameterError(f"g_max 10^-decades = {g_max:.3g} x 1e-{decades:g} must be >= "
                              "1e-300 (the range of 1/g)")
+    # In units where E, P and Q are of order one (exact powers of two, :func:`_unit_inputs`):
+    # x = 1/g below is 2^k / g, and the intervals are scaled back at the end.
+    E = check_elasticity(E)
+    P, Q = check_flow_tensor("P", P), check_flow_tensor("Q", Q)
+    E, P, Q, _, k = _unit_inputs(E, P, Q)
     Ael = elastic_acoustic_tensor(E, np.asarray(n, dtype=float))
     p, q = acoustic_vectors(E, P, Q, np.asarray(n, dtype=float))
     eps = float(np.finfo(float).eps)
@@ -382,12 +455,19 @@ def flutter_interval_bruteforce(E: NDArray, P: ArrayLike, Q: ArrayLike, n: Array
     if float(np.linalg.norm(np.cross(p, q))) <= 8 * eps * pq_norm \
             and float(np.max(np.abs(Ael - Ael.T))) <= 8 * eps * ael_norm:
         return []  # A symmetric for every g (p (x) q symmetric, or zero): real eigenvalues
-    g_top = G_MAX_OVER_SCALE * pq_norm / ael_norm
+    with np.errstate(over="ignore"):
+        g_top = float(np.ldexp(G_MAX_OVER_SCALE * pq_norm / ael_norm, k))
     if not g_max <= g_top:
         raise ParameterError(
             f"g_max must be <= {G_MAX_OVER_SCALE:g} |p| |q| / ||A_el|| = {g_top:.6g} here (beyond, "
             f"the discriminant's round-off decides; flutter intervals end below "
             f"{G2_OVER_SCALE_MAX:g} |p| |q| / ||A_el||), got {g_max!r}")
+    lo, hi = float(np.ldexp(lo, k)), float(np.ldexp(hi, k))
+    if not hi <= 1e300:
+        raise ParameterError(
+            f"g_max 10^-decades = {g_max:.3g} x 1e-{decades:g} must be >= 1e-300 |p| |q| / "
+            f"||A_el|| = {float(np.ldexp(1e-300 * pq_norm / ael_norm, k)):.3g} here (the "
+            f"range of 1/g in the moduli's scale)")
     disc = discriminant_polynomial(E, P, Q, n)
     ddisc = disc.deriv()
 
@@ -453,7 +533,8 @@ def flutter_interval_bruteforce(E: NDArray, P: ArrayLike, Q: ArrayLike, n: Array
             negative = bool(float(np.max(np.abs(eta.imag))) > noise)
         elif negative:  # a flutter interval must show a complex pair
             raise ConvergenceError(
-                f"the discriminant's sign at g = {1 / x:.6g} is not confirmed by the "
+                f"the discriminant's sign at g = {float(np.ldexp(1 / x, k)):.6g} is not "
+                "confirmed by the "
                 "eigenvalues of A there (its coefficients' round-off decides it); use "
                 "flutter_interval_isotropic (isotropic solids)")
         if negative:
@@ -461,7 +542,9 @@ def flutter_interval_bruteforce(E: NDArray, P: ArrayLike, Q: ArrayLike, n: Array
                 intervals[-1] = (1.0 / b, intervals[-1][1])
             else:
                 intervals.append((1.0 / b, 1.0 / a))
-    return sorted(intervals)
+    return sorted((float(_in_range("the flutter intervals' ends", np.float64(g1), k)),
+                   float(_in_range("the flutter intervals' ends", np.float64(g2), k)))
+                  for g1, g2 in intervals)
 
 
 # ---------------------------------------------------------------------- isotropic, any scale

@@ -56,10 +56,13 @@ def mandel_matrix(E: NDArray) -> NDArray:
     """The 6x6 Mandel matrix of a fourth-order tensor with minor symmetries (its eigenvalues
     are the tensor's on symmetric second-order tensors: positive definite elasticity has all
     of them > 0)."""
-    pairs = [(0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1)]
-    weight = [1.0, 1.0, 1.0, math.sqrt(2), math.sqrt(2), math.sqrt(2)]
-    return np.array([[E[i, j, k, l] * wa * wb for (k, l), wb in zip(pairs, weight, strict=True)]
-                     for (i, j), wa in zip(pairs, weight, strict=True)])
+    i, j = _MANDEL_PAIRS[:, :1], _MANDEL_PAIRS[:, 1:]
+    w = _MANDEL_WEIGHTS
+    return E[i, j, i.T, j.T] * w[:, None] * w[None, :]  # (E w_a) w_b, as it was written
+
+
+_MANDEL_PAIRS = np.array([(0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1)])
+_MANDEL_WEIGHTS = np.array([1.0, 1.0, 1.0, math.sqrt(2), math.sqrt(2), math.sqrt(2)])
 
 
 def apply(E: NDArray, A: ArrayLike) -> NDArray:
@@ -106,9 +109,44 @@ def _nonzero_direction(n: ArrayLike) -> NDArray:
     return check_direction(n)
 
 
+def check_elasticity(E: ArrayLike) -> NDArray:
+    """``E`` (eq. 146) as a finite (3, 3, 3, 3) array with the minor symmetries (it maps
+    symmetric strains to symmetric stresses) and positive definite on symmetric tensors (the
+    symmetric part of its Mandel matrix; for isotropy mu > 0 and 3 lam + 2 mu > 0, as
+    :func:`isotropic_elasticity` requires), each to 1e-12 of its largest entry; refused in one
+    line otherwise (an outside audit: ``-E`` was accepted). The major symmetry is not asked
+    (§3.3 assumes it only where it says so). Returned unchanged."""
+    E = check_finite_array("E", E, (3, 3, 3, 3))
+    scale = float(np.max(np.abs(E)))
+    if scale == 0.0:
+        raise ParameterError("E must be a non-zero elasticity tensor")
+    tol = 1e-12 * scale
+    if (np.max(np.abs(E - E.transpose(1, 0, 2, 3))) > tol
+            or np.max(np.abs(E - E.transpose(0, 1, 3, 2))) > tol):
+        raise ParameterError("E must have the minor symmetries E_ijkl = E_jikl = E_ijlk (it "
+                             "maps symmetric strains to symmetric stresses, eq. 146)")
+    M = mandel_matrix(E / scale)
+    smallest = float(np.linalg.eigvalsh(0.5 * (M + M.T))[0])
+    if not smallest > 1e-12:
+        raise ParameterError(f"E must be positive definite on symmetric tensors (smallest "
+                             f"eigenvalue of its Mandel matrix {smallest * scale:.3g})")
+    return E
+
+
+def check_flow_tensor(name: str, A: ArrayLike) -> NDArray:
+    """A flow-rule tensor ``P`` (eq. 147) or ``Q`` (the yield function's gradient, eq. 149):
+    a finite, symmetric 3x3 array (to 1e-12 of its largest entry; an outside audit: a
+    non-symmetric ``P`` was accepted). Returned unchanged."""
+    A = check_finite_array(name, A, (3, 3))
+    if np.max(np.abs(A - A.T)) > 1e-12 * float(np.max(np.abs(A))):
+        raise ParameterError(f"{name} must be a symmetric second-order tensor (§3.2)")
+    return A
+
+
 def _tensors(P: ArrayLike, Q: ArrayLike) -> tuple[NDArray, NDArray]:
-    """The flow-rule tensors ``P``, ``Q`` as finite 3x3 arrays (refused, naming them)."""
-    return check_finite_array("P", P, (3, 3)), check_finite_array("Q", Q, (3, 3))
+    """The flow-rule tensors ``P``, ``Q`` as finite symmetric 3x3 arrays (refused, naming
+    them)."""
+    return check_flow_tensor("P", P), check_flow_tensor("Q", Q)
 
 
 def _modulus(g: object) -> float:
@@ -164,7 +202,7 @@ def drucker_prager_tensors(sigma: ArrayLike, friction_angle: float,
 
 def plastic_modulus(H: float, E: NDArray, P: ArrayLike, Q: ArrayLike) -> float:
     """``g = H + Q . E[P]`` (eq. 152)."""
-    E = check_finite_array("E", E, (3, 3, 3, 3))
+    E = check_elasticity(E)
     P, Q = _tensors(P, Q)
     return float(check_real("H", H) + np.einsum("ij,ij->", Q, apply(E, P)))
 
@@ -182,13 +220,13 @@ def elastoplastic_tangent(E: NDArray, P: ArrayLike, Q: ArrayLike, g: float) -> N
 # ---------------------------------------------------------------------- §3.3–3.4
 def elastic_acoustic_tensor(E: NDArray, n: ArrayLike, rho: float = 1.0) -> NDArray:
     """``A_el(n)`` of eq. (162): ``(A_el)_ik = E_ijkl n_j n_l / rho``."""
-    E, n = check_finite_array("E", E, (3, 3, 3, 3)), _nonzero_direction(n)
+    E, n = check_elasticity(E), _nonzero_direction(n)
     return np.einsum("ijkl,j,l->ik", E, n, n) / check_positive("rho", rho)
 
 
 def acoustic_vectors(E: NDArray, P: ArrayLike, Q: ArrayLike, n: ArrayLike) -> tuple:
     """``p = E[P] n`` and ``q = E^T[Q] n`` (eq. 165)."""
-    E, n = check_finite_array("E", E, (3, 3, 3, 3)), _nonzero_direction(n)
+    E, n = check_elasticity(E), _nonzero_direction(n)
     P, Q = _tensors(P, Q)
     return apply(E, P) @ n, apply_transpose(E, Q) @ n
 
