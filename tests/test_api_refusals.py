@@ -345,3 +345,29 @@ def test_input_models_refuse_unknown_missing_or_repeated_parameters_by_name(mode
     if required:
         with pytest.raises(ParameterError, match=rf"missing parameter\(s\) \['{required[-1]}'\]"):
             model(**{k: v for k, v in good.items() if k != required[-1]})
+
+
+def test_fastest_mode_takes_a_load_in_newtons_within_the_solvers_range():
+    """An outside audit: True was computed as P = 1 N, and P = 1e308 N was refused as
+    "p must be finite, got inf" (its overflowed dimensionless value). Now P itself is named,
+    with the range in newtons (1000 B/l^2 for the rod of list 119: 271.02 N)."""
+    from flutterfriction.analysis.rod import fastest_mode
+    from flutterfriction.models.rod import Rod
+
+    rod = Rod(length=0.35, B=0.0332, rho=0.0546, D=7.078e-6)
+    with pytest.raises(ParameterError, match=r"^P must be a real number, got True$"):
+        fastest_mode(rod, True)
+    for P in (1e308, -300.0):
+        with pytest.raises(ParameterError, match=r"^P must be in \[-271\.02, 271\.02\] N "):
+            fastest_mode(rod, P)
+    assert fastest_mode(rod, np.float64(5.5)) == fastest_mode(rod, 5.5)
+
+
+def test_the_scan_step_at_its_smallest_is_accepted():
+    """An outside audit: step = p_max/1e5 (30/0.0003 is 100000.00000000001 in doubles) was
+    refused with "step must be in [0.0003, 0.25] ..., got 0.0003"."""
+    from flutterfriction.analysis.rod import _check_step
+
+    assert _check_step(0.0003, 30.0) == 0.0003
+    with pytest.raises(ParameterError, match=r"^step must be in .* = \[0\.0003, 0\.25\]"):
+        _check_step(0.00029, 30.0)
