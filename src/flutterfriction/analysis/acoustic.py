@@ -314,13 +314,14 @@ def discriminant_polynomial(E: NDArray, P: ArrayLike, Q: ArrayLike, n: ArrayLike
 
 
 def _secular_end(x0: float, Ael: NDArray, p: NDArray, q: NDArray, a: NDArray,
-                 s: NDArray) -> float:
+                 s: NDArray, k: int = 0) -> float:
     """The coalescence of two eigenvalues of ``A_el - x p (x) q`` nearest ``x0``: Newton on
     ``S2(eta) = sum s_k/(a_k - eta)^2 = 0``, then ``x = 1 / sum s_k/(a_k - eta)`` (sums: no
     cancellation of large terms), started from each eigenvalue of A(x0) and each pair's mean
     (an isotropic A_el keeps one eigenvalue mu fixed, which may lie closer than the coalescing
     pair). The converged ``x`` nearest ``x0``; refused (:class:`ConvergenceError`) if none
-    lands within 1e-3 of ``x0``."""
+    lands within 1e-3 of ``x0``, naming ``g = 2^k / x0`` (``k``: the moduli's unit,
+    :func:`_unit_inputs`)."""
     eta_all = np.linalg.eigvals(Ael - x0 * np.outer(p, q)).real
     starts = [*eta_all, *(0.5 * (eta_all[i] + eta_all[j]) for i in range(eta_all.size)
                           for j in range(i + 1, eta_all.size))]
@@ -347,7 +348,8 @@ def _secular_end(x0: float, Ael: NDArray, p: NDArray, q: NDArray, a: NDArray,
                     found.append(1.0 / s1)
                 break
     if not found:
-        raise ConvergenceError(f"the flutter interval's end near g = {1 / x0:.6g} was not "
+        raise ConvergenceError(f"the flutter interval's end near g = "
+                               f"{float(np.ldexp(1 / x0, k)):.6g} was not "
                                "resolved (the secular equation's Newton did not confirm it); "
                                "use flutter_interval_isotropic (isotropic solids)")
     return min(found, key=lambda x: abs(x - x0))
@@ -506,7 +508,7 @@ def flutter_interval_bruteforce(E: NDArray, P: ArrayLike, Q: ArrayLike, n: Array
     # s_k = (V^T p)_k (V^T q)_k: 1 = x sum s_k/(a_k - eta) and sum s_k/(a_k - eta)^2 = 0.
     a_el, V = np.linalg.eigh(Ael)
     s_k = (V.T @ p) * (V.T @ q)
-    roots = [_secular_end(x, Ael, p, q, a_el, s_k) for x in roots]
+    roots = [_secular_end(x, Ael, p, q, a_el, s_k, k) for x in roots]
     # ... and every coalescence of the secular equation itself: a dip narrower than the
     # quartic's round-off (nu -> 1/2: its terms cancel from ~1e21) has its ends there
     roots += [x for x in _coalescence_points(a_el, s_k) if lo < x < hi]
