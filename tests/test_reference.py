@@ -576,3 +576,37 @@ def test_the_chapters_special_case_formulas_are_not_applied_to_a_researchers_pen
                        if e["id"] != "eq25_H_cr_approx")  # (its key is eq. 22's, general)
         rows = run_check({"quantities": entries, "errata": []}, data, "paper", recorded)
         assert [r.status for r in rows] == [NOT_APPLICABLE] * len(names) and not failed(rows)
+
+
+@pytest.mark.parametrize("case, edit, problem", [
+    ("not JSON", lambda d: "{not json", r"not valid JSON: line 1, column 2"),
+    ("a key twice", lambda d: '{"paper": {}, "paper": {}}', r"key 'paper' written twice"),
+    ("an unknown preset", lambda d: d.update(fast={}), r"unknown preset 'fast'"),
+    ("a deleted preset", lambda d: d.pop("quick"), r"preset 'quick' is not recorded"),
+    ("an unknown scene", lambda d: d["paper"].update(eq99={}), r"paper\.eq99: no such scene"),
+    ("a deleted scene", lambda d: d["paper"].pop("eq25"),
+     r"paper: scene 'eq25', which .*reference\.yaml checks, is not recorded"),
+    ("a string", lambda d: d["paper"]["eq25"].update(n_points="801"),
+     r"paper: scenes\.eq25\.n_points: '801' is a string"),
+])
+def test_the_parameter_record_is_checked_at_the_workflows_start(tmp_path, case, edit, problem):
+    """An outside audit: workflow/reference_parameters.json was read only by the last jobs,
+    and these passed there (a deleted scene or preset made a user's own parameters count as
+    the chapter's). Now the configuration's check (every snakemake call, before any job)
+    refuses each in one line naming the file."""
+    import re
+
+    from flutterfriction.reference import parameters_file_problems
+    from flutterfriction.registry import SCENES
+
+    shipped = ROOT / "workflow" / "reference_parameters.json"
+    files = {k: ROOT / "workflow" / v for k, v in (("reference", "reference.yaml"),
+             ("shipped", "config.yaml"), ("schema_path", "schemas/config.schema.yaml"))}
+    assert parameters_file_problems(shipped, scenes=SCENES, **files) == []
+    record = json.loads(shipped.read_text())
+    text = edit(record)
+    path = tmp_path / "record.json"
+    path.write_text(text if isinstance(text, str) else json.dumps(record))
+    problems = parameters_file_problems(path, scenes=SCENES, **files)
+    assert len(problems) == 1 and re.search(problem, problems[0]), problems
+    assert problems[0].startswith(f"{path}: ")

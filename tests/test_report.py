@@ -189,6 +189,15 @@ def test_coverage_problems_name_an_undrawn_figure_and_an_unlisted_one():
     assert len(unlisted) == 1 and "Fig. 2 does not list" in unlisted[0]
 
 
+def test_a_drawing_listed_under_two_chapter_figures_is_a_coverage_problem():
+    """An outside audit: one figure under two chapter figures was accepted (the second
+    silently replaced the first)."""
+    entries = [dict(e, figures=["figA"]) for e in _coverage()[:1]] * 2
+    entries = [entries[0], dict(entries[1], number=entries[0]["number"] + 1)]
+    problems = coverage_problems(entries, {"figA": "figA"})
+    assert len(problems) == 1 and "'figA' is listed under Fig. " in problems[0]
+
+
 def test_an_invalid_coverage_file_is_refused(tmp_path):
     p = tmp_path / "coverage.yaml"
     p.write_text("figures:\n  - {number: 1, title: t, status: reproduced, figures: []}\n")

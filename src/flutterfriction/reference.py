@@ -509,15 +509,93 @@ def load_parameters(path: str | Path = REFERENCE_PARAMETERS) -> dict[str, Any]:
     garbage gave a bare JSONDecodeError)."""
     try:
         with open(path, encoding="utf-8") as fh:
-            recorded = json.load(fh)
+            recorded = json.load(fh, object_pairs_hook=_unique_keys)
     except json.JSONDecodeError as exc:
         raise ParameterError(f"{path}: not valid JSON: line {exc.lineno}, column {exc.colno}: "
                              f"{exc.msg}") from None
+    except ParameterError as exc:
+        raise ParameterError(f"{path}: {exc}") from None
     problem = _parameters_problem(recorded)
     if problem:
         raise ParameterError(f"{path}: invalid recorded parameters: {problem} (re-record them "
                              f"with python -m flutterfriction.reference)")
     return recorded
+
+
+def _unique_keys(pairs: list[tuple[str, Any]]) -> dict[str, Any]:
+    """A JSON object's pairs as a dict, refusing a key written twice (json keeps the last)."""
+    out: dict[str, Any] = {}
+    for k, v in pairs:
+        if k in out:
+            raise ParameterError(f"key {k!r} written twice in one object")
+        out[k] = v
+    return out
+
+
+def parameters_file_problems(path: str | Path = REFERENCE_PARAMETERS,
+                             reference: str | Path = "workflow/reference.yaml",
+                             shipped: str | Path = "workflow/config.yaml",
+                             schema_path: str | Path = "workflow/schemas/config.schema.yaml",
+                             scenes: Any = None) -> list[str]:
+    """Every problem of the parameter record (:func:`record_parameters`), one line each, for
+    the workflow's start (an outside audit: it was read only by the report and check jobs, at
+    the end, and a string "801", an unknown preset or scene, a key written twice, a deleted
+    scene or preset all passed): valid JSON without a key written twice; its structure
+    (:func:`load_parameters`); the presets exactly those of the shipped configuration
+    (``shipped``); in each, no unregistered scene (``scenes``: names), every scene that an
+    entry of ``reference`` checks recorded (a scene not recorded would count as the chapter's
+    whatever its parameters), and the values of the configuration's schema. Whether a value
+    is the shipped configuration's is the test suite's to keep (a user may edit
+    ``workflow/config.yaml`` itself: the record is what tells their parameters from the
+    chapter's)."""
+    from flutterfriction.config import _schema_problems, load_yaml
+
+    try:
+        with open(path, encoding="utf-8") as fh:
+            recorded = json.load(fh, object_pairs_hook=_unique_keys)
+    except OSError as exc:
+        return [f"{path}: cannot be read: {exc.strerror or exc}"]
+    except json.JSONDecodeError as exc:
+        return [f"{path}: not valid JSON: line {exc.lineno}, column {exc.colno}: {exc.msg}"]
+    except ParameterError as exc:
+        return [f"{path}: {exc}"]
+    problem = _parameters_problem(recorded)
+    if problem:
+        return [f"{path}: invalid recorded parameters: {problem}"]
+    try:  # (a broken configuration or schema file is the configuration check's to name)
+        config, schema = load_yaml(shipped), load_yaml(schema_path)
+        presets = set(config.get("fidelity_presets") or {})
+    except (OSError, yaml.YAMLError, ParameterError, AttributeError, TypeError):
+        return []
+    have = set(recorded) - {"resolution_keys"}
+    problems = [f"{path}: unknown preset {p!r}; the configuration's presets: {sorted(presets)}"
+                for p in sorted(have - presets)]
+    problems += [f"{path}: preset {p!r} is not recorded" for p in sorted(presets - have)]
+    try:  # (its own problems are reference_file_problems'; here only the scenes it checks)
+        ref = load_yaml(reference)
+    except (OSError, yaml.YAMLError, ParameterError):
+        ref = None
+    entries = [e for kind in ("quantities", "errata")
+               for e in ((ref.get(kind) if isinstance(ref, dict) else None) or [])] \
+        if isinstance(ref, dict) and all(isinstance(ref.get(k) or [], list)
+                                         for k in ("quantities", "errata")) else []
+    checked = sorted({e["scene"] for e in entries
+                      if isinstance(e, dict) and isinstance(e.get("scene"), str)})
+    known = None if scenes is None else set(scenes)
+    for preset in sorted(have & presets):
+        rec = recorded[preset]
+        if known is not None:
+            problems += [f"{path}: {preset}.{s}: no such scene" for s in sorted(set(rec) - known)]
+        problems += [f"{path}: {preset}: scene {s!r}, which {reference} checks, is not recorded"
+                     for s in checked if s not in rec]
+        valid = {s: v for s, v in rec.items() if known is None or s in known}
+        problems += _schema_problems({"fidelity": preset,
+                                      "fidelity_presets": {p: {} for p in presets},
+                                      "scenes": valid}, schema, f"{path}: {preset}: ")
+    if known is not None:
+        problems += [f"{path}: resolution_keys.{s}: no such scene"
+                     for s in sorted(set(recorded.get("resolution_keys") or {}) - known)]
+    return problems
 
 
 def _parameters_problem(recorded: Any) -> str:

@@ -160,9 +160,9 @@ def configuration_problems(config: Mapping[str, Any], configfiles: Iterable[str]
 
     from flutterfriction.config import validate_config, yaml_file_problems
     from flutterfriction.errors import ParameterError
-    from flutterfriction.reference import reference_file_problems
+    from flutterfriction.reference import parameters_file_problems, reference_file_problems
     from flutterfriction.registry import SCENES, check_registry
-    from flutterfriction.report import load_coverage
+    from flutterfriction.report import coverage_problems, load_coverage, registry_figure_scenes
 
     problems = (
         check_registry()
@@ -170,13 +170,16 @@ def configuration_problems(config: Mapping[str, Any], configfiles: Iterable[str]
            for line in yaml_file_problems(path)]
         + validate_config(dict(config), "workflow/schemas/config.schema.yaml", scenes=SCENES)
         + reference_file_problems("workflow/reference.yaml", scenes=SCENES)
+        + parameters_file_problems(scenes=SCENES)
         + yaml_file_problems("workflow/coverage.yaml")
     )
     try:
-        load_coverage("workflow/coverage.yaml")
+        entries = load_coverage("workflow/coverage.yaml")
     except (ParameterError, OSError, yaml.YAMLError) as exc:
         lines = str(exc).splitlines()
         problems += [f"workflow/coverage.yaml: {line.strip()}" for line in lines[1:] or lines]
+    else:  # what it claims of the registry, at the start, not at the final check
+        problems += coverage_problems(entries, registry_figure_scenes())
     return problems
 
 
