@@ -600,3 +600,29 @@ def test_a_scene_checks_verdict_is_computed_once_per_parameters():
         with pytest.raises(RuntimeError):
             cfg._check_verdict(check, {"P": -1.0})
     assert len(calls) == 5
+
+
+@pytest.mark.parametrize("scene, key, value, expected", [
+    ("eq25", "eta_max", 1.0e160, "1e+160 is greater than the maximum of 1000000.0"),
+    ("eq46", "gamma_max", 1.0e7, "10000000.0 is greater than the maximum of 1000000.0"),
+    ("self_adjoint", "p_test", 1.0e200, "1e+200 is greater than the maximum of 1000"),
+    ("beck_work_precision", "methods", [], "[] should be non-empty"),
+    ("beck_work_precision", "rtols", [], "[] should be non-empty"),
+    ("limit_cycle_amplitude", "load_factors", [1.1, 1.05, 1.2],
+     "load_factors must increase strictly, got [1.1, 1.05, 1.2]"),
+    ("limit_cycle_amplitude", "load_factors", [1.1, 1.1, 1.2],
+     "load_factors must increase strictly, got [1.1, 1.1, 1.2]"),
+    ("acoustic_eigenvalues", "P", [1.0e300, 0, 0, 0, 0, 0],
+     "P, Q: with lam = 1, mu = 1 the vectors p = E[P] n, q = E[Q] n of eq. (180) have squares "
+     "beyond 1e300"),
+])
+def test_values_a_job_would_fail_on_are_refused_at_the_start(scene, key, value, expected):
+    """An outside audit: eta_max = 1e160 and p_test = 1e200 gave NaN data silently, empty
+    methods or rtols a KeyError after the study's references, unsorted or repeated load
+    factors a meaningless Hopf fit, and P = 1e300 a bare OverflowError message. Each is now
+    one line naming the key, before any job."""
+    raw = yaml.safe_load((ROOT / "workflow" / "config.yaml").read_text())
+    raw["scenes"][scene][key] = value
+    problems = validate_config(raw, SCHEMA_PATH, scenes=SCENES)
+    assert problems and all(f"scenes.{scene}" in p for p in problems), problems
+    assert any(expected in p for p in problems), problems

@@ -212,6 +212,8 @@ def test_reference_problems_refuse_nan_quotes_unknown_scenes_and_wide_tolerances
     ({"workflow/reference.yaml": "bogus_top: 1\nquantities: 5\n"}, "unknown key(s) ['bogus_top']"),
     ({"workflow/coverage.yaml": "- {figure: 1, statuss: x}\n"}, "workflow/coverage.yaml: "),
     ({}, "must be in [1, 10000], got 0"),  # with --set-scatter sweep=0
+    # an unknown scatter name was accepted silently (an outside audit)
+    ({"--set-scatter": "foo=3"}, "--set-scatter: unknown scatter name(s) ['foo']"),
 ])
 def test_the_workflow_refuses_bad_reference_coverage_and_scatter_before_any_job(
         tmp_path, edit, expected):
@@ -226,9 +228,12 @@ def test_the_workflow_refuses_bad_reference_coverage_and_scatter_before_any_job(
         shutil.copytree(ROOT / part, tmp_path / part,
                         ignore=shutil.ignore_patterns("__pycache__", "*.egg-info"))
     shutil.copy(ROOT / "Snakefile", tmp_path / "Snakefile")
+    edit = dict(edit)
+    scatter = edit.pop("--set-scatter", "sweep=0") if not edit or "--set-scatter" in edit \
+        else None
     for path, text in edit.items():
         (tmp_path / path).write_text(text)
-    extra = [] if edit else ["--set-scatter", "sweep=0"]
+    extra = [] if scatter is None else ["--set-scatter", scatter]
     run = subprocess.run([sys.executable, "-m", "snakemake", "-n", *extra], cwd=tmp_path,
                          env={**os.environ, "PYTHONPATH": str(tmp_path / "src")},
                          capture_output=True, text=True)

@@ -2,6 +2,7 @@
 
 import json
 
+import numpy as np
 import pytest
 from conftest import ROOT
 from hypothesis import given, settings
@@ -37,10 +38,19 @@ def test_missing_or_repeated_parts_are_refused():
         combine_parts(TOY, params, parts + parts[:1])
 
 
-@pytest.mark.parametrize("part, n_parts", [(2, 2), (-1, 2), (0, 0), (0, True)])
+@pytest.mark.parametrize("part, n_parts", [
+    (2, 2), (-1, 2), (0, 0), (0, True),
+    # never truncated or coerced (an outside audit: 0.9 ran as part 0, "2" was taken, NaN
+    # raised a bare ValueError, 1e7 parts were accepted)
+    (0.9, 2), (0, "2"), (float("nan"), 2), (True, 2), (0, 10**7), (0, 2.0)])
 def test_bad_part_indices_are_refused(part, n_parts):
-    with pytest.raises(ParameterError, match="part"):
+    with pytest.raises(ParameterError, match=r"^(n_)?part(s)? must be an integer in \["):
         compute_part(TOY, {"n": 3}, part, n_parts)
+
+
+def test_numpy_integers_are_part_indices():
+    assert compute_part(TOY, {"n": 3}, np.int64(1), np.int64(2)) == compute_part(
+        TOY, {"n": 3}, 1, 2)
 
 
 def test_rod_stability_map_in_parts_matches_one_process():

@@ -11,6 +11,12 @@ scattergather:
 
 # `--set-scatter sweep=N` bypasses the config's check of sweep_parts: refused here, in one line
 # before any job (as an input function's error it came with a traceback; an outside audit).
+_unknown_scatter = sorted(set(getattr(workflow, "_scatter", {})) - {"sweep"})
+if _unknown_scatter:  # (an outside audit: --set-scatter foo=3 was accepted silently)
+    sys.exit(
+        f"invalid configuration:\n  --set-scatter: unknown scatter name(s) {_unknown_scatter}; "
+        f"the workflow has one, sweep (--set-scatter sweep=N)"
+    )
 _sweep_parts = getattr(workflow, "_scatter", {}).get("sweep", 1)
 if not (isinstance(_sweep_parts, int) and 1 <= _sweep_parts <= 10000):
     sys.exit(

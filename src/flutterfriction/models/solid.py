@@ -251,10 +251,23 @@ def localization_modulus(E: NDArray, P: ArrayLike, Q: ArrayLike, n: ArrayLike) -
 # ---------------------------------------------------------------------- §3.5, isotropic
 def isotropic_vectors(lam: float, mu: float, P: ArrayLike, Q: ArrayLike,
                       n: ArrayLike) -> tuple[NDArray, NDArray]:
-    """``q = lam tr(Q) n + 2 mu Q n``, ``p = lam tr(P) n + 2 mu P n`` (eq. 180)."""
+    """``q = lam tr(Q) n + 2 mu Q n``, ``p = lam tr(P) n + 2 mu P n`` (eq. 180); refused,
+    naming P and Q, where their squares leave the double range (the closed forms form ``p.q``
+    and ``|p|^2``; an outside audit: P = 1e300 gave a bare OverflowError "(34, 'Numerical
+    result out of range')"). ``analysis.acoustic.isotropic_acoustic`` computes at any scale."""
     lam, mu = _isotropic(lam, mu)
     (P, Q), n = _tensors(P, Q), _nonzero_direction(n)
-    return lam * np.trace(P) * n + 2 * mu * P @ n, lam * np.trace(Q) * n + 2 * mu * Q @ n
+    with np.errstate(over="ignore", invalid="ignore"):
+        p = lam * np.trace(P) * n + 2 * mu * P @ n
+        q = lam * np.trace(Q) * n + 2 * mu * Q @ n
+        squares = (p @ p, q @ q, p @ q)
+    if not all(math.isfinite(float(x)) and abs(float(x)) < 1e300 for x in squares):
+        raise ParameterError(
+            f"P, Q: with lam = {lam:g}, mu = {mu:g} the vectors p = E[P] n, q = E[Q] n of eq. "
+            f"(180) have squares beyond 1e300 (|p| = {float(np.max(np.abs(p))):.3g}, |q| = "
+            f"{float(np.max(np.abs(q))):.3g}): scale P and Q down (every critical modulus g "
+            f"scales with |P| |Q|)")
+    return p, q
 
 
 def acoustic_tensor_isotropic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike, g: float,

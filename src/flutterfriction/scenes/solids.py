@@ -122,6 +122,7 @@ def _nonassociative_case(params: dict[str, Any]):
     lam, mu = float(params["lam"]), check_positive("mu", params["mu"])
     P, Q = _tensor("P", params["P"]), _tensor("Q", params["Q"])
     n = so.check_direction(params["n"], normalise=True)
+    so.isotropic_vectors(lam, mu, P, Q, n)  # (P, Q within the closed forms' range, named)
     return lam, mu, P, Q, n
 
 

@@ -17,7 +17,10 @@ from typing import Any
 
 import numpy as np
 
-from flutterfriction.errors import ParameterError
+from flutterfriction.errors import ParameterError, check_integer
+
+#: Most parts a sweep is cut into (as `sweep_parts` and `--set-scatter sweep=N` allow).
+MAX_PARTS = 10000
 
 
 @dataclass(frozen=True)
@@ -38,15 +41,15 @@ def _blocks(n_points: int, n_parts: int) -> list[range]:
 def compute_part(sweep: Sweep, params: dict[str, Any], part: int, n_parts: int) -> dict[str, Any]:
     """Results of block ``part`` (0-based) of ``n_parts``: ``{"part", "n_parts", "indices",
     "results"}``. A block may be empty when there are more parts than points."""
-    if isinstance(n_parts, bool) or int(n_parts) < 1:
-        raise ParameterError(f"n_parts must be an integer >= 1, got {n_parts!r}")
-    if not 0 <= int(part) < int(n_parts):
-        raise ParameterError(f"part must be in [0, {int(n_parts) - 1}], got {part!r}")
+    # integers as given, never truncated (an outside audit: part = 0.9 ran as part 0,
+    # n_parts = "10000000" was taken, part = NaN raised a bare ValueError); at most the
+    # workflow's sweep parts (workflow/rules/scenes.smk)
+    n_parts = check_integer("n_parts", n_parts, 1, MAX_PARTS)
+    part = check_integer("part", part, 0, n_parts - 1)
     points = sweep.points(params)
-    block = _blocks(len(points), int(n_parts))[int(part)]
+    block = _blocks(len(points), n_parts)[part]
     results = sweep.compute(params, [points[i] for i in block]) if len(block) else []
-    return {"part": int(part), "n_parts": int(n_parts), "indices": list(block),
-            "results": results}
+    return {"part": part, "n_parts": n_parts, "indices": list(block), "results": results}
 
 
 def combine_parts(sweep: Sweep, params: dict[str, Any], parts: list[dict[str, Any]]

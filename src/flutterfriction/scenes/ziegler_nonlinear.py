@@ -273,9 +273,16 @@ def check_limit_cycle_amplitude(params: dict[str, Any]) -> None:
     job with messages naming no key, or a load in newtons under a factor's name; an outside
     audit): a pendulum without hinge viscosity, a load factor putting ``factor x P_flu``
     outside the damped flutter interval."""
+    factors = params.get("load_factors", [])
+    if isinstance(factors, list) and all(isinstance(f, int | float) for f in factors) \
+            and any(b <= a for a, b in zip(factors, factors[1:], strict=False)):
+        # the Hopf fit takes the first three as the nearest the flutter load (an outside
+        # audit: unsorted or repeated factors passed, and a repeated one gave polyfit a
+        # meaningless slope)
+        raise ParameterError(f"load_factors must increase strictly, got {factors!r}")
     p = _viscous_pendulum(params)
     P_flu, P_div = damped_flutter_load(p, "routh"), damped_divergence_load(p)
-    for f in params.get("load_factors", []):
+    for f in factors:
         factor = check_positive("load_factors", f)
         if not 1 < factor < P_div / P_flu:
             raise ParameterError(f"load_factors must lie in (1, {P_div / P_flu:.6g}) (P = "
