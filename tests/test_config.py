@@ -615,6 +615,14 @@ def test_a_scene_checks_verdict_is_computed_once_per_parameters():
     ("acoustic_eigenvalues", "P", [1.0e300, 0, 0, 0, 0, 0],
      "P, Q: with lam = 1, mu = 1 the vectors p = E[P] n, q = E[Q] n of eq. (180) have squares "
      "beyond 1e300"),
+    # scenes that had no configuration check, or one that let these through to the job
+    ("fig01", "P_rod", 1.0e20, "P_rod must be in (0, 271.02] N (1000 B/l^2"),
+    ("fig01", "P_rod", 10.69945685277279,
+     "P_rod = 10.6995 N: p = 39.4784 is a buckling load of the clamped beam-column"),
+    ("errata_damped", "H", 1.0e300, "H = 1e+300 N: eq. (30) coefficients: beyond the double"),
+    ("localization_directions", "G", 1.0e300, "G = 1e+300 Pa: E, P and Q put the plastic"),
+    ("pendulum_work_precision", "c_values", [1.0e-3, 1.0e300],
+     "c_values: c1: the relative viscosity c1/(l2 sqrt(k2 m2)) = 10^302 must be 0 or within"),
 ])
 def test_values_a_job_would_fail_on_are_refused_at_the_start(scene, key, value, expected):
     """An outside audit: eta_max = 1e160 and p_test = 1e200 gave NaN data silently, empty
@@ -626,3 +634,11 @@ def test_values_a_job_would_fail_on_are_refused_at_the_start(scene, key, value, 
     problems = validate_config(raw, SCHEMA_PATH, scenes=SCENES)
     assert problems and all(f"scenes.{scene}" in p for p in problems), problems
     assert any(expected in p for p in problems), problems
+
+
+def test_a_fig04_case_whose_response_overflows_is_refused_naming_its_load():
+    """An outside audit: a case's P = 1e300 N was refused in the job as "times: ..."."""
+    raw = yaml.safe_load((ROOT / "workflow" / "config.yaml").read_text())
+    raw["scenes"]["fig04"]["cases"]["flutter"]["P"] = 1.0e300
+    problems = validate_config(raw, SCHEMA_PATH, scenes=SCENES)
+    assert len(problems) == 1 and "scenes.fig04: cases.flutter.P = 1e+300 N: " in problems[0]

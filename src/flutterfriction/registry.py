@@ -119,7 +119,7 @@ _ENTRIES = [
         "Fig. 1: a follower load on two rigid bars (exact kinematics) and on a clamped rod "
         "(small displacements), the states of their closed loops 1→2→3 and 1→2→3→4→1, and the "
         "work on each leg by quadrature: positive net work, zero on the rigid rotation and on "
-        "the legs the caption names.")}),
+        "the legs the caption names.")}, check=sketches.check_fig01),
     Scene("fig02", ziegler.fig02, "ziegler", {"fig02": _fig(
         "ziegler:plot_fig02",
         "Fig. 2: the Ziegler double pendulum (drawn by the same code as Fig. 4).")}),
@@ -130,7 +130,8 @@ _ENTRIES = [
     Scene("fig04", ziegler.fig04, "ziegler", {"fig04": _fig(
         "ziegler:plot_fig04",
         "Fig. 4: configurations every 0.04 s of the linear motion, flutter (P = 6.8 N, 0.44 s) "
-        "and divergence (P = 15.4 N, 0.2 s), from the exact matrix exponential.")}),
+        "and divergence (P = 15.4 N, 0.2 s), from the exact matrix exponential.")},
+          check=ziegler.check_fig04),
     Scene("eq25", ziegler.eq25, "ziegler", {"eq25": _fig(
         "ziegler:plot_eq25",
         "ω² against the dead load: H_cr = (3 − √5)/2 K/L ≈ 0.382 K/L (eq. 25).")}),
@@ -174,7 +175,8 @@ _ENTRIES = [
           check=ziegler_damped.check_paradox_map),
     Scene("damped_dead_load", ziegler_damped.damped_dead_load, "ziegler_paradox",
           check=ziegler_damped.check_damped_dead_load),
-    Scene("errata_damped", ziegler_damped.errata_damped, "ziegler_paradox"),
+    Scene("errata_damped", ziegler_damped.errata_damped, "ziegler_paradox",
+          check=ziegler_damped.check_errata_damped),
     # §2.5–2.8 The Beck and Pflüger rods
     Scene("elastica", rod_statics.elastica, "rods", {
         "fig06": _fig("rod_statics:plot_fig06",

@@ -61,20 +61,8 @@ def fig01(params: dict[str, Any]) -> dict[str, Any]:
     the static beam-column solutions ``v'''' + p v'' = 0`` (eq. 105, static) with the clamp and
     the imposed end displacement and rotation, ``p = P l^2/B``.
     """
-    take(params, {"pendulum", "P_bars", "beta_deg", "rod", "P_rod", "tip_displacement",
-                  "tip_rotation", "n_points"})
-    pend = pendulum_of(params)
+    pend, P, beta, rod, P_rod, v0, th0 = _fig01_inputs(params)
     l1, l2 = pend.l1, pend.l2
-    P = check_positive("P_bars", params.get("P_bars", 1.0), "N")
-    beta = math.radians(check_real("beta_deg", params.get("beta_deg", 30.0)))
-    if not 0.0 < beta < math.pi / 2:
-        raise ParameterError(f"beta_deg must lie in (0, 90) deg, got {math.degrees(beta)!r}")
-    rod = _rod(params)
-    P_rod = check_positive("P_rod", params.get("P_rod", 1.0), "N")
-    v0 = check_real("tip_displacement", params.get("tip_displacement", 0.03))
-    th0 = check_real("tip_rotation", params.get("tip_rotation", -0.2))
-    if v0 == 0.0 or th0 == 0.0:
-        raise ParameterError("tip_displacement and tip_rotation must be nonzero")
     n = int(params.get("n_points", 101))
 
     # -- two bars, exact kinematics
@@ -159,6 +147,42 @@ def fig01(params: dict[str, Any]) -> dict[str, Any]:
                 "kinematics": "small displacements (the caption's assumption)"},
         "quantities": q,
     }
+
+
+def _fig01_inputs(params: dict[str, Any]) -> tuple:
+    """Fig. 1's parameters, each checked (one line naming it): the pendulum, ``P_bars``,
+    ``beta_deg``, the rod, ``P_rod`` (``p = P_rod l^2/B`` within the rod solver's range and off
+    the clamped beam-column's buckling loads), the end's displacement and rotation."""
+    take(params, {"pendulum", "P_bars", "beta_deg", "rod", "P_rod", "tip_displacement",
+                  "tip_rotation", "n_points"})
+    pend = pendulum_of(params)
+    P = check_positive("P_bars", params.get("P_bars", 1.0), "N")
+    beta = math.radians(check_real("beta_deg", params.get("beta_deg", 30.0)))
+    if not 0.0 < beta < math.pi / 2:
+        raise ParameterError(f"beta_deg must lie in (0, 90) deg, got {math.degrees(beta)!r}")
+    rod = _rod(params)
+    P_rod = check_positive("P_rod", params.get("P_rod", 1.0), "N")
+    v0 = check_real("tip_displacement", params.get("tip_displacement", 0.03))
+    th0 = check_real("tip_rotation", params.get("tip_rotation", -0.2))
+    if v0 == 0.0 or th0 == 0.0:
+        raise ParameterError("tip_displacement and tip_rotation must be nonzero")
+    # (an outside audit: P_rod = 1e20 N was refused as "a buckling load", and at one, in the
+    # job only: fig01 had no configuration check)
+    bound = ar.P_MAX_LIMIT * rod.load_unit
+    if not P_rod <= bound:
+        raise ParameterError(f"P_rod must be in (0, {bound:.6g}] N ({ar.P_MAX_LIMIT:g} B/l^2, "
+                             f"the rod solver's range), got {P_rod!r}")
+    p = P_rod * rod.length**2 / rod.B
+    try:
+        _beam_column(p, v0 / rod.length, th0, np.zeros(1))
+    except ParameterError as exc:
+        raise ParameterError(f"P_rod = {P_rod:g} N: {exc}") from None
+    return pend, P, beta, rod, P_rod, v0, th0
+
+
+def check_fig01(params: dict[str, Any]) -> None:
+    """Fig. 1's parameters as :func:`fig01` refuses them (the configuration check)."""
+    _fig01_inputs(params)
 
 
 def _rod(params: dict[str, Any]) -> Rod:

@@ -205,7 +205,14 @@ def _localization_case(params: dict[str, Any]) -> tuple[float, float, np.ndarray
     nu = check_real("nu", params["nu"])
     if not -1 < nu < 0.5:
         raise ParameterError(f"nu must lie in (-1, 0.5), got {nu}")
-    return (G, nu, *_dp_state(params))
+    G, nu, P, Q = (G, nu, *_dp_state(params))
+    try:  # the moduli's scale G^2 |P| |Q| in range (an outside audit: G = 1e300 Pa was
+        # refused in the job only)
+        ac.localization_moduli(so.isotropic_elasticity(2 * G * nu / (1 - 2 * nu), G), P, Q,
+                               np.array([[1.0, 0.0, 0.0]]))
+    except ParameterError as exc:
+        raise ParameterError(f"G = {G:g} Pa: {exc}") from None
+    return G, nu, P, Q
 
 
 def check_localization_directions(params: dict[str, Any]) -> None:

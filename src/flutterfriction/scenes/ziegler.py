@@ -10,6 +10,7 @@ import math
 from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from flutterfriction.analysis.stability import pencil_eigenvalues
 from flutterfriction.analysis.ziegler import (
@@ -148,6 +149,32 @@ def fig02(params: dict[str, Any]) -> dict[str, Any]:
             "points": {k: v.tolist() for k, v in pos.items()}}
 
 
+def _case_response(p: ZieglerPendulum, name: str, P: float, x0: list[float], times: NDArray) -> NDArray:
+    """:func:`linear_response` of one Fig. 4 case, a refusal naming the case's load (an outside
+    audit: P = 1e300 N was refused in the job as "times: the linear response overflows")."""
+    try:
+        return linear_response(p, P, 0.0, x0, times)
+    except ParameterError as exc:
+        raise ParameterError(f"cases.{name}.P = {P:g} N: {exc}") from None
+
+
+def check_fig04(params: dict[str, Any]) -> None:
+    """Fig. 4's cases as :func:`fig04` refuses them, each case's response at its last frame
+    (the configuration check; ~1 ms a case)."""
+    take(params, {"pendulum", "cases", "dt"})
+    p = pendulum_of(params)
+    dt = check_positive("dt", params.get("dt", 0.04), "s")
+    cases = params.get("cases")
+    if not isinstance(cases, dict) or not cases:
+        raise ParameterError("fig04 needs 'cases': {name: {P, duration, alpha0_deg}}")
+    for name, case in cases.items():
+        take(case, {"P", "duration", "alpha0_deg"})
+        P = check_real(f"cases.{name}.P", case["P"])
+        T = check_positive(f"cases.{name}.duration", case["duration"], "s")
+        a0 = math.radians(check_real(f"cases.{name}.alpha0_deg", case["alpha0_deg"]))
+        _case_response(p, name, P, [a0, a0, 0.0, 0.0], np.array([0.0, dt * round(T / dt)]))
+
+
 def fig04(params: dict[str, Any]) -> dict[str, Any]:
     """Exact linear motion (eq. 11, matrix exponential) drawn every ``dt`` seconds."""
     take(params, {"pendulum", "cases", "dt"})
@@ -164,7 +191,7 @@ def fig04(params: dict[str, Any]) -> dict[str, Any]:
         T = check_positive(f"cases.{name}.duration", case["duration"], "s")
         a0 = math.radians(check_real(f"cases.{name}.alpha0_deg", case["alpha0_deg"]))
         times = dt * np.arange(int(round(T / dt)) + 1)
-        states = linear_response(p, P, 0.0, [a0, a0, 0.0, 0.0], times)
+        states = _case_response(p, name, P, [a0, a0, 0.0, 0.0], times)
         pos = p.positions(states[:, 0], states[:, 1])
         # The same exact solution every dt/20, for the figure's alpha(t) panel.
         t_dense = np.linspace(0.0, times[-1], 20 * (len(times) - 1) + 1)

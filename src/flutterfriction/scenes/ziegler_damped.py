@@ -353,19 +353,37 @@ def damped_dead_load(params: dict[str, Any]) -> dict[str, Any]:
 
 
 # ---------------------------------------------------------------------- errata of eq. (31)
+def _eq31(params: dict[str, Any]) -> tuple:
+    """The pendulum, its viscosity groups, the dead load ``H`` (a real number; a refusal of
+    the coefficients names it: an outside audit's H = 1e300 N was refused in the job as "eq.
+    (30) coefficients: beyond the double range") and eq. (31)'s printed and derived
+    coefficients."""
+    take(params, {"pendulum", "H", "eq52_eps", "eq52_gamma"})
+    p = pendulum_of(params)
+    eps, c = cfd.viscosity_groups(p)
+    H = check_real("H", params.get("H", 1.0))
+    eta = H * p.l1 / p.k2
+    g = p.groups()
+    try:
+        printed = cfd.coefficients_as_printed_eq31(g, eps, c, eta)
+        derived = cfd.characteristic_coefficients(g, eps, c, eta=eta)
+    except ParameterError as exc:
+        raise ParameterError(f"H = {H:g} N: {exc}") from None
+    return p, eps, c, H, eta, g, printed, derived
+
+
+def check_errata_damped(params: dict[str, Any]) -> None:
+    """eq. (31)'s coefficients as :func:`errata_damped` refuses them (the configuration
+    check)."""
+    _eq31(params)
+
+
 def errata_damped(params: dict[str, Any]) -> dict[str, Any]:
     """Eq. (31) as printed vs derived (sympy) vs the coefficients of det(M s^2 + C s + K + G)
     expanded numerically from the matrices; eq. (52) vs the derivation."""
     from flutterfriction.analysis.polynomial import characteristic_polynomial
 
-    take(params, {"pendulum", "H", "eq52_eps", "eq52_gamma"})
-    p = pendulum_of(params)
-    eps, c = cfd.viscosity_groups(p)
-    H = float(params.get("H", 1.0))
-    eta = H * p.l1 / p.k2
-    g = p.groups()
-    printed = cfd.coefficients_as_printed_eq31(g, eps, c, eta)
-    derived = cfd.characteristic_coefficients(g, eps, c, eta=eta)
+    p, eps, c, H, eta, g, printed, derived = _eq31(params)
     # det(M s^2 + C s + K + G) = k2^2 det(M^ w^2 + C^ w + K^ + G^) with w = s T.
     T = p.l2 * math.sqrt(p.m2 / p.k2)
     si = characteristic_polynomial(p.mass_matrix(), p.viscosity_matrix(),

@@ -384,6 +384,14 @@ def check_pendulum_work_precision(params: dict[str, Any]) -> None:
         _section29(_cycle_settings(params))
     except ParameterError as exc:
         raise ParameterError(f"cycle_pendulum, load_factor: {exc}") from None
+    # each viscosity as the pendulum takes it (an outside audit: c_values = [1e300] was
+    # refused in the job, after the multiprecision load)
+    p = pendulum_of(params)
+    for c in params.get("c_values", []):
+        try:
+            p.with_(c1=float(c), c2=float(c)).check_numerical_range()
+        except ParameterError as exc:
+            raise ParameterError(f"c_values: {exc}") from None
 
 
 def pendulum_work_precision(params: dict[str, Any]) -> dict[str, Any]:
