@@ -149,7 +149,8 @@ def fig02(params: dict[str, Any]) -> dict[str, Any]:
             "points": {k: v.tolist() for k, v in pos.items()}}
 
 
-def _case_response(p: ZieglerPendulum, name: str, P: float, x0: list[float], times: NDArray) -> NDArray:
+def _case_response(p: ZieglerPendulum, name: str, P: float, x0: list[float],
+                   times: NDArray) -> NDArray:
     """:func:`linear_response` of one Fig. 4 case, a refusal naming the case's load (an outside
     audit: P = 1e300 N was refused in the job as "times: the linear response overflows")."""
     try:
