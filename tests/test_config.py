@@ -621,6 +621,9 @@ def test_a_scene_checks_verdict_is_computed_once_per_parameters():
      "P_rod = 10.6995 N: p = 39.4784 is a buckling load of the clamped beam-column"),
     ("errata_damped", "H", 1.0e300, "H = 1e+300 N: eq. (30) coefficients: beyond the double"),
     ("localization_directions", "G", 1.0e300, "G = 1e+300 Pa: E, P and Q put the plastic"),
+    ("elastica", "q2", 1000.0, "q2 must be within +-200 B/l^3 = +-154.869 N/m for this rod"),
+    ("elastica", "P1", 1.0e300, "P1 must be within +-200 B/l^2 = +-54.2041 N for this rod"),
+    ("elastica", "P2", 1.0e-100, "P2 must be nonzero and at least 1e-30 B/l^2 = 2.71e-31 N"),
     ("pendulum_work_precision", "c_values", [1.0e-3, 1.0e300],
      "c_values: c1: the relative viscosity c1/(l2 sqrt(k2 m2)) = 10^302 must be 0 or within"),
 ])

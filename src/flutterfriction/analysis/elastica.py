@@ -419,6 +419,9 @@ def _shooting_solution(length: float, B: float, loads: ElasticaLoads, th: float,
 #: ~1-4 s there, measured).
 _SCAN = np.linspace(-4 * math.pi, 4 * math.pi, 1441)
 _SCAN_LIMIT = 200.0
+#: Largest load [B/l^2, or B/l^3 per unit length] the elastica scene takes: the stable
+#: equilibrium's scan range (loads beyond failed after tens of seconds; an outside audit).
+LOAD_RANGE_MAX = _SCAN_LIMIT
 #: The loading path's last end rotation [rad] gives the side above this; below, the rod is in
 #: its linear range, where the side is the linear response's (and the path's rotation may be
 #: Newton's noise).

@@ -19,6 +19,9 @@ from flutterfriction.errors import ConvergenceError, ParameterError, check_real
 from flutterfriction.models.rod import Rod
 from flutterfriction.scenes.common import n_points, quantity, take
 
+#: Smallest transverse end force [B/l^2] the closed form of the end forces alone resolves
+#: (measured on list 119: 1e-30 N solves, 1e-100 N fails to converge).
+P2_MIN_OVER_UNIT = 1e-30
 _KEYS = {"rod", "P1", "P2", "q1", "q2", "point", "cut", "part", "linear_factors",
          "load_steps", "n_points"}
 #: Points of the polylines whose length, extrapolated (Richardson, h^2 -> h^4), measures the
@@ -55,6 +58,25 @@ def _inputs(params: dict[str, Any]) -> tuple[Rod, el.ElasticaLoads, dict[str, An
             f"against needs |P2/P1| >= {math.tan(el.TENSION_OFF_AXIS_MIN):.4g} (the force at "
             f"least {el.TENSION_OFF_AXIS_MIN:g} rad off the axis), got "
             f"{abs(loads.P2 / loads.P1):.3g}")
+    # The loads in units of B/l^2 (and B/l^3) within the range the scene's two methods are
+    # measured to cover (an outside audit: q2 = 1e6 N/m failed after 23.5 s, 1000 N/m after
+    # 86 s here; P2 = 1e-300 N in the closed form, naming no key): at most _SCAN_LIMIT (the
+    # shooting's own range for its stable equilibrium), |P2| at least 1e-30 B/l^2 (measured:
+    # 1e-30 N on list 119 solves; 1e-100 N does not)
+    unit = rod.B / rod.length**2
+    for key, value, scale in (("P1", loads.P1, unit), ("P2", loads.P2, unit),
+                              ("q1", loads.q1, unit / rod.length),
+                              ("q2", loads.q2, unit / rod.length)):
+        if not abs(value) <= el.LOAD_RANGE_MAX * scale:
+            raise ParameterError(
+                f"{key} must be within +-{el.LOAD_RANGE_MAX:g} B/l^{2 if key[0] == 'P' else 3} "
+                f"= +-{el.LOAD_RANGE_MAX * scale:.6g} {'N' if key[0] == 'P' else 'N/m'} for "
+                f"this rod (the elastica solver's range, analysis.elastica.LOAD_RANGE_MAX), got "
+                f"{value!r}")
+    if not abs(loads.P2) >= P2_MIN_OVER_UNIT * unit:
+        raise ParameterError(f"P2 must be nonzero and at least {P2_MIN_OVER_UNIT:g} B/l^2 = "
+                             f"{P2_MIN_OVER_UNIT * unit:.3g} N in magnitude (the closed form's "
+                             f"range), got {loads.P2!r}")
     part = params.get("part", [0.3, 0.75])
     if not isinstance(part, list | tuple) or len(part) != 2:
         raise ParameterError(f"part must be two fractions [s1/l, s2/l], got {part!r}")
