@@ -232,13 +232,17 @@ def test_elastica_api_refuses_arc_lengths_off_the_rod_and_bad_iteration_counts()
 @pytest.mark.slow  # 6-9 s on a slower host (2026-11-24): with the slow ones
 def test_a_failed_elastica_scene_names_its_loads():
     """Outside audit: elastica.P1 = 100 N (150 Euler loads) failed with "solve_bvp failed ...
-    mesh nodes", naming no parameter; the message now names the loads and the Euler load."""
+    mesh nodes", naming no parameter; the message now names the loads and the Euler load.
+    (100 N is now beyond the scene's range, 200 B/l^2 = 54.2 N, refused up front; 30 N, 45
+    Euler loads, is within it and still beyond what the continuation follows.)"""
     from flutterfriction.config import load_config, scene_params
-    from flutterfriction.errors import ConvergenceError
+    from flutterfriction.errors import ConvergenceError, ParameterError
     from flutterfriction.scenes.rod_statics import elastica
 
     params = scene_params(load_config(ROOT / "workflow" / "config.yaml"), "elastica")
-    with pytest.raises(ConvergenceError, match=r"P1, P2, q1, q2 = 100 N.*Euler load"):
+    with pytest.raises(ConvergenceError, match=r"P1, P2, q1, q2 = 30 N.*Euler load"):
+        elastica({**params, "P1": 30.0})
+    with pytest.raises(ParameterError, match=r"^P1 must be within \+-200 B/l\^2 = \+-54\.2041 N"):
         elastica({**params, "P1": 100.0})
 
 
