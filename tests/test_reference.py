@@ -615,3 +615,27 @@ def test_the_parameter_record_is_checked_at_the_workflows_start(tmp_path, case, 
     problems = parameters_file_problems(path, scenes=SCENES, **files)
     assert len(problems) == 1 and re.search(problem, problems[0]), problems
     assert problems[0].startswith(f"{path}: ")
+
+
+def test_re_recording_the_parameters_refuses_arguments_and_a_bad_configuration(
+        tmp_path, monkeypatch, capsys):
+    """`python -m flutterfriction.reference` re-records workflow/reference_parameters.json
+    from workflow/config.yaml. It took any arguments silently, and recorded a configuration
+    that does not validate (it would then be the chapter's parameters for every check)."""
+    import shutil
+
+    from flutterfriction.reference import _record_main
+
+    assert _record_main(["--bogus"]) == 2
+    assert "takes no arguments" in capsys.readouterr().err
+    shutil.copytree(ROOT / "workflow", tmp_path / "workflow")
+    monkeypatch.chdir(tmp_path)
+    record = tmp_path / "workflow" / "reference_parameters.json"
+    before = record.read_text()
+    assert _record_main([]) == 0 and record.read_text() == before  # the shipped one: the same
+    config = tmp_path / "workflow" / "config.yaml"
+    config.write_text(config.read_text().replace("    p_test: 3.0\n", "    p_test: 3.0e+200\n"))
+    record.write_text("{}")
+    assert _record_main([]) == 2
+    assert "p_test: 3e+200 is greater than the maximum of 1000" in capsys.readouterr().err
+    assert record.read_text() == "{}"  # nothing written

@@ -710,12 +710,40 @@ def load_scene_data(paths: list[str | Path]) -> dict[str, Any]:
     return out
 
 
+def _record_main(argv: list[str]) -> int:
+    """``python -m flutterfriction.reference``: re-record the parameters from the repository's
+    ``workflow/config.yaml`` (the maintainers' step after changing a shipped parameter). It
+    takes no arguments; a configuration that does not validate is refused in one line each,
+    exit 2, before anything is written (a record of a broken configuration would be the
+    chapter's parameters for every later check)."""
+    import sys
+
+    from flutterfriction.config import load_config, load_yaml, validate_config
+    from flutterfriction.io import write_json as _write
+    from flutterfriction.registry import SCENES
+
+    if argv:
+        print(f"python -m flutterfriction.reference takes no arguments, got {argv}",
+              file=sys.stderr)
+        return 2
+    config_path = Path("workflow/config.yaml")
+    try:
+        problems = validate_config(load_yaml(config_path),
+                                   "workflow/schemas/config.schema.yaml", scenes=SCENES)
+        config = None if problems else load_config(config_path)
+    except (OSError, ParameterError, yaml.YAMLError) as exc:
+        problems = [" ".join(str(exc).split())]
+    if problems:
+        print("not recorded: invalid configuration:\n  " + "\n  ".join(problems),
+              file=sys.stderr)
+        return 2
+    _write(REFERENCE_PARAMETERS, record_parameters(config))
+    print(f"recorded the parameters of every scene and preset in {REFERENCE_PARAMETERS}",
+          file=sys.stderr)
+    return 0
+
+
 if __name__ == "__main__":  # python -m flutterfriction.reference: re-record the parameters
     import sys
 
-    from flutterfriction.config import load_config
-    from flutterfriction.io import write_json as _write
-
-    _write(REFERENCE_PARAMETERS, record_parameters(load_config("workflow/config.yaml")))
-    print(f"recorded the parameters of every scene and preset in {REFERENCE_PARAMETERS}",
-          file=sys.stderr)
+    sys.exit(_record_main(sys.argv[1:]))
