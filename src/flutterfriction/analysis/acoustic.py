@@ -165,13 +165,16 @@ def _unit_acoustic_tensors(E: NDArray, P: ArrayLike, Q: ArrayLike, directions: N
     p = np.einsum("ij,mj->mi", np.einsum("ijkl,kl->ij", E, P), n)
     q = np.einsum("kl,ml->mk", np.einsum("ijkl,ij->kl", E, Q), n)
     mg, eg = np.frexp(g)  # 2^k / g without forming 1/g (g may be subnormal)
-    with np.errstate(over="ignore", invalid="ignore"):
+    with np.errstate(over="ignore"):
         ratio = np.ldexp(1.0 / mg, k - eg)
-        A = Ael[:, None] - np.einsum("mi,mk->mik", p, q)[:, None] * ratio[None, :, None, None]
-    if not np.all(np.isfinite(A)):
+    pq = np.einsum("mi,mk->mik", p, q)
+    # A is finite where the update is: |p (x) q| |2^k/g| bounded (checked on the factors, not
+    # on the whole stack of tensors)
+    if not (np.all(np.isfinite(ratio))
+            and float(np.max(np.abs(pq), initial=0.0)) * float(np.max(np.abs(ratio))) < 1e300):
         raise ParameterError("g_values: the acoustic tensors A = A_el - p (x) q / g leave the "
                              "double range (a modulus g too small for these E, P, Q)")
-    return A, kE
+    return Ael[:, None] - pq[:, None] * ratio[None, :, None, None], kE
 
 
 def acoustic_tensors(E: NDArray, P: ArrayLike, Q: ArrayLike, directions: NDArray,
@@ -211,11 +214,17 @@ def has_complex_pair(A: NDArray, rtol: float = 1e-12) -> NDArray:
     t = np.trace(B, axis1=-2, axis2=-1) / 3
     for i in range(3):
         B[..., i, i] -= t
-    # each matrix divided by a power of two near its largest entry (exact): ||B||^6 and the
-    # discriminant, of degree 6, overflowed from entries ~1e51 (an outside audit's scales)
-    _, e = np.frexp(np.max(np.abs(B), axis=(-2, -1)))
-    B = np.ldexp(B, -e[..., None, None])
-    scale = np.einsum("...ij,...ij->...", B, B) ** 3
+    with np.errstate(over="ignore", under="ignore"):
+        scale = np.einsum("...ij,...ij->...", B, B) ** 3
+    # A matrix whose ||B||^6 leaves the normal range (an outside audit's scales: it overflowed
+    # from entries ~1e51) is divided by a power of two near its largest entry: exact, and only
+    # those matrices (the others keep their bits; the pass over all of them cost the flutter
+    # map ~0.3 s, measured)
+    odd = ~((scale > 1e-250) & (scale < 1e250))
+    if np.any(odd):
+        _, e = np.frexp(np.max(np.abs(B[odd]), axis=(-2, -1)))
+        B[odd] = np.ldexp(B[odd], -e[..., None, None])
+        scale[odd] = np.einsum("...ij,...ij->...", B[odd], B[odd]) ** 3
     return cubic_discriminant(B) < -rtol * scale
 
 
@@ -248,6 +257,11 @@ def localization_moduli(E: NDArray, P: ArrayLike, Q: ArrayLike, directions: NDAr
     """``g_cr^E(n)`` of eq. (166) for many directions at once (vectorised), rho = 1."""
     E, P, Q, n = _stack_inputs(E, P, Q, directions)
     E, P, Q, _, k = _unit_inputs(E, P, Q)  # g scales as |E| |P| |Q| = 2^k
+    return _in_range("the localization moduli g_cr^E", _unit_moduli(E, P, Q, n), k)
+
+
+def _unit_moduli(E: NDArray, P: NDArray, Q: NDArray, n: NDArray) -> NDArray:
+    """:func:`localization_moduli` of inputs already checked and in units of order one."""
     Ael = np.einsum("ijkl,mj,ml->mik", E, n, n)
     EP = np.einsum("ijkl,kl->ij", E, P)
     EQt = np.einsum("ijkl,ij->kl", E, Q)
@@ -261,7 +275,7 @@ def localization_moduli(E: NDArray, P: ArrayLike, Q: ArrayLike, directions: NDAr
     if not np.all(np.isfinite(g)):  # an A_el(n) singular to round-off: LAPACK gave inf/NaN
         raise ParameterError("E must give a non-singular elastic acoustic tensor A_el(n) for "
                              "every direction (eq. 166 needs its inverse)")
-    return _in_range("the localization moduli g_cr^E", g, k)
+    return g
 
 
 def _angles_to_n(x: NDArray) -> NDArray:
@@ -277,12 +291,12 @@ def max_localization_modulus(E: NDArray, P: ArrayLike, Q: ArrayLike,
     grid = fibonacci_sphere(check_integer("n_search", n_search, 1, FIBONACCI_MAX))
     E, P, Q, _ = _stack_inputs(E, P, Q, grid[:1])
     E, P, Q, _, k = _unit_inputs(E, P, Q)  # searched in units of 2^k, scaled back at the end
-    vals = localization_moduli(E, P, Q, grid)
+    vals = _unit_moduli(E, P, Q, grid)
     best_val, best_n = -np.inf, grid[0]
     for i in np.argsort(vals)[-5:]:
         n0 = grid[i]
         x0 = np.array([np.arccos(np.clip(n0[2], -1, 1)), np.arctan2(n0[1], n0[0])])
-        res = minimize(lambda x: -localization_moduli(E, P, Q, _angles_to_n(x)[None])[0], x0,
+        res = minimize(lambda x: -_unit_moduli(E, P, Q, _angles_to_n(x)[None])[0], x0,
                        method="Nelder-Mead", options={"xatol": 1e-12, "fatol": 1e-15,
                                                       "maxiter": 4000})
         if -res.fun > best_val:

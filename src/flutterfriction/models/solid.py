@@ -117,6 +117,9 @@ def check_elasticity(E: ArrayLike) -> NDArray:
     line otherwise (an outside audit: ``-E`` was accepted). The major symmetry is not asked
     (§3.3 assumes it only where it says so). Returned unchanged."""
     E = check_finite_array("E", E, (3, 3, 3, 3))
+    key = E.tobytes()
+    if key in _ELASTICITY_CHECKED:  # (a scan validates the same E at every step)
+        return E
     scale = float(np.max(np.abs(E)))
     if scale == 0.0:
         raise ParameterError("E must be a non-zero elasticity tensor")
@@ -130,7 +133,16 @@ def check_elasticity(E: ArrayLike) -> NDArray:
     if not smallest > 1e-12:
         raise ParameterError(f"E must be positive definite on symmetric tensors (smallest "
                              f"eigenvalue of its Mandel matrix {smallest * scale:.3g})")
+    if len(_ELASTICITY_CHECKED) >= 64:
+        _ELASTICITY_CHECKED.clear()
+    _ELASTICITY_CHECKED.add(key)
     return E
+
+
+#: The bytes of the last elasticity tensors :func:`check_elasticity` accepted (at most 64): a
+#: scan that validates the same E at every step checks it once (acoustic_eigenvalues: 801 g
+#: values, max_localization_modulus: thousands of directions; ~0.1 s each otherwise, measured).
+_ELASTICITY_CHECKED: set[bytes] = set()
 
 
 def check_flow_tensor(name: str, A: ArrayLike) -> NDArray:
