@@ -558,9 +558,8 @@ def flutter_interval_bruteforce(E: NDArray, P: ArrayLike, Q: ArrayLike, n: Array
                 intervals[-1] = (1.0 / b, intervals[-1][1])
             else:
                 intervals.append((1.0 / b, 1.0 / a))
-    return sorted((float(_in_range("the flutter intervals' ends", np.float64(g1), k)),
-                   float(_in_range("the flutter intervals' ends", np.float64(g2), k)))
-                  for g1, g2 in intervals)
+    ends = _in_range("the flutter intervals' ends", np.array(intervals).reshape(-1, 2), k)
+    return sorted((float(g1), float(g2)) for g1, g2 in ends)
 
 
 # ---------------------------------------------------------------------- isotropic, any scale

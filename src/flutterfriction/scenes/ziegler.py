@@ -159,38 +159,38 @@ def _case_response(p: ZieglerPendulum, name: str, P: float, x0: list[float],
         raise ParameterError(f"cases.{name}.P = {P:g} N: {exc}") from None
 
 
-def check_fig04(params: dict[str, Any]) -> None:
-    """Fig. 4's cases as :func:`fig04` refuses them, each case's response at its last frame
-    (the configuration check; ~1 ms a case)."""
+def _fig04_inputs(params: dict[str, Any]
+                  ) -> tuple[ZieglerPendulum, float, list[tuple[str, float, float, float]]]:
+    """Fig. 4's pendulum, ``dt`` and cases ``(name, P, duration, alpha0)``, each checked."""
     take(params, {"pendulum", "cases", "dt"})
     p = pendulum_of(params)
     dt = check_positive("dt", params.get("dt", 0.04), "s")
     cases = params.get("cases")
     if not isinstance(cases, dict) or not cases:
         raise ParameterError("fig04 needs 'cases': {name: {P, duration, alpha0_deg}}")
+    out = []
     for name, case in cases.items():
         take(case, {"P", "duration", "alpha0_deg"})
-        P = check_real(f"cases.{name}.P", case["P"])
-        T = check_positive(f"cases.{name}.duration", case["duration"], "s")
-        a0 = math.radians(check_real(f"cases.{name}.alpha0_deg", case["alpha0_deg"]))
+        out.append((name, check_real(f"cases.{name}.P", case["P"]),
+                    check_positive(f"cases.{name}.duration", case["duration"], "s"),
+                    math.radians(check_real(f"cases.{name}.alpha0_deg", case["alpha0_deg"]))))
+    return p, dt, out
+
+
+def check_fig04(params: dict[str, Any]) -> None:
+    """Fig. 4's cases as :func:`fig04` refuses them, each case's response at its last frame
+    (the configuration check; ~1 ms a case)."""
+    p, dt, cases = _fig04_inputs(params)
+    for name, P, T, a0 in cases:
         _case_response(p, name, P, [a0, a0, 0.0, 0.0], np.array([0.0, dt * round(T / dt)]))
 
 
 def fig04(params: dict[str, Any]) -> dict[str, Any]:
     """Exact linear motion (eq. 11, matrix exponential) drawn every ``dt`` seconds."""
-    take(params, {"pendulum", "cases", "dt"})
-    p = pendulum_of(params)
-    dt = check_positive("dt", params.get("dt", 0.04), "s")
-    cases = params.get("cases")
-    if not isinstance(cases, dict) or not cases:
-        raise ParameterError("fig04 needs 'cases': {name: {P, duration, alpha0_deg}}")
+    p, dt, cases = _fig04_inputs(params)
     out: dict[str, Any] = {"masses": {"m1": p.m1, "m2": p.m2, "m3": p.m3}, "cases": {}}
     quantities = {}
-    for name, case in cases.items():
-        take(case, {"P", "duration", "alpha0_deg"})
-        P = check_real(f"cases.{name}.P", case["P"])
-        T = check_positive(f"cases.{name}.duration", case["duration"], "s")
-        a0 = math.radians(check_real(f"cases.{name}.alpha0_deg", case["alpha0_deg"]))
+    for name, P, T, a0 in cases:
         times = dt * np.arange(int(round(T / dt)) + 1)
         states = _case_response(p, name, P, [a0, a0, 0.0, 0.0], times)
         pos = p.positions(states[:, 0], states[:, 1])
