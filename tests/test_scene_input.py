@@ -94,3 +94,24 @@ def test_fig11_called_directly_refuses_its_load_before_the_branches(monkeypatch)
         rod.fig11(params)
     with pytest.raises(ParameterError, match=r"n_modes must be an integer in \[1, 16\]"):
         rod.fig11(_params("fig11") | {"n_modes": 2.5})
+
+
+def test_numpy_numbers_and_arrays_are_taken_as_the_numbers_they_hold(no_work):
+    """A sweep written with numpy passes np.int64 and arrays; they were refused ("np.int64(5)
+    is not of type 'integer'") though the Python API's models take them. Taken as the plain
+    numbers and lists a configuration file gives; a float for an integer is still refused."""
+    import numpy as np
+
+    params = _params("rod_stability_map")
+    given = params | {"n_ratios": np.int64(5), "log10_ratio_range": np.array([-1.0, 1.0]),
+                      "eta_small": np.float32(0.5)}
+    checked = checked_params("rod_stability_map", given)
+    assert checked["n_ratios"] == 5 and type(checked["n_ratios"]) is int
+    assert checked["log10_ratio_range"] == [-1.0, 1.0]
+    assert type(checked["eta_small"]) is float
+    with pytest.raises(ParameterError, match=r"n_ratios: 5\.0 is not of type 'integer'"):
+        checked_params("rod_stability_map", params | {"n_ratios": np.float64(5.0)})
+    with pytest.raises(ParameterError, match=r"n_ratios: True is not of type 'integer'"):
+        checked_params("rod_stability_map", params | {"n_ratios": np.bool_(True)})
+    with pytest.raises(ParameterError, match=r"eta_small: must be a finite number, got nan"):
+        checked_params("rod_stability_map", params | {"eta_small": np.float64("nan")})

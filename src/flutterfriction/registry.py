@@ -381,19 +381,38 @@ def sweep_of(name: str) -> Sweep:
     return sweep
 
 
+def _plain(value: Any) -> Any:
+    """``value`` with numpy scalars and arrays as the Python numbers and lists a configuration
+    file gives (a sweep's ``np.int64`` or ``np.linspace`` row is a user's natural input; the
+    schema knows only JSON's types), tuples as lists, mappings copied; anything else as is
+    (the schema then names it)."""
+    import numpy as np
+
+    if isinstance(value, dict):
+        return {k: _plain(v) for k, v in value.items()}
+    if isinstance(value, list | tuple):
+        return [_plain(v) for v in value]
+    if isinstance(value, np.ndarray):
+        return _plain(value.tolist())
+    if isinstance(value, np.generic):
+        return value.item()
+    return value
+
+
 def checked_params(name: str, params: dict[str, Any]) -> dict[str, Any]:
     """``params`` of scene ``name`` with its chapter lists named (``rod: list119``) resolved,
     refused before any work as the workflow's configuration check refuses them
     (:func:`flutterfriction.config.scene_problems`: the schema's types and ranges, non-finite
     numbers, the geometry, the scene's own check): a :class:`ParameterError` naming every
-    offending key in one line."""
+    offending key in one line. Numpy scalars and arrays are taken as the Python numbers and
+    lists they hold (:func:`_plain`)."""
     from flutterfriction.config import expand_parameter_lists, scene_problems
 
     sc = scene(name)
     if not isinstance(params, dict):
         raise ParameterError(f"scenes.{name}: the parameters must be a mapping, got "
                              f"{type(params).__name__}")
-    holder = {"scenes": {name: dict(params)}}
+    holder = {"scenes": {name: _plain(params)}}
     problems = expand_parameter_lists(holder)
     params = holder["scenes"][name]
     problems = problems or scene_problems(name, params, sc.check)
