@@ -155,9 +155,18 @@ def _shows_divergence(cases: Any, p: np.ndarray) -> bool:
                for c in cases)
 
 
-def _damping_titles(eta: float) -> dict[str, str]:
+def _damping_titles(data: dict[str, Any]) -> dict[str, str]:
+    """The two rows' titles: the damped one says what the captions stress (internal damping,
+    no external damping) and where eta comes from (D of the rod, eq. 106)."""
+    rod = data.get("params", {}).get("rod")
+    D = rod.get("D") if isinstance(rod, dict) else None
+    gamma = data["cases"]["damped"]["groups"].get("gamma", 0.0)
+    internal = (rf"internal damping $\eta = D/(l^2\sqrt{{\rho B}})$ = {data['eta']:.4g}"
+                + (f" (D = {D:.4g} N m² s)" if D is not None else ""))
+    external = ("no external damping" if not gamma
+                else rf"external damping $\gamma$ = {gamma:.4g}")
     return {"undamped": "damping absent 'from the beginning'",
-            "damped": rf"internal damping $\eta$ = {eta:.4g} (inset: the sign change of "
+            "damped": f"{internal},\n{external} (inset: the sign change of "
                       r"Re $\tilde\omega$ at $p_f$)"}
 
 
@@ -165,7 +174,7 @@ def plot_branches(data: dict[str, Any], title: str) -> Figure:
     """Re and Im of omega~ against p; upper row without damping, lower row with (Figs. 11, 12)."""
     p = np.array(data["p"])
     fig, axes = plt.subplots(2, 2, figsize=(8.4, 6.4), sharex=True)
-    titles = _damping_titles(data["eta"])
+    titles = _damping_titles(data)
     for row, name in enumerate(("undamped", "damped")):
         _draw_branch_case(axes[row, 0], axes[row, 1], p, data["cases"][name], titles[name],
                           zoom=name == "damped")
@@ -265,11 +274,13 @@ def plot_stability_map(data: dict[str, Any]) -> Figure:
                         f"{r[k - 1]:.3g} < tan α < {r[k]:.3g}", (r[k], div[k]),
                         xytext=(0.12, 0.62), textcoords="axes fraction", fontsize=7,
                         arrowprops={"arrowstyle": "->", "lw": 0.7})
-        ax.set_ylim(top=max(65.0, float(np.nanmax(top)) + 3 if inside.any() else 65.0))
-    ax.set_ylim(bottom=0.0)
+    # the whole searched range: cut at 65, the window's end was lost from sight where it
+    # passes above 65 (an outside review could not tell whether it ends below 80)
+    ax.set_ylim(0.0, p_top)
     ax.set_xscale("symlog", linthresh=0.01)
     ax.set_xlim(0, r[-1])
-    ax.set_xlabel(r"tip-mass ratio $M/(\rho l) = \tan\alpha$ [-]")
+    ax.set_xlabel(r"tip-mass ratio $M/(\rho l) = \tan\alpha$ [-] (linear scale below "
+                  r"$10^{-2}$, logarithmic above)")
     ax.set_ylabel(r"critical load $p = P l^2/B$ [-] (searched up to 80)")
     fig.legend(*ax.get_legend_handles_labels(), fontsize=7, loc="outside lower center",
                ncol=2)
@@ -451,7 +462,8 @@ def plot_beck_hopf(data: dict[str, Any]) -> Figure:
     ax2.plot([1e3 * v["A"] for v in fl], [v["slow_decay"] for v in fl], "o", ms=6,
              label=r"$1 - \mu$, slow Floquet multiplier (return map)")
     ax2.plot([1e3 * v["A"] for v in fl], [v["normal_form_decay"] for v in fl], "x", ms=8,
-             label=r"normal form: $1 - e^{-2\sigma(P) T}$")
+             label=r"normal form: $1 - e^{-2\sigma(P) T}$" "\n"
+                   r"($\sigma$: growth rate of the linearised rod at P, $T$: the cycle's period)")
     ax2.set_yscale("log")
     ax2.set_xlabel("tip amplitude A [mm]")
     ax2.set_ylabel(r"$1 - \mu$: distance inside the unit circle [-]")
@@ -509,7 +521,7 @@ def plot_fig12(data: dict[str, Any]) -> Figure:
     stated = data["stated"]["cases"]
     t_st = data["stated"]["tan_alpha"]
     fig, axes = plt.subplots(4, 2, figsize=(9.6, 11.0), sharex="col")
-    titles = _damping_titles(data["eta"])
+    titles = _damping_titles(data)
     p_st = np.array(data["stated"].get("p", data["p"]))
     quoted = data.get("reproduces_quoted", True)
     # one unit for both columns' insets (each its own, 10^-2 beside 10^-3, read as the same

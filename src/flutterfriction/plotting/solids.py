@@ -13,15 +13,39 @@ from matplotlib.patches import Patch, Polygon, Rectangle
 
 from flutterfriction.plotting import REGIME_COLOURS
 
+#: Label offsets [points] tried in turn for a path's point: above-right, below-right,
+#: above-left, below-left (the first clear of the path's segments at the point is taken).
+_LABEL_OFFSETS = ((4, 4), (5, -11), (-10, 4), (-10, -11))
+
 
 def _label_points(ax: Axes, xy: np.ndarray) -> None:
     """One label per distinct point of the path ("2, 3" where it stops at the same place
-    twice), coincident ones below-right of the point, clear of the path."""
+    twice), placed in the first of :data:`_LABEL_OFFSETS` whose direction is more than 40 deg
+    from the path's segments at the point (in the data's span-normalised plane: the label
+    on a segment is what a review saw at Fig. 22's point 6), else the one farthest from them;
+    coincident points start below-right."""
+    xy = np.asarray(xy, dtype=float)
+    span = np.ptp(xy, axis=0)
+    span[span == 0] = 1.0
     groups: dict[tuple[float, float], list[int]] = {}
     for k, (x, y) in enumerate(xy):
         groups.setdefault((round(float(x), 9), round(float(y), 9)), []).append(k)
     for (x, y), ks in groups.items():
-        ax.annotate(", ".join(map(str, ks)), (x, y), xytext=(4, 4) if len(ks) == 1 else (5, -11),
+        here = np.array([x, y])
+        ways = [(xy[j] - here) / span for k in ks for j in (k - 1, k + 1)
+                if 0 <= j < len(xy) and np.any(xy[j] != here)]
+        ways = [w / np.linalg.norm(w) for w in ways]
+        order = _LABEL_OFFSETS if len(ks) == 1 else _LABEL_OFFSETS[1:] + _LABEL_OFFSETS[:1]
+
+        def clearance(off: tuple[int, int], ways: list = ways) -> float:
+            # the label's centre direction (a label ~8 x 8 points beside its corner)
+            c = np.array([off[0] + 3, off[1] + 4], dtype=float)
+            c /= np.linalg.norm(c)
+            return min((float(np.arccos(np.clip(c @ w, -1, 1))) for w in ways), default=np.pi)
+
+        off = next((o for o in order if clearance(o) > np.radians(40)),
+                   max(order, key=clearance))
+        ax.annotate(", ".join(map(str, ks)), (x, y), xytext=off,
                     textcoords="offset points", fontsize=7)
 
 
@@ -369,7 +393,9 @@ def plot_flutter_map(data: dict[str, Any]) -> Figure:
             ax2.add_patch(plt.Rectangle((off[cc] - step / 2, off[rr] - step / 2), step, step,
                                         color=colour, lw=0))
         ax2.plot([], [], "s", color=colour, ms=6, label=f"ε = {an['eps'][k]:g}")
-    ax2.plot(0, 0, "k+", ms=10, label=r"coalescence direction $n_C$")
+    # an open ring, not a cross: the cross hid the cell at n_C itself (an outside review)
+    ax2.plot(0, 0, "o", mfc="none", mec="k", mew=0.9, ms=9,
+             label=r"coalescence direction $n_C$")
     if shown.any():
         r, c = np.nonzero(shown)
         half = max(np.abs(off[r]).max(), np.abs(off[c]).max()) + 2.0

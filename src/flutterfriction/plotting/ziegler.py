@@ -302,12 +302,14 @@ def plot_fig04(data: dict[str, Any]) -> Figure:
 
 
 def _dimension(ax, p: np.ndarray, q: np.ndarray, normal: np.ndarray, offset: float,
-               text: str) -> None:
-    """A dimension line parallel to p-q at ``offset`` along ``normal``, labelled ``text``."""
+               text: str, inside: bool = False) -> None:
+    """A dimension line parallel to p-q at ``offset`` along ``normal``, labelled ``text``
+    beyond it (``inside``: between it and the rod)."""
     a, b = p + offset * normal, q + offset * normal
     ax.annotate("", b, a, arrowprops={"arrowstyle": "|-|,widthA=0.25,widthB=0.25", "lw": 0.7,
                                       "color": "0.3", "shrinkA": 0, "shrinkB": 0})
-    ax.annotate(text, (a + b) / 2, xytext=(10 * normal[0], 10 * normal[1]),
+    side = -1.0 if inside else 1.0
+    ax.annotate(text, (a + b) / 2, xytext=(10 * side * normal[0], 10 * side * normal[1]),
                 textcoords="offset points", ha="center", va="center", color="0.3", fontsize=9)
 
 
@@ -333,10 +335,12 @@ def plot_fig02(data: dict[str, Any]) -> Figure:
     n1 = np.array([-(B - A)[1], (B - A)[0]]) / np.linalg.norm(B - A)
     n2 = np.array([-(C - B)[1], (C - B)[0]]) / np.linalg.norm(C - B)
     # Lengths d = |AD|, l1 = |AB|, h = |BE|, l2 = |BC|, on the upper side of the rods.
+    # h's label between its line and the rod: beyond it, it sat against l1's end tick and
+    # could be read as l1's (an outside review)
     for p, q, nn, off, name in ((A, D, n1, 0.25, "$d$"), (A, B, n1, 0.42, "$l_1$"),
-                                (B, E, n2, 0.2, "$h$"), (B, C, n2, 0.62, "$l_2$")):
+                                (B, E, n2, 0.27, "$h$"), (B, C, n2, 0.62, "$l_2$")):
         if np.linalg.norm(q - p) > 0.02 * L:  # h = 0 (eq. 46's pendulum): no length to show
-            _dimension(ax, p, q, nn, off * L, name)
+            _dimension(ax, p, q, nn, off * L, name, inside=name == "$h$")
     for name, p, dxy in (("$k_1$", A, (0.1, -0.16)), ("$k_2$", B, (0.1, -0.15)),
                          ("$m_1$", D, (0.06, -0.16)), ("$m_2$", C, (0.15, -0.1)),
                          ("$m_3$", E, (0.13, -0.08))):

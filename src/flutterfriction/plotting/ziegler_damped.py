@@ -60,10 +60,11 @@ def plot_fig05(data: dict[str, Any]) -> Figure:
                           color=colour)
     if limit is not None:
         text = "4/3" if data.get("symmetric", True) else f"{limit:.4g}"
-        label = rf"$\epsilon \to 0$: $\gamma_{{flu}}$ = {text} (the Ziegler paradox)"
-        for ax in (ax_re, ax_im, ax_z):
-            ax.axvline(limit, color="0.35", ls=":", lw=1.1,
-                       label=label if ax is ax_re else None)
+        label = rf"$\epsilon \to 0$: $\gamma_{{flu}}$ = {text} (the Ziegler paradox; zoom)"
+        # in the zoom only: in the upper panels it lies < 1 px from eps = 0.1's dashed line
+        # at 1.338 and could not be seen (an outside review); the legend names it there
+        ax_z.axvline(limit, color="0.35", ls=":", lw=1.1)
+        ax_re.plot([], [], color="0.35", ls=":", lw=1.1, label=label)
         ax_z.annotate(rf"$\epsilon \to 0$: {text}", (limit, 0.0), xytext=(-4, 12),
                       textcoords="offset points", ha="right", fontsize=7, color="0.25")
     ax_re.axhline(0, color="k", lw=0.6)
@@ -172,8 +173,10 @@ def plot_fig19_theory(data: dict[str, Any]) -> Figure:
         ax2.plot(q[key]["value"], ratio, "o", color=colour, ms=5)
         # beside its point, moved clear of the others where one's own pendulum puts the
         # point elsewhere (c near c_max ran into the title; an outside audit's own case)
+        # below ratio 1, low: 8 pt up put the ratio-1 line across its first line's tops
         label_at(ax2, f"quoted {ratio:.2f}\n→ c = {q[key]['value'] * 1e3:.2f}e-3 N m s",
-                 (q[key]["value"], ratio), (-118, 8), points=True, fontsize=7, color=colour)
+                 (q[key]["value"], ratio), (-118, 3 if ratio < 1 else 8), points=True,
+                 fontsize=7, color=colour)
     ax2.axvline(data["c_reference"], color="k", ls="--", lw=0.8)
     ax2.annotate(f"§2.9: {data['c_reference']:g} N m s", (data["c_reference"], 0.97),
                  xytext=(-2, 0), textcoords="offset points",  # (2 pt clear of its line)
@@ -196,6 +199,25 @@ def plot_fig19_theory(data: dict[str, Any]) -> Figure:
     return fig
 
 
+def _far_from(cs, level: float, curve: np.ndarray, xlim: tuple, ylim: tuple
+              ) -> list[tuple[float, float]]:
+    """For each line of ``cs`` at ``level``, its vertex farthest from the polyline ``curve``
+    (distances in axes fractions), kept off the frame's outer 10 %: where its label goes."""
+    span = np.array([xlim[1] - xlim[0], ylim[1] - ylim[0]], dtype=float)
+    origin = np.array([xlim[0], ylim[0]], dtype=float)
+    ref = (curve - origin) / span
+    out = []
+    for line in cs.allsegs[list(cs.levels).index(level)]:
+        v = (np.asarray(line) - origin) / span
+        inner = np.all((v > 0.1) & (v < 0.9), axis=1)
+        if not inner.any():
+            continue
+        d = np.min(np.linalg.norm(v[:, None, :] - ref[None, :, :], axis=-1), axis=1)
+        k = int(np.argmax(np.where(inner, d, -np.inf)))
+        out.append(tuple(np.asarray(line)[k]))
+    return out
+
+
 def plot_paradox_map(data: dict[str, Any]) -> Figure:
     """Vanishing-viscosity flutter load over the undamped one, against c1/c2 and the masses."""
     lc = np.array(data["log10_c"])
@@ -211,8 +233,15 @@ def plot_paradox_map(data: dict[str, Any]) -> Figure:
         # were unreadable (a figure review)
         cs = ax.contour(lc, y, np.array(z), levels=[0.25, 0.5, 0.75, 0.9, 0.99],
                         colors=["w", "w", "k", "k", "k"], linewidths=0.6)
-        ax.clabel(cs, fontsize=7, fmt="%.2f")
         pts = [(np.log10(c), yy) for c, yy in zip(free, y, strict=True) if c is not None]
+        if pts:
+            # 0.99 runs beside the no-paradox curve (ratio 1): its labels where its lines
+            # are farthest from that curve (matplotlib put one on it; a figure review)
+            ax.clabel(cs, levels=[0.25, 0.5, 0.75, 0.9], fontsize=7, fmt="%.2f")
+            ax.clabel(cs, levels=[0.99], fontsize=7, fmt="%.2f",
+                      manual=_far_from(cs, 0.99, np.array(pts), (lc[0], lc[-1]), (y[0], y[-1])))
+        else:
+            ax.clabel(cs, fontsize=7, fmt="%.2f")
         if pts:
             # Every point, clipped at the frame (the curve runs on beyond it).
             px, py = np.array(pts).T

@@ -196,7 +196,7 @@ def plot_limit_cycle_amplitude(data: dict[str, Any]) -> Figure:
     """Bifurcation diagram: amplitudes and period of the limit cycle against the load."""
     P = np.array(data["P"])
     Pf = data["P_flu"]
-    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(8.6, 3.6))
+    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(8.6, 3.9), layout="constrained")
     ax1.plot(P, np.degrees(data["alpha1_amplitude"]), "o-", ms=4, label=r"$\alpha_1$")
     ax1.plot(P, np.degrees(data["alpha2_amplitude"]), "s-", ms=4, label=r"$\alpha_2$")
     # The normal form through the first cycle, drawn over the whole load range (on top of the
@@ -210,13 +210,15 @@ def plot_limit_cycle_amplitude(data: dict[str, Any]) -> Figure:
                 label=rf"damped flutter load $P_{{flu}}$ = {Pf:.4g} N")
     ax1.set_xlabel("follower load P [N]")
     ax1.set_ylabel("limit-cycle amplitude [deg]")
-    # under the axes: inside, it hid the alpha2 branch (a figure review)
-    ax1.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.24), ncol=2)
+    # under the panels: inside, it hid the alpha2 branch (a figure review); under the left
+    # panel alone, it left the figure lopsided (an outside review)
+    fig.legend(*ax1.get_legend_handles_labels(), fontsize=7, loc="outside lower center",
+               ncol=3)
     q = data["quantities"]
     text = pendulum_text(data.get("params", {}).get("pendulum"))
     if text:
         fig.suptitle(f"The pendulum {text}", fontsize=7)
-    ax1.set_title(rf"supercritical Hopf at $P_{{flu}}$ = {Pf:.4g} N (fitted exponent b of "
+    ax1.set_title(rf"supercritical Hopf at $P_{{flu}}$ = {Pf:.4g} N" "\n(fitted exponent b of "
                   rf"$\alpha_1 \propto (P - P_{{flu}})^b$: "
                   f"{q['hopf_exponent']['value']:.3f})", fontsize=8)
     ax2.plot(P, data["period"], "o-", ms=4)
@@ -225,5 +227,5 @@ def plot_limit_cycle_amplitude(data: dict[str, Any]) -> Figure:
     ax2.set_xlabel("follower load P [N]")
     ax2.set_ylabel("period [s]")
     ax2.legend(fontsize=7)
-    fig.tight_layout()
+    ax2.set_title("period of the limit cycle", fontsize=8)
     return fig
