@@ -7,6 +7,7 @@ from typing import Any
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.figure import Figure
+from matplotlib.patches import Rectangle
 
 from flutterfriction.plotting import (
     INTEGRATOR_COLOURS,
@@ -366,6 +367,11 @@ def plot_fig15(data: dict[str, Any]) -> Figure:
     ins.tick_params(labelsize=7, pad=1)
     ins.xaxis.set_major_locator(plt.MaxNLocator(4))
     ins.set_title("growth, saturation (dashed: the cycle's amplitude)", fontsize=7, pad=2)
+    # on white with its labels: its tick labels and title sat on the main grid's lines (an
+    # outside review); the trajectory never enters this part of the axes
+    ax.add_patch(Rectangle((0.24, 0.005), 0.45, 0.465, transform=ax.transAxes, fc="w",
+                           ec="none", zorder=4))
+    ins.set_zorder(5)
     _figure_legend(fig, ax)
     fig.suptitle(_title(data, "Fig. 15", "trajectory of the loaded end"), fontsize=8)
     return fig
