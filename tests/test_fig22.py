@@ -86,3 +86,31 @@ def test_fig22_draws_its_three_panels(data):
                          if ln.get_linestyle() == "-" and len(ln.get_xdata()) == 2])
     assert set(np.round(xs, 12)) <= {round(u[1], 12) for u in data["u"]}
     plt.close(fig)
+
+
+def test_the_point_numbers_sit_clear_of_the_path(data):
+    """Each point's number is drawn off the path's segments at that point (a review saw 6 on a
+    segment of the response panel): no computed segment passes through a number's box."""
+    import matplotlib.pyplot as plt
+
+    from flutterfriction.plotting.solids import plot_fig22
+
+    fig = plot_fig22(data)
+    fig.canvas.draw()
+    checked = 0
+    for ax in fig.axes:
+        numbers = [t for t in ax.texts if t.get_text().replace(", ", "").isdigit()]
+        segments = [ln.get_xydata() for ln in ax.get_lines()
+                    if ln.get_linestyle() == "-" and len(ln.get_xdata()) >= 2]
+        for t in numbers:
+            box = t.get_window_extent().padded(-0.5)
+            for xy in segments:
+                for a, b in zip(xy[:-1], xy[1:], strict=True):
+                    s = np.linspace(0.0, 1.0, 200)[:, None]
+                    pts = ax.transData.transform(a + s * (b - a))
+                    inside = ((pts[:, 0] > box.x0) & (pts[:, 0] < box.x1)
+                              & (pts[:, 1] > box.y0) & (pts[:, 1] < box.y1))
+                    assert not inside.any(), (ax.get_title(), t.get_text())
+            checked += 1
+    assert checked >= 14  # both path panels: every distinct point of the path
+    plt.close(fig)

@@ -13,40 +13,67 @@ from matplotlib.patches import Patch, Polygon, Rectangle
 
 from flutterfriction.plotting import REGIME_COLOURS
 
-#: Label offsets [points] tried in turn for a path's point: above-right, below-right,
-#: above-left, below-left (the first clear of the path's segments at the point is taken).
-_LABEL_OFFSETS = ((4, 4), (5, -11), (-10, 4), (-10, -11))
+#: Label offsets [points] tried in turn for a path's point (:func:`place_point_labels`):
+#: above-right, below-right, above, below, above-left, below-left, right, left.
+_LABEL_OFFSETS = ((4, 4), (5, -11), (-3, 6), (-3, -13), (-10, 4), (-10, -11), (6, -3),
+                  (-12, -3))
 
 
 def _label_points(ax: Axes, xy: np.ndarray) -> None:
     """One label per distinct point of the path ("2, 3" where it stops at the same place
-    twice), placed in the first of :data:`_LABEL_OFFSETS` whose direction is more than 40 deg
-    from the path's segments at the point (in the data's span-normalised plane: the label
-    on a segment is what a review saw at Fig. 22's point 6), else the one farthest from them;
-    coincident points start below-right."""
-    xy = np.asarray(xy, dtype=float)
-    span = np.ptp(xy, axis=0)
-    span[span == 0] = 1.0
+    twice), above-right of it; :func:`place_point_labels` moves them clear of the lines once
+    the figure is laid out."""
     groups: dict[tuple[float, float], list[int]] = {}
-    for k, (x, y) in enumerate(xy):
+    for k, (x, y) in enumerate(np.asarray(xy, dtype=float)):
         groups.setdefault((round(float(x), 9), round(float(y), 9)), []).append(k)
     for (x, y), ks in groups.items():
-        here = np.array([x, y])
-        ways = [(xy[j] - here) / span for k in ks for j in (k - 1, k + 1)
-                if 0 <= j < len(xy) and np.any(xy[j] != here)]
-        ways = [w / np.linalg.norm(w) for w in ways]
-        order = _LABEL_OFFSETS if len(ks) == 1 else _LABEL_OFFSETS[1:] + _LABEL_OFFSETS[:1]
+        t = ax.annotate(", ".join(map(str, ks)), (x, y), xytext=_LABEL_OFFSETS[0],
+                        textcoords="offset points", fontsize=7)
+        t.point_label = True
 
-        def clearance(off: tuple[int, int], ways: list = ways) -> float:
-            # the label's centre direction (a label ~8 x 8 points beside its corner)
-            c = np.array([off[0] + 3, off[1] + 4], dtype=float)
-            c /= np.linalg.norm(c)
-            return min((float(np.arccos(np.clip(c @ w, -1, 1))) for w in ways), default=np.pi)
 
-        off = next((o for o in order if clearance(o) > np.radians(40)),
-                   max(order, key=clearance))
-        ax.annotate(", ".join(map(str, ks)), (x, y), xytext=off,
-                    textcoords="offset points", fontsize=7)
+def place_point_labels(fig: Figure) -> None:
+    """Each point label of :func:`_label_points` at the first of :data:`_LABEL_OFFSETS` where
+    its box (grown by 2 px) meets no line or marker of its axes and no other text (nor a label
+    placed before it), else where it meets the fewest: measured on the laid-out figure (a
+    review saw Fig. 22's 6 on a segment of the path). Call after the layout."""
+    renderer = fig.canvas.get_renderer()
+    for ax in fig.axes:
+        samples = []
+        for line in ax.get_lines():
+            xy = np.asarray(line.get_xydata(), dtype=float)
+            xy = xy[np.all(np.isfinite(xy), axis=1)]
+            if line.get_linestyle() not in ("None", "", " ") and len(xy) >= 2:
+                s = np.linspace(0.0, 1.0, 60)[None, :, None]
+                pts = (xy[:-1, None, :] + s * (xy[1:, None, :] - xy[:-1, None, :])).reshape(-1, 2)
+                samples.append(ax.transData.transform(pts))
+            if line.get_marker() not in ("None", "", " ", None) and len(xy):
+                # a marker: its centre and a ring at its radius
+                r = 0.5 * line.get_markersize() * fig.dpi / 72.0 + 1.0
+                ring = r * np.array([[np.cos(a), np.sin(a)]
+                                     for a in np.linspace(0, 2 * np.pi, 32, endpoint=False)])
+                centres = ax.transData.transform(xy)
+                samples.append((centres[:, None, :] + np.vstack([[0, 0], ring])[None]
+                                ).reshape(-1, 2))
+        pts = np.vstack(samples) if samples else np.empty((0, 2))
+        labels = [t for t in ax.texts if getattr(t, "point_label", False)]
+        # the other texts, and the point labels already placed (not those still to move)
+        others = [o.get_window_extent(renderer) for o in ax.texts
+                  if not getattr(o, "point_label", False)]
+        for t in labels:
+
+            def hits(off, t=t, others=tuple(others), pts=pts) -> tuple[int, int]:
+                t.xyann = off
+                box = t.get_window_extent(renderer).padded(2.0)
+                inside = ((pts[:, 0] > box.x0) & (pts[:, 0] < box.x1)
+                          & (pts[:, 1] > box.y0) & (pts[:, 1] < box.y1))
+                return int(inside.sum()), sum(box.overlaps(o) for o in others)
+
+            scores = [hits(off) for off in _LABEL_OFFSETS]
+            clear = [k for k, sc in enumerate(scores) if sc == (0, 0)]
+            best = clear[0] if clear else min(range(len(scores)), key=lambda k: scores[k])
+            t.xyann = _LABEL_OFFSETS[best]
+            others.append(t.get_window_extent(renderer))
 
 
 def _coulomb_panel(ax: Axes, data: dict[str, Any]) -> None:
@@ -242,6 +269,7 @@ def plot_fig22(data: dict[str, Any]) -> Figure:
     fig.suptitle("Fig. 22: contact with Coulomb friction, one computed path (numbered points) "
                  "in every panel", fontsize=10)
     fig.tight_layout()
+    place_point_labels(fig)
     return fig
 
 
