@@ -101,3 +101,53 @@ def test_a_researchers_own_parameters_are_named_wrapped_and_with_units():
                          "eq. 46") == "eq. 46"
     assert pendulum_case({"params": {"pendulum": mine}}, lambda g: g.symmetric,
                          "eq. 46").startswith("your own pendulum (l1 = 0.15 m, l2 = 1 m")
+
+
+def test_fig05_draws_the_vanishing_viscosity_limit_where_it_can_be_seen():
+    """The eps -> 0 line (4/3) lay < 1 px from eps = 0.1's flutter line (1.338) in the upper
+    panels and could not be seen (an outside review): it is drawn in the zoom only, and the
+    legend above the panels names it."""
+    import copy
+
+    import matplotlib.pyplot as plt
+    from conftest import ROOT
+
+    from flutterfriction.config import load_config, scene_params
+    from flutterfriction.plotting.ziegler_damped import plot_fig05
+    from flutterfriction.registry import build_scene
+
+    config = copy.deepcopy(load_config(ROOT / "workflow" / "config.yaml")) | {"fidelity": "quick"}
+    data = build_scene("fig05", scene_params(config, "fig05"))
+    fig = plot_fig05(data)
+    limit = data["gamma_flu_limit"]
+
+    def at_limit(ax):
+        return [ln for ln in ax.get_lines() if len(ln.get_xdata()) == 2
+                and np.allclose(ln.get_xdata(), limit)]
+
+    ax_re, ax_im, ax_z = fig.axes[:3]
+    assert not at_limit(ax_re) and not at_limit(ax_im)
+    assert len(at_limit(ax_z)) == 1
+    assert any("the Ziegler paradox" in t.get_text() for t in ax_re.get_legend().get_texts())
+    plt.close(fig)
+
+
+def test_the_stability_map_shows_the_whole_searched_load_range():
+    """The divergence window's end left the axes where it passed p = 65 (cut there before): the
+    map is drawn to the searched p = 80, its x scale stated."""
+    import matplotlib.pyplot as plt
+
+    from flutterfriction.plotting.rod import plot_stability_map
+
+    r = [0.0, 0.5, 0.7, 1.0, 2.0]
+    data = {"mass_ratio": r,
+            "undamped": {"p_flu": [20.05, 16.06, 16.08, 16.21, 16.7],
+                         "p_div": [None, None, 40.0, 34.46, 28.6],
+                         "p_div_end": [None, None, 70.0, None, None]},
+            "vanishing_damping": {"p_flu": [10.94, 8.5, 8.2, 7.9, 7.7],
+                                  "p_div": [None, None, 40.0, 34.46, 28.6]}}
+    fig = plot_stability_map(data)
+    ax = fig.axes[0]
+    assert ax.get_ylim() == (0.0, 80.0)
+    assert "linear scale below" in ax.get_xlabel()
+    plt.close(fig)
