@@ -1023,3 +1023,37 @@ def test_newton_on_many_loads_names_the_first_load_it_fails_at():
     guesses = np.array([[3 + 4j, 10j], [3 + 4j, 10j], [3 + 4j, 10j]])
     with pytest.raises(ConvergenceError, match=r"at p = 7\.25 from 2 guesses"):
         _newton_rows(np.array([7.25, 12.5, 20.0]), g, guesses, tol=1e-13, max_iter=1)
+
+
+@pytest.mark.parametrize(("tan_alpha", "p_max", "n_elements"), [
+    (0.595, 100.0, 3), (0.4, 100.0, 2), (1.0, 200.0, 4), (0.0, 80.0, 11)])
+def test_a_mesh_coarser_than_the_scans_default_is_refused(tan_alpha, p_max, n_elements):
+    """An outside audit: on 2-4 elements whole intervals were dropped without a refusal
+    (tan(alpha) = 0.595, p_max 100, 3 elements: p_div 85.23, eq. 118's is 47.7155 (a 30-digit
+    double root); 0.4: divergence from 94.99 missing; 1.0 to 200: flutter again from 194.22
+    missing). A mesh below the default (the meshes the scan's margins are measured on) is
+    refused before any work; the default itself, given by hand, gives the default's answer."""
+    from flutterfriction.analysis.rod_scan import _scan_elements
+
+    g = RodGroups(tan_alpha=tan_alpha)
+    with pytest.raises(ParameterError, match=rf"n_elements must be >= {_scan_elements(p_max)} "
+                                             rf"for p_max = {p_max:g}.*got {n_elements}$"):
+        ar.critical_loads(g, p_max=p_max, n_elements=n_elements)
+    if tan_alpha == 0.595:
+        given = ar.critical_loads(g, p_max=p_max, n_elements=_scan_elements(p_max))
+        assert given.p_div == pytest.approx(47.71549336756, rel=1e-9)
+        assert given.intervals == ar.critical_loads(g, p_max=p_max).intervals
+
+
+@pytest.mark.parametrize(("tip_mass", "p", "growth"), [(0.0, 124.0, 46.0516), (1.0, 99.0, 42.974)])
+def test_the_fastest_mode_is_searched_among_every_mode_the_load_couples(tip_mass, p, growth):
+    """An outside audit: among the three lowest mode pairs only, the Beck rod at p = 124 was
+    reported neutral (7e-42 - 29.66i) while a pair grows at 46.05 (its collocation root,
+    polished at 30 digits), and the Pflüger rod (tan alpha = 1) at p = 99 grew at 31.65
+    instead of 42.97. Now the largest growth rate of eight mode pairs on 32 elements."""
+    rod = Rod(length=1.0, B=1.0, rho=1.0, tip_mass=tip_mass)  # load unit 1 N, time unit 1 s
+    s = ar.fastest_mode(rod, p)
+    wide = ar.eigenvalues(p, rod.groups(), n_modes=8, n_elements=32)
+    assert s.real == pytest.approx(wide.real.max(), rel=1e-10)
+    assert s.real == pytest.approx(growth, rel=1e-4)  # the audit's digits
+    assert abs(characteristic_function(p, s, rod.groups())) < 1e-8 * max(1.0, abs(s)) ** 4

@@ -31,6 +31,7 @@ from flutterfriction.analysis.rod_exact import (
     _exact_regime,
     _undamped_double_root,
     check_groups,
+    coupled_roots,
     eigenvalues,
     eigenvalues_along,
     fe_eigenvalues,
@@ -271,12 +272,12 @@ def critical_loads(g: RodGroups, p_max: float = 80.0, n_elements: int | None = N
     p_max : float
         Largest load ``p = P l^2/B`` searched, in (0, :data:`P_MAX_LIMIT`].
     n_elements : int, optional
-        FE elements of the bracketing scan (default :func:`_scan_elements`), in [1,
-        :data:`MAX_ELEMENTS`]. The scan's cost grows as ``n_elements^3 p_max / step``:
-        measured (2026-12-06, one core) 24 s for 200 elements to p = 80 and 230 s for 200
-        elements to p = 1000; the default mesh 0.1-0.2 s to p = 80, 2.5-5 s to p = 1000. A
-        mesh too coarse for ``p_max`` (e.g. one element) misses windows: the regime check
-        then raises :class:`ConvergenceError`, never a wrong load.
+        FE elements of the bracketing scan: default, and at least, :func:`_scan_elements`
+        (``max(12, ceil(1.25 sqrt(p_max)))``: a coarser twin dropped whole intervals without
+        a refusal; an outside audit), at most :data:`MAX_ELEMENTS`. The scan's cost grows as
+        ``n_elements^3 p_max / step``: measured (2026-12-06, one core) 24 s for 200 elements
+        to p = 80 and 230 s for 200 elements to p = 1000; the default mesh 0.1-0.2 s to
+        p = 80, 2.5-5 s to p = 1000.
     step : float
         Largest step of the scan, in [p_max/:data:`SCAN_POINTS_MAX`, :data:`SCAN_STEP`]
         (p_max/1e5 to 0.25); the cost grows as ``1/step``.
@@ -299,6 +300,16 @@ def critical_loads(g: RodGroups, p_max: float = 80.0, n_elements: int | None = N
     check_groups(g)
     if n_elements is not None:  # (10**9 asked numpy for 7.5 GB; an outside audit)
         _check_mesh(n_elements)
+        least = _scan_elements(p_max)
+        if n_elements < least:
+            # a coarser twin's boundaries lie farther from eq. (118)'s than the scan's margins
+            # (SCAN_BEYOND, the near-miss checks) are measured for: an outside audit found
+            # whole intervals dropped without a refusal (tan(alpha) = 0.595, p_max = 100 on 3
+            # elements: first divergence at 85.23 instead of 47.72)
+            raise ParameterError(
+                f"n_elements must be >= {least} for p_max = {p_max:g} (the default mesh, "
+                f"max(12, ceil(1.25 sqrt(p_max))): the scan's accuracy is measured on meshes "
+                f"no coarser), got {n_elements}")
     n_el = _scan_elements(p_max) if n_elements is None else n_elements
     delta = _damping(g)
     g_scan = g
@@ -556,15 +567,19 @@ def _orient_splits(roots: NDArray, pred: NDArray) -> None:
 
 
 def fastest_mode(rod: Rod, P: float) -> complex:
-    """The exact eigenvalue (eq. 118, among :func:`eigenvalues`' three lowest mode pairs) with
-    the largest real part at the load ``P`` [N], in 1/s: its real part the growth rate, its
-    imaginary part the pulsation [rad/s]. ``P`` a real number within the solver's range,
-    ``|P| <= P_MAX_LIMIT B/l^2`` (an outside audit: True was taken as 1 N, and 1e308 N was
-    refused as "p must be finite, got inf", its overflowed dimensionless value)."""
+    """The exact eigenvalue (eq. 118) with the largest real part at the load ``P`` [N], in
+    1/s, among the roots of every mode the load couples
+    (:func:`~flutterfriction.analysis.rod_exact.coupled_roots`: wavenumber^2 up to
+    3|p| + 40; the three lowest mode pairs of before missed the fastest from p ~ 100, an
+    outside audit: the Beck rod at p = 124 growing at 46.05, reported 0): its real part the
+    growth rate, its imaginary part the pulsation [rad/s]. ``P`` a real number within the
+    solver's range, ``|P| <= P_MAX_LIMIT B/l^2`` (an outside audit: True was taken as 1 N,
+    and 1e308 N was refused as "p must be finite, got inf", its overflowed dimensionless
+    value)."""
     P = check_real("P", P)
     bound = P_MAX_LIMIT * rod.load_unit
     if not abs(P) <= bound:
         raise ParameterError(f"P must be in [-{bound:.6g}, {bound:.6g}] N ({P_MAX_LIMIT:g} "
                              f"B/l^2, the rod solver's range), got {P!r}")
-    w = eigenvalues(P / rod.load_unit, rod.groups(), n_modes=3) / rod.time_scale
+    w = coupled_roots(P / rod.load_unit, rod.groups()) / rod.time_scale
     return complex(w[np.argmax(w.real)])

@@ -300,6 +300,25 @@ def _damped_divergence(g: RodGroups, p0: float, w0: float) -> tuple[float, float
     return float(p), float(w)
 
 
+def coupled_roots(p: float, g: RodGroups) -> NDArray:
+    """The exact roots ``omega~`` of eq. (118) of every mode the load couples at ``p``
+    (wavenumber^2 up to 3|p| + 40, as :func:`_exact_regime` takes them), from FE guesses on
+    ``max(16, 3 n_modes)`` elements: undamped, the ``2 n_modes`` of smallest modulus; damped,
+    also the rightmost (strong Kelvin-Voigt damping puts overdamped roots nearer the origin
+    than an unstable pair), each refined alone (:func:`_damped_roots`, which raises
+    :class:`ConvergenceError` where a root that may decide the regime is lost)."""
+    p = _check_load(p)
+    check_groups(g)
+    n_modes = int(math.ceil(math.sqrt(3 * abs(p) + 40) / math.pi)) + 1
+    fe = fe_eigenvalues(g, p, max(16, 3 * n_modes))
+    if not g.damped:
+        return refine_eigenvalues(p, g, fe[np.argsort(np.abs(fe))][: 2 * n_modes])
+    guesses = np.concatenate([fe[np.argsort(-fe.real)][: 2 * n_modes],
+                              fe[np.argsort(np.abs(fe))][: 2 * n_modes]])
+    flat = np.abs(guesses.real) < 1e-8 * np.abs(guesses)
+    return _damped_roots(p, g, np.unique(np.where(flat, 1j * guesses.imag, guesses)))
+
+
 def _exact_regime(p: float, g: RodGroups) -> Regime | None:
     """Regime from the exact roots of eq. (118) (FE guesses refined by Newton), ``None`` if a
     growth rate is below what the roots resolve. Modes with wavenumber^2 up to 3p + 40 (the
