@@ -327,6 +327,28 @@ def discriminant_polynomial(E: NDArray, P: ArrayLike, Q: ArrayLike, n: ArrayLike
     return 18 * b * c * d - 4 * b**3 * d + b**2 * c**2 - 4 * c**3 - 27 * d**2
 
 
+def _secular_terms(Ael: NDArray, p: NDArray, q: NDArray, ael_norm: float
+                   ) -> tuple[NDArray, NDArray] | None:
+    """The poles ``a_k`` and weights ``s_k`` of the secular equation of ``A_el - x p (x) q``:
+    ``1 = x sum_k s_k/(a_k - eta)``, from ``q^T (A_el - eta I)^-1 p`` with
+    ``A_el = V diag(a) V^-1``, so ``s_k = (V^T q)_k (V^-1 p)_k`` (``V`` orthogonal, by
+    ``eigh``, where ``A_el`` is symmetric: E with the major symmetry; complex conjugate
+    pairs where a non-symmetric ``A_el`` has them); ``None`` where its eigenvectors are
+    singular to working precision (cond > 1e8: no diagonal form to trust)."""
+    eps = float(np.finfo(float).eps)
+    if float(np.max(np.abs(Ael - Ael.T))) <= 8 * eps * ael_norm:
+        a, V = np.linalg.eigh(Ael)
+        return a, (V.T @ p) * (V.T @ q)
+    a, V = np.linalg.eig(Ael)
+    if np.linalg.cond(V) > 1e8:
+        return None
+    if not np.any(np.imag(a)):
+        a, V = np.real(a), np.real(V)
+    # complex poles (A_el itself has a complex pair: flutter at every large g) come in
+    # conjugate pairs with conjugate weights: the sums stay real on the real eta axis
+    return a, (V.T @ q) * np.linalg.solve(V, p)
+
+
 def _secular_end(x0: float, Ael: NDArray, p: NDArray, q: NDArray, a: NDArray,
                  s: NDArray, k: int = 0) -> float:
     """The coalescence of two eigenvalues of ``A_el - x p (x) q`` nearest ``x0``: Newton on
@@ -347,8 +369,9 @@ def _secular_end(x0: float, Ael: NDArray, p: NDArray, q: NDArray, a: NDArray,
             d = a - eta
             if np.any(d == 0.0):
                 break
-            with np.errstate(over="ignore", under="ignore"):
-                s2, s3 = float(np.sum(s / d**2)), 2.0 * float(np.sum(s / d**3))
+            with np.errstate(over="ignore", under="ignore"):  # (real for real eta: complex
+                # poles and weights come in conjugate pairs)
+                s2, s3 = float(np.sum(s / d**2).real), 2.0 * float(np.sum(s / d**3).real)
             if s3 == 0.0 or not (np.isfinite(s2) and np.isfinite(s3)):
                 break
             step = s2 / s3
@@ -357,7 +380,7 @@ def _secular_end(x0: float, Ael: NDArray, p: NDArray, q: NDArray, a: NDArray,
                 break
             # S2's terms cancel at its root: the step settles at ~1e-14 of the scale, not eps
             if abs(step) <= 1e-11 * max(abs(eta), float(np.max(np.abs(a)))):
-                s1 = float(np.sum(s / (a - eta)))
+                s1 = float(np.sum(s / (a - eta)).real)
                 if s1 != 0.0 and abs(1.0 / s1 - x0) <= 1e-3 * abs(x0):
                     found.append(1.0 / s1)
                 break
@@ -377,7 +400,8 @@ def _coalescence_points(a: NDArray, s: NDArray, n_samples: int = 4001) -> list[f
     update: no cancellation of large coefficients)."""
     scale = float(np.max(np.abs(a))) or 1.0
     poles, weights = [], []
-    for ak, sk in sorted(zip(a.tolist(), s.tolist(), strict=True)):
+    for ak, sk in sorted(zip(a.tolist(), s.tolist(), strict=True),
+                         key=lambda t: (t[0].real, t[0].imag, t[1].real, t[1].imag)):
         if poles and abs(ak - poles[-1]) <= 1e-12 * scale:
             weights[-1] += sk
         else:
@@ -389,13 +413,15 @@ def _coalescence_points(a: NDArray, s: NDArray, n_samples: int = 4001) -> list[f
     if pa.size < 2:
         return []
 
-    def s2(eta: NDArray) -> NDArray:
-        return np.sum(ps[:, None] / (pa[:, None] - np.atleast_1d(eta)[None]) ** 2, axis=0)
+    def s2(eta: NDArray) -> NDArray:  # (real on the real axis: conjugate poles in pairs)
+        return np.sum(ps[:, None] / (pa[:, None] - np.atleast_1d(eta)[None]) ** 2,
+                      axis=0).real
 
     w = 0.5 * (1.0 - np.cos(np.pi * np.arange(1, n_samples) / n_samples))  # in (0, 1)
-    pieces = [pa[0] - scale * w / (1.0 - w)]
-    pieces += [lo + (hi - lo) * w for lo, hi in zip(pa[:-1], pa[1:], strict=True)]
-    pieces += [pa[-1] + scale * w / (1.0 - w)]
+    ends = pa.real  # the samples crowd towards the poles (towards their real parts)
+    pieces = [ends[0] - scale * w / (1.0 - w)]
+    pieces += [lo + (hi - lo) * w for lo, hi in zip(ends[:-1], ends[1:], strict=True)]
+    pieces += [ends[-1] + scale * w / (1.0 - w)]
     points = []
     with np.errstate(over="ignore", under="ignore", divide="ignore", invalid="ignore"):
         for eta in pieces:
@@ -403,7 +429,7 @@ def _coalescence_points(a: NDArray, s: NDArray, n_samples: int = 4001) -> list[f
             for i in np.nonzero(np.sign(val[:-1]) * np.sign(val[1:]) < 0)[0]:
                 root = brentq(lambda e: float(s2(e)[0]), float(eta[i]), float(eta[i + 1]),
                               xtol=1e-300, rtol=1e-15, maxiter=500)
-                s1 = float(np.sum(ps / (pa - root)))
+                s1 = float(np.sum(ps / (pa - root)).real)
                 if s1 != 0.0 and np.isfinite(s1):
                     points.append(1.0 / s1)
     return points
@@ -520,12 +546,17 @@ def flutter_interval_bruteforce(E: NDArray, P: ArrayLike, Q: ArrayLike, n: Array
     # coefficients are not (nu = 0.4999 moved ends by 1e-4 in an outside audit): an end is
     # where two eigenvalues of A = A_el - x p (x) q coalesce, with A_el = V diag(a) V^T and
     # s_k = (V^T p)_k (V^T q)_k: 1 = x sum s_k/(a_k - eta) and sum s_k/(a_k - eta)^2 = 0.
-    a_el, V = np.linalg.eigh(Ael)
-    s_k = (V.T @ p) * (V.T @ q)
-    roots = [_secular_end(x, Ael, p, q, a_el, s_k, k) for x in roots]
-    # ... and every coalescence of the secular equation itself: a dip narrower than the
-    # quartic's round-off (nu -> 1/2: its terms cancel from ~1e21) has its ends there
-    roots += [x for x in _coalescence_points(a_el, s_k) if lo < x < hi]
+    # Without E's major symmetry A_el is not symmetric: A_el = V diag(a) V^-1 and
+    # s_k = (V^T q)_k (V^-1 p)_k (the same secular equation; eigh's orthogonal V moved the ends
+    # by up to 1e-3 there, an outside audit); where V is singular the quartic's roots stand
+    # alone.
+    secular = _secular_terms(Ael, p, q, ael_norm)
+    if secular is not None:
+        a_el, s_k = secular
+        roots = [_secular_end(x, Ael, p, q, a_el, s_k, k) for x in roots]
+        # ... and every coalescence of the secular equation itself: a dip narrower than the
+        # quartic's round-off (nu -> 1/2: its terms cancel from ~1e21) has its ends there
+        roots += [x for x in _coalescence_points(a_el, s_k) if lo < x < hi]
     cands: list[float] = []
     for x in sorted(set(roots) | {lo, hi}):  # one end where both routes found it
         if not cands or x > cands[-1] * (1.0 + 1e-9):
