@@ -260,8 +260,8 @@ def plot_fig23(data: dict[str, Any]) -> Figure:
     ax.set_xlabel(r"$x_1$ [lattice units]")
     ax.set_ylabel(r"$x_2$ [lattice units]")
     ax.legend(loc="upper left", fontsize=8)
-    ax.set_title(f"Fig. 23: twinning shear across the plane f1 (at α = "
-                 f"{np.degrees(data['alpha']):.0f}° from $e_1$, drawn with s = "
+    ax.set_title(r"Fig. 23: twinning shear across the plane $\mathbf{f}_1$ (at α = "
+                 f"{np.degrees(data['alpha']):.0f}° from " r"$\mathbf{e}_1$, drawn with s = "
                  f"{data['amplitude']:g})",
                  fontsize=9)
     fig.tight_layout()

@@ -35,7 +35,8 @@ def _label_points(ax: Axes, xy: np.ndarray) -> None:
 def place_point_labels(fig: Figure) -> None:
     """Each point label of :func:`_label_points` at the first of :data:`_LABEL_OFFSETS` where
     its box (grown by 2 px) meets no line or marker of its axes and no other text (nor a label
-    placed before it), else where it meets the fewest: measured on the laid-out figure (a
+    placed before it), lies inside the axes and is nearer its own point than any other
+    labelled point, else where it breaks these least: measured on the laid-out figure (a
     review saw Fig. 22's 6 on a segment of the path). Call after the layout."""
     renderer = fig.canvas.get_renderer()
     for ax in fig.axes:
@@ -60,14 +61,25 @@ def place_point_labels(fig: Figure) -> None:
         # the other texts, and the point labels already placed (not those still to move)
         others = [o.get_window_extent(renderer) for o in ax.texts
                   if not getattr(o, "point_label", False)]
-        for t in labels:
+        frame = ax.get_window_extent(renderer)
+        anchors = ax.transData.transform([t.xy for t in labels])
+        for i, t in enumerate(labels):
 
-            def hits(off, t=t, others=tuple(others), pts=pts) -> tuple[int, int]:
+            def hits(off, t=t, i=i, others=tuple(others), pts=pts, frame=frame,
+                     anchors=anchors) -> tuple[int, int]:
                 t.xyann = off
                 box = t.get_window_extent(renderer).padded(2.0)
                 inside = ((pts[:, 0] > box.x0) & (pts[:, 0] < box.x1)
                           & (pts[:, 1] > box.y0) & (pts[:, 1] < box.y1))
-                return int(inside.sum()), sum(box.overlaps(o) for o in others)
+                # read as another point's (its centre nearer another point: a review saw 7
+                # between 7 and 6), or on the frame (4 on the right spine)
+                centre = np.array([0.5 * (box.x0 + box.x1), 0.5 * (box.y0 + box.y1)])
+                d = np.linalg.norm(anchors - centre, axis=1)
+                misread = int(np.argmin(d)) != i
+                framed = not (frame.x0 <= box.x0 and box.x1 <= frame.x1
+                              and frame.y0 <= box.y0 and box.y1 <= frame.y1)
+                return (int(inside.sum()) + 1000 * (misread + framed),
+                        sum(box.overlaps(o) for o in others))
 
             scores = [hits(off) for off in _LABEL_OFFSETS]
             clear = [k for k, sc in enumerate(scores) if sc == (0, 0)]
@@ -421,6 +433,7 @@ def plot_flutter_map(data: dict[str, Any]) -> Figure:
             ax2.add_patch(plt.Rectangle((off[cc] - step / 2, off[rr] - step / 2), step, step,
                                         color=colour, lw=0))
         ax2.plot([], [], "s", color=colour, ms=6, label=f"ε = {an['eps'][k]:g}")
+    ax2.set_axisbelow(True)  # the grid under the cells (it crossed them)
     # an open ring, not a cross: the cross hid the cell at n_C itself (an outside review)
     ax2.plot(0, 0, "o", mfc="none", mec="k", mew=0.9, ms=9,
              label=r"coalescence direction $n_C$")
