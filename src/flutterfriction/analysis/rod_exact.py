@@ -300,33 +300,44 @@ def _damped_divergence(g: RodGroups, p0: float, w0: float) -> tuple[float, float
     return float(p), float(w)
 
 
-def coupled_roots(p: float, g: RodGroups) -> NDArray:
-    """The exact roots ``omega~`` of eq. (118) of every mode the load couples at ``p``
-    (wavenumber^2 up to 3|p| + 40, as :func:`_exact_regime` takes them), from FE guesses on
-    ``max(16, 3 n_modes)`` elements: undamped, the ``2 n_modes`` of smallest modulus; damped,
-    also the rightmost (strong Kelvin-Voigt damping puts overdamped roots nearer the origin
-    than an unstable pair), each refined alone (:func:`_damped_roots`, which raises
-    :class:`ConvergenceError` where a root that may decide the regime is lost)."""
-    p = _check_load(p)
-    check_groups(g)
+def _coupled_guesses(p: float, g: RodGroups) -> tuple[int, NDArray]:
+    """The FE guesses of the roots of every mode the load couples at ``p`` (wavenumber^2 up
+    to 3|p| + 40: the load only couples modes with k^2 <~ p), on ``max(16, 3 n_modes)``
+    elements, and ``n_modes``. Undamped: the ``2 n_modes`` of smallest modulus. Damped: the
+    rightmost too (with strong Kelvin-Voigt damping many overdamped roots lie nearer the
+    origin than an unstable pair; with tiny damping the FE growth rates are round-off,
+    ~1e-12, and "rightmost" is random), those with a round-off growth rate started on the
+    imaginary axis: Newton's first step then gives Re omega~ = O(damping) to relative
+    precision (from 1e-12 it would take log2(log(1e-100)/log(1e-12)) ~ 3 steps more to fall
+    to a damping of 1e-100)."""
     n_modes = int(math.ceil(math.sqrt(3 * abs(p) + 40) / math.pi)) + 1
     fe = fe_eigenvalues(g, p, max(16, 3 * n_modes))
     if not g.damped:
-        return refine_eigenvalues(p, g, fe[np.argsort(np.abs(fe))][: 2 * n_modes])
+        return n_modes, fe[np.argsort(np.abs(fe))][: 2 * n_modes]
     guesses = np.concatenate([fe[np.argsort(-fe.real)][: 2 * n_modes],
                               fe[np.argsort(np.abs(fe))][: 2 * n_modes]])
     flat = np.abs(guesses.real) < 1e-8 * np.abs(guesses)
-    return _damped_roots(p, g, np.unique(np.where(flat, 1j * guesses.imag, guesses)))
+    return n_modes, np.unique(np.where(flat, 1j * guesses.imag, guesses))
+
+
+def coupled_roots(p: float, g: RodGroups) -> NDArray:
+    """The exact roots ``omega~`` of eq. (118) of every mode the load couples at ``p``, from
+    :func:`_coupled_guesses` (as :func:`_exact_regime` takes them): undamped, refined
+    together; damped, each alone (:func:`_damped_roots`, which raises
+    :class:`ConvergenceError` where a root that may decide the regime is lost)."""
+    p = _check_load(p)
+    check_groups(g)
+    _, guesses = _coupled_guesses(p, g)
+    if not g.damped:
+        return refine_eigenvalues(p, g, guesses)
+    return _damped_roots(p, g, guesses)
 
 
 def _exact_regime(p: float, g: RodGroups) -> Regime | None:
-    """Regime from the exact roots of eq. (118) (FE guesses refined by Newton), ``None`` if a
-    growth rate is below what the roots resolve. Modes with wavenumber^2 up to 3p + 40 (the
-    load only couples modes with k^2 <~ p)."""
-    n_modes = int(math.ceil(math.sqrt(3 * p + 40) / math.pi)) + 1
+    """Regime from the exact roots of eq. (118) (FE guesses refined by Newton,
+    :func:`_coupled_guesses`), ``None`` if a growth rate is below what the roots resolve."""
+    n_modes, guesses = _coupled_guesses(p, g)
     if not g.damped:
-        fe = fe_eigenvalues(g, p, max(16, 3 * n_modes))
-        guesses = fe[np.argsort(np.abs(fe))][: 2 * n_modes]
         try:
             w = refine_eigenvalues(p, g, guesses)
         except ConvergenceError:
@@ -337,17 +348,6 @@ def _exact_regime(p: float, g: RodGroups) -> Regime | None:
             # real root; an outside review, tan(alpha) = 0.3014 at p = 785.3267)
             return _undamped_regime_by_gap(p, g, n_modes, max(16, 3 * n_modes))
     else:
-        # The rightmost FE roots (with strong Kelvin-Voigt damping many overdamped roots lie
-        # nearer the origin than an unstable pair) and those of smallest modulus (with tiny
-        # damping the FE growth rates are round-off, ~1e-12, and "rightmost" is random).
-        fe = fe_eigenvalues(g, p, max(16, 3 * n_modes))
-        guesses = np.concatenate([fe[np.argsort(-fe.real)][: 2 * n_modes],
-                                  fe[np.argsort(np.abs(fe))][: 2 * n_modes]])
-        # Growth rates at round-off level start on the imaginary axis: Newton's first step
-        # then gives Re omega~ = O(damping) to relative precision (from 1e-12 it would take
-        # log2(log(1e-100)/log(1e-12)) ~ 3 steps more to fall to a damping of 1e-100).
-        flat = np.abs(guesses.real) < 1e-8 * np.abs(guesses)
-        guesses = np.unique(np.where(flat, 1j * guesses.imag, guesses))
         try:
             w = _damped_roots(p, g, guesses)
         except ConvergenceError:
