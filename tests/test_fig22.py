@@ -114,3 +114,17 @@ def test_the_point_numbers_sit_clear_of_the_path(data):
             checked += 1
     assert checked >= 14  # both path panels: every distinct point of the path
     plt.close(fig)
+
+
+@pytest.mark.parametrize(("k_N", "k_T", "u_T"), [(1e6, 1e-6, 1e-7), (1.0, 1.0, 1e-13)])
+def test_a_return_to_the_apex_keeps_the_slip_it_drags(k_N, k_T, u_T):
+    """An outside audit: unloading p_N to 0 with a small p_T = k_T u_T held, the cone shrinks
+    to its apex and drags p_T to 0, which is slip u_T (u_T = p_T/k_T + slip, eq. 133). The
+    cone reached p_T at t = 1 - 1e-19 of the segment, rounded to its end, and the snap onto
+    the cone dropped p_T: slip 0 (k_N/k_T = 1e12), or 3e-4 off (k_N = k_T)."""
+    from flutterfriction.models.contact import CoulombContact, integrate_path
+
+    path = integrate_path(CoulombContact(k_N, k_T, 1.0), [(0, 0), (1, 0), (1, u_T), (0, u_T)])
+    assert np.all(path.p[-1] == 0.0)
+    assert path.slip[-1] == pytest.approx(u_T, rel=1e-12)
+    assert path.u[:, 1] == pytest.approx(path.p[:, 1] / k_T + path.slip, rel=1e-12, abs=0)

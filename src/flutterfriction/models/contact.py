@@ -187,7 +187,14 @@ def integrate_path(contact: CoulombContact, vertices: ArrayLike,
                     # it reached the cone: put it there (its rounding, relative to the step,
                     # could leave it inside by more than the cone's round-off near the apex,
                     # and the next piece would not advance; a review)
-                    p[1] = hit_side * contact.mu * p[0]
+                    on = hit_side * contact.mu * p[0]
+                    if abs(p[0]) <= 1e-12 * (abs(p_start[0]) + abs(dp[0])):
+                        # at the apex what it moves p_T by is slip, not round-off (the cone
+                        # reached p_T at t = 1 - 1e-19, rounded to the segment's end, and
+                        # dragged it to 0): kept so that u_T = p_T/k_T + slip (an outside
+                        # audit: with k_N/k_T = 1e12 a 1e-7 m slip was lost)
+                        slip += (p[1] - on) / contact.k_T
+                    p[1] = on
                 t = t_new
                 branch = "stick"
             if p[0] < 0:  # on either branch: a slip through the apex separates too
@@ -195,6 +202,10 @@ def integrate_path(contact: CoulombContact, vertices: ArrayLike,
                 # the apex and goes on; a review found such paths refused as separating)
                 scale = 1e-12 * (abs(p_start[0]) + abs(contact.k_N * du[0]))
                 if p[0] >= -scale and abs(p[1]) <= contact.mu * scale:
+                    # the cone shrinks to its apex and drags p_T to 0: that is slip, p_T/k_T
+                    # of it (dropped before, u_T = p_T/k_T + slip broke: with k_N/k_T = 1e12
+                    # the whole 1e-7 m slip was lost; an outside audit)
+                    slip += p[1] / contact.k_T
                     p = np.zeros(2)
                 else:
                     raise ParameterError("the path separates the contact (p_N < 0): not "
