@@ -383,3 +383,17 @@ def test_an_end_force_near_the_axis_an_outside_audit_and_its_follow_up():
     # (Brent's relative tolerance underflowed to 0 here: a bare ValueError; now floored)
     assert el.tip_force_closed_form(1.0, 1.0, 3.0, 1e-310).tip_rotation == pytest.approx(
         -1.2245236055, rel=1e-9)
+
+
+def test_collocation_near_the_euler_load_tightens_its_tolerance():
+    """An outside audit: 1e-6 below Euler's load (P1 = 2.4674 B/l^2, a transverse 1e-9) the
+    lowest eigenvalue of the second variation is 1.2e-6 and solve_bvp's residual tolerance
+    1e-10 left the tip rotation 8e-4 off (4.01931e-4 for 4.0225903e-4, the audit's own
+    shooting at rtol 1e-13 from two starts). Solved again at tol mu 1e-8 (floor 1e-13): to
+    1e-7 of the shooting solution."""
+    from flutterfriction.analysis import elastica as el
+
+    loads = el.ElasticaLoads(2.4674, 0.0, 0.0, 1e-9)
+    colloc = el.solve_collocation(1.0, 1.0, loads)
+    assert colloc.tip_rotation == pytest.approx(4.0225903e-4, rel=1e-7)
+    assert "tol 1e-13" in colloc.method
