@@ -1057,3 +1057,19 @@ def test_the_fastest_mode_is_searched_among_every_mode_the_load_couples(tip_mass
     assert s.real == pytest.approx(wide.real.max(), rel=1e-10)
     assert s.real == pytest.approx(growth, rel=1e-4)  # the audit's digits
     assert abs(characteristic_function(p, s, rod.groups())) < 1e-8 * max(1.0, abs(s)) ** 4
+
+
+def test_roots_with_equal_imaginary_parts_come_in_one_order():
+    """An outside audit: two roots whose imaginary parts are equal up to round-off (a pair
+    symmetric about the imaginary axis, gamma = 2 at p = 30 and 40) were listed in either
+    order by eigenvalues and eigenvalues_along (-8.12 before 6.12 in one, after in the other).
+    Now by real part within imaginary parts equal to 1e-10 of the largest root."""
+    g = RodGroups(gamma=2.0)
+    for p in (30.0, 40.0):
+        alone = ar.eigenvalues(p, g)
+        along = ar.eigenvalues_along(np.array([p]), g)[0]
+        for w in (alone, along):
+            for a, b in zip(w[:-1], w[1:], strict=True):
+                assert b.imag > a.imag + 1e-10 * np.abs(w).max() or (
+                    abs(b.imag - a.imag) <= 1e-10 * np.abs(w).max() and b.real >= a.real)
+        assert np.allclose(alone, along, rtol=1e-12, atol=0)

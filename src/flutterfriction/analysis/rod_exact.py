@@ -198,12 +198,27 @@ def check_groups(g: RodGroups) -> RodGroups:
 
 def eigenvalues(p: float, g: RodGroups, n_modes: int = 3, n_elements: int = 16) -> NDArray:
     """The ``2 n_modes`` eigenvalues ``omega~`` of smallest modulus at load ``p``: FE guesses
-    refined on the exact characteristic function; sorted by imaginary, then real part."""
+    refined on the exact characteristic function; sorted by imaginary, then real part
+    (:func:`_in_order`: imaginary parts equal to round-off count as equal)."""
     _check_mesh(n_elements, n_modes)
     fe = fe_eigenvalues(g, p, n_elements)
     guesses = fe[np.argsort(np.abs(fe))][: 2 * n_modes]
-    w = refine_eigenvalues(p, g, guesses)
-    return w[np.lexsort((w.real, w.imag))]
+    return _in_order(refine_eigenvalues(p, g, guesses)[None])[0]
+
+
+def _in_order(w: NDArray) -> NDArray:
+    """Each row of roots sorted by imaginary, then real part, imaginary parts equal to 1e-10
+    of the row's largest root counted as equal (a pair symmetric about the imaginary axis has
+    them equal up to round-off, which had decided its order: an outside audit saw
+    eigenvalues and eigenvalues_along list 6.12 - 10.2i and -8.12 - 10.2i either way)."""
+    out = np.empty_like(w)
+    for r, row in enumerate(w):
+        row = row[np.lexsort((row.real, row.imag))]
+        tol = 1e-10 * float(np.max(np.abs(row), initial=0.0))
+        cuts = [0, *(np.flatnonzero(np.diff(row.imag) > tol) + 1).tolist(), row.size]
+        out[r] = np.concatenate([row[a:b][np.argsort(row[a:b].real, kind="stable")]
+                                 for a, b in zip(cuts[:-1], cuts[1:], strict=True)])
+    return out
 
 
 #: Loads per block of :func:`eigenvalues_along` (the stacked first-order matrices of one
@@ -236,9 +251,7 @@ def eigenvalues_along(p_values: NDArray, g: RodGroups, n_modes: int = 3,
         s = np.linalg.eigvals(A)
         guesses[start:start + block.size] = np.take_along_axis(
             s, np.argsort(np.abs(s), axis=-1, kind="stable")[:, :k], axis=-1)
-    w = _newton_rows(p_values, g, guesses, NEWTON_TOL, NEWTON_MAX_ITER)
-    order = np.lexsort((w.real, w.imag), axis=-1)
-    return np.take_along_axis(w, order, axis=-1)
+    return _in_order(_newton_rows(p_values, g, guesses, NEWTON_TOL, NEWTON_MAX_ITER))
 
 
 def fe_eigenvalues(g: RodGroups, p: float, n_elements: int, follower: bool = True) -> NDArray:
