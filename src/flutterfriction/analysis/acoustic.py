@@ -544,12 +544,9 @@ def flutter_interval_bruteforce(E: NDArray, P: ArrayLike, Q: ArrayLike, n: Array
                                 maxiter=500))
     # Each end polished on the secular equation, well conditioned where the quartic's
     # coefficients are not (nu = 0.4999 moved ends by 1e-4 in an outside audit): an end is
-    # where two eigenvalues of A = A_el - x p (x) q coalesce, with A_el = V diag(a) V^T and
-    # s_k = (V^T p)_k (V^T q)_k: 1 = x sum s_k/(a_k - eta) and sum s_k/(a_k - eta)^2 = 0.
-    # Without E's major symmetry A_el is not symmetric: A_el = V diag(a) V^-1 and
-    # s_k = (V^T q)_k (V^-1 p)_k (the same secular equation; eigh's orthogonal V moved the ends
-    # by up to 1e-3 there, an outside audit); where V is singular the quartic's roots stand
-    # alone.
+    # where two eigenvalues of A = A_el - x p (x) q coalesce: 1 = x sum s_k/(a_k - eta) and
+    # sum s_k/(a_k - eta)^2 = 0 (poles and weights: _secular_terms, also without E's major
+    # symmetry); where A_el's eigenvectors are singular the quartic's roots stand alone.
     secular = _secular_terms(Ael, p, q, ael_norm)
     if secular is not None:
         a_el, s_k = secular

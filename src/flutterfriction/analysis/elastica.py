@@ -564,12 +564,12 @@ def solve_collocation(length: float, B: float, loads: ElasticaLoads, *, load_ste
     # 1e-13, solve_bvp's floor), and refused where even that leaves tol/mu above 1e-6.
     if tol / max(mu, 1e-300) > 1e-8 and tol > 1e-13:
         tight = max(1e-13, 1e-8 * mu)
-        return _recollocated(length, B, loads, load_steps, tight, max_nodes, tol)
+        return _recollocated(length, B, loads, load_steps, tight, max_nodes)
     return out
 
 
 def _recollocated(length: float, B: float, loads: ElasticaLoads, load_steps: int, tight: float,
-                  max_nodes: int, asked: float) -> ElasticaSolution:
+                  max_nodes: int) -> ElasticaSolution:
     """:func:`solve_collocation` again at the tolerance ``tight`` (near a critical load),
     refused where the lowest eigenvalue ``mu`` still leaves ``tight/mu > 1e-6``."""
     out = solve_collocation(length, B, loads, load_steps=load_steps, tol=tight,

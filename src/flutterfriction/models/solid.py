@@ -351,9 +351,10 @@ def flutter_interval_isotropic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike
     p, q = isotropic_vectors(lam, mu, P, Q, n)
     N, D = _flutter_factors(n, p, q)
     pp, qq = float(np.linalg.norm(p)), float(np.linalg.norm(q))
+    exact = None
     if abs(n @ p) <= AMBIGUOUS_RTOL * pp or abs(n @ q) <= AMBIGUOUS_RTOL * qq \
             or abs(D) <= AMBIGUOUS_RTOL * pp * qq:
-        mp, mq, D_exact = exact_flutter_factors(lam, mu, *_tensors(P, Q), n)
+        exact = mp, mq, D_exact = exact_flutter_factors(lam, mu, *_tensors(P, Q), n)
         if not (mp * mq > 0 and D_exact > 0):
             return None
         N, D = float(mp * mq), float(D_exact)
@@ -364,7 +365,7 @@ def flutter_interval_isotropic(lam: float, mu: float, P: ArrayLike, Q: ArrayLike
         # g1 = (p.q)^2 / ((sqrt N + sqrt D)^2 (lam + mu)) with p.q = N - D exactly (rational
         # arithmetic): (sqrt N - sqrt D)^2 cancels here (an outside audit: p.q/N = 1e-12 gave
         # g1 2.2e-4 off), and so does p.q formed from the floats
-        mp, mq, D_exact = exact_flutter_factors(lam, mu, *_tensors(P, Q), n)
+        mp, mq, D_exact = exact or exact_flutter_factors(lam, mu, *_tensors(P, Q), n)
         pq = float(mp * mq - D_exact)
         return pq * pq / (r1 + r2) ** 2 / (lam + mu), (r1 + r2) ** 2 / (lam + mu)
     return (r1 - r2) ** 2 / (lam + mu), (r1 + r2) ** 2 / (lam + mu)
