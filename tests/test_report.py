@@ -289,3 +289,15 @@ def test_quick_preset_report_links_no_pdf(tmp_path):
     html_text = build_index(layout, _rows(), {}, formats=("png",))
     assert 'href="../figures/figA.png"' in html_text
     assert ".pdf" not in html_text
+
+
+def test_the_stress_section_names_the_areas_this_run_left_out(tmp_path):
+    _, layout = _tree(tmp_path)
+    case = {"area": "a", "case": "c", "tried": "t", "expected": "e", "got": "g",
+            "outcome": "correct"}
+    text = build_index(layout, _rows(), {}, stress=[case],
+                       stress_skipped=["rod: regimes along p", "rod: <slow>"])
+    assert "1 cases: 1 correct" in text
+    assert "Not run here: rod: regimes along p, rod: &lt;slow&gt;" in text
+    assert "--config stress=full" in text
+    assert "Not run here" not in build_index(layout, _rows(), {}, stress=[case])

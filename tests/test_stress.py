@@ -80,3 +80,35 @@ def test_the_dense_regime_twin_is_within_its_band_where_the_unreduced_coarse_one
         regimes = np.array(_fe_regimes_dense(0.595, p, n_elements, n_modes))
         change = p[int(np.argmax(regimes != regimes[0]))]
         assert bool(abs(change - exact) <= band + 0.01) is inside, (n_elements, change, exact)
+
+
+def test_the_workflow_leaves_out_only_the_slow_areas_unless_asked_for_all():
+    """The workflow's `stress` setting: the paper run leaves out the two slow areas (the slow
+    tests above run them), the quick preset four, `full` none; the schema's choices are
+    :data:`STRESS_LEVELS` and a wrong one is refused naming the setting."""
+    import yaml
+
+    from flutterfriction.errors import ParameterError
+    from flutterfriction.stress import (
+        QUICK_SKIPPED_AREAS,
+        STRESS_LEVELS,
+        run_all,
+        skipped_areas,
+    )
+
+    assert skipped_areas("paper") == skipped_areas("paper", "standard") == SLOW_AREAS
+    assert skipped_areas("quick") == QUICK_SKIPPED_AREAS
+    assert set(SLOW_AREAS) < set(QUICK_SKIPPED_AREAS) <= set(ALL_CASES)
+    assert skipped_areas("paper", "full") == skipped_areas("quick", "full") == ()
+    with pytest.raises(ParameterError, match="stress must be one of"):
+        skipped_areas("paper", "everything")
+    with open("workflow/schemas/config.schema.yaml", encoding="utf-8") as fh:
+        schema = yaml.safe_load(fh)
+    assert tuple(schema["properties"]["stress"]["enum"]) == STRESS_LEVELS
+    from flutterfriction.config import TOP_LEVEL_KEYS
+
+    assert set(schema["properties"]) == TOP_LEVEL_KEYS
+    with open("workflow/config.yaml", encoding="utf-8") as fh:
+        assert yaml.safe_load(fh)["stress"] == STRESS_LEVELS[0]  # the default, shown
+    with pytest.raises(ParameterError, match="unknown stress areas"):
+        run_all(skip=("rod: regimes along q",))

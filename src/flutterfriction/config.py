@@ -21,7 +21,7 @@ from flutterfriction.errors import (
     underflows,
 )
 
-TOP_LEVEL_KEYS = {"fidelity", "fidelity_presets", "scenes", "sweep_parts"}
+TOP_LEVEL_KEYS = {"fidelity", "fidelity_presets", "scenes", "stress", "sweep_parts"}
 #: The workflow's configuration schema (in a checkout, beside the package): the configuration
 #: check reads it, and so do the scenes' Python entry points (:func:`scene_problems`).
 CONFIG_SCHEMA = Path(__file__).resolve().parents[2] / "workflow" / "schemas" / \

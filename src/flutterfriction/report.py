@@ -489,6 +489,7 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
                 figure_data: Mapping[str, str] | None = None,
                 extra_links: Iterable[tuple[str, str]] = (),
                 stress: list[Mapping[str, str]] | None = None,
+                stress_skipped: Iterable[str] = (),
                 problems: Iterable[str] = (),
                 coverage: list[Mapping[str, Any]] | None = None,
                 row_scene: Mapping[str, str] | None = None,
@@ -515,6 +516,8 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
         ``(href, text)`` pairs listed at the top (benchmarks, ...).
     stress
         The stress tests (:mod:`flutterfriction.stress`, as dicts): what was tried, outcome.
+    stress_skipped
+        The stress areas this run left out (:func:`flutterfriction.stress.skipped_areas`).
     problems
         What failed the workflow's check (failed entries, figures missing from the layout),
         shown in a banner at the top.
@@ -678,7 +681,7 @@ def build_index(layout: Mapping[str, Any], rows: list[CheckRow],
     if figure_checks is not None:
         parts.append(_figure_check_section(figure_checks))
     if stress:
-        parts.append(_stress_section(stress))
+        parts.append(_stress_section(stress, tuple(stress_skipped)))
     if footer:
         parts.append(f'<hr><p class="params">{html.escape(footer)}</p>')
     parts.append("</body></html>")
@@ -708,14 +711,16 @@ def _figure_check_section(checks: Mapping[str, list[Offence]]) -> str:
     return "\n".join(out)
 
 
-def _stress_section(stress: list[Mapping[str, str]]) -> str:
+def _stress_section(stress: list[Mapping[str, str]], skipped: tuple[str, ...] = ()) -> str:
     counts = {k: sum(r["outcome"] == k for r in stress) for k in ("correct", "refused", "WRONG")}
+    left_out = (f" Not run here: {html.escape(', '.join(skipped))} (they run with "
+                "<code>--config stress=full</code> and in the slow tests)." if skipped else "")
     out = ['<h2 id="stress">Stress tests of numerical stability</h2>',
            f'<p class="summary{" bad" if counts["WRONG"] else ""}">{len(stress)} cases: '
            f'{counts["correct"]} correct, {counts["refused"]} refused clearly, '
            f'<b>{counts["WRONG"]} silent wrong answers</b>. Each solver pushed where numerics '
-           "break, against an independent reference (50-digit mpmath, exact arithmetic). "
-           '<a href="stress.md">stress.md</a></p>',
+           "break, against an independent reference (50-digit mpmath, exact arithmetic)."
+           f'{left_out} <a href="stress.md">stress.md</a></p>',
            '<div class="wide"><table><thead><tr><th>area</th><th>case</th><th>tried</th>'
            "<th>expected</th><th>got</th><th>outcome</th></tr></thead><tbody>"]
     for r in stress:

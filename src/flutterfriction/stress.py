@@ -733,15 +733,31 @@ ALL_CASES: dict[str, Callable[[], list[StressResult]]] = {
 }
 
 
-#: The areas that take tens of seconds (the rod's regime scan over p and tan(alpha), its
-#: vanishing viscosity): the quick preset and the fast tests leave them out.
+#: The areas that take tens of seconds (the rod's regime scan over p and tan(alpha): 23 of
+#: the stress job's 29 CPU-s, and its vanishing viscosity: 4; measured 2026-12-06): the
+#: workflow runs them with ``stress: full`` in its config, the slow tests always; the quick
+#: preset, the default paper run (``stress: standard``) and the fast tests leave them out.
 SLOW_AREAS = ("rod: regimes along p", "rod: vanishing viscosity")
 #: What the quick preset (a 30-second smoke run) leaves out: the slow areas and the long
 #: integration (200 periods on the pendulum's cycle, and its refused search for a cycle below
 #: the flutter load: 1.3 of quick's 2.1 CPU-s of stress tests; measured) and the rod's windows
-#: at their opening (40-digit double roots, ~1 CPU-s). The paper run and
-#: the tests run every area.
+#: at their opening (40-digit double roots, ~1 CPU-s).
 QUICK_SKIPPED_AREAS = (*SLOW_AREAS, "long integration", "rod: window at its opening")
+#: The workflow's ``stress`` setting: ``standard`` leaves out :data:`SLOW_AREAS` (the paper
+#: run) or :data:`QUICK_SKIPPED_AREAS` (the quick preset); ``full`` runs every area.
+STRESS_LEVELS = ("standard", "full")
+
+
+def skipped_areas(fidelity: str, level: str | None = None) -> tuple[str, ...]:
+    """The areas the workflow's stress job leaves out at ``fidelity`` ("quick" or "paper")
+    and stress ``level`` (:data:`STRESS_LEVELS`; ``None``, the setting not given: the first,
+    "standard")."""
+    level = STRESS_LEVELS[0] if level is None else level
+    if level not in STRESS_LEVELS:
+        raise ParameterError(f"stress must be one of {list(STRESS_LEVELS)}, got {level!r}")
+    if level == "full":
+        return ()
+    return QUICK_SKIPPED_AREAS if fidelity == "quick" else SLOW_AREAS
 
 
 def run_all(skip: tuple[str, ...] = ()) -> list[StressResult]:
@@ -759,8 +775,8 @@ def stress_markdown(results: list[StressResult], skipped: tuple[str, ...] = ()) 
              f"{sum(r.outcome == REFUSED for r in results)} refused clearly, "
              f"**{n_wrong} silent wrong answers**.", ""]
     if skipped:
-        lines += [f"Not run here (quick preset; the paper run runs them): {', '.join(skipped)}.",
-                  ""]
+        lines += [f"Not run here: {', '.join(skipped)} (they run with `--config stress=full` "
+                  "and in the slow tests, `pytest -m slow tests/test_stress.py`).", ""]
     lines += markdown_table(["area", "case", "tried", "expected", "got", "outcome"],
                             [[r.area, r.case, r.tried, r.expected, r.got, r.outcome]
                              for r in results])

@@ -12,15 +12,16 @@ rule stress:
         "results/logs/stress.log",
     benchmark:
         "results/benchmarks/stress.tsv"
-    priority: 10  # ~40 s of CPU (the rod's regime scan): start it with the slow solvers
+    priority: 10  # ~6 s of CPU (~29 with stress: full): start it with the slow solvers
     conda:
         "../envs/flutterfriction.yaml"
     resources:
         runtime=20,
         mem_mb=1000,
     params:
-        # the quick preset leaves out the slow areas (stress.QUICK_SKIPPED_AREAS)
-        quick=config.get("fidelity", "paper") == "quick",
+        # which areas run: stress.skipped_areas (config `stress`: standard | full)
+        fidelity=config["fidelity"],
+        level=config.get("stress"),
     script:
         "../scripts/stress.py"
 

@@ -54,7 +54,7 @@ if bad:
     problems.append(f"reference check failed for: {', '.join(r.id for r in bad)}")
 problems += figure_problems(figure_checks)
 errata = {e["id"]: e for e in reference.get("errata", [])}
-stress = read_json(snakemake.input.stress)
+stress = read_json(snakemake.input.stress)  # {"skipped": [areas], "cases": [results]}
 params = {name: d.get("params", {}) for name, d in data.items()}
 own = {name: scene_parameter_changes(recorded, snakemake.params.fidelity, name, p)
        for name, p in params.items()}
@@ -62,7 +62,8 @@ own = {name: scene_parameter_changes(recorded, snakemake.params.fidelity, name, 
 
 def index(problems):
     return build_index(layout, rows, errata, figure_data=snakemake.params.figure_data,
-                       stress=stress, problems=problems, coverage=coverage,
+                       stress=stress["cases"], stress_skipped=stress["skipped"],
+                       problems=problems, coverage=coverage,
                        row_scene=row_scenes(reference), figure_params=params,
                        own_parameters=own,
                        footer=provenance(), figure_checks=figure_checks,
