@@ -71,6 +71,7 @@ rule all:
 # Snakemake's job-rate timers: fewer scheduling rounds (common.smk).
 onstart:
     rate_limit_rounds_every(workflow)
+    compile_package_bytecode(PKG)
 
 
 # The finished run does not wait for Snakemake's job-rate timers (common.smk).

