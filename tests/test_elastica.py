@@ -310,13 +310,15 @@ def test_the_loading_path_is_followed_through_its_turn_to_the_right_side():
     arc-length continuation of the loading path reaches -3.0578), and a pure transverse tip
     load P2 = 1000 B/l^2 (here -300) was refused (a fold test on an absolute 1e-8 and a
     residual below the integration's amplified round-off). The path is now followed with
-    halved steps through the turn; the tip-load cases against the closed form."""
+    halved steps through the turn; the tip-load cases against the closed form (a transverse
+    load at the solvers' range, LOAD_RANGE_MAX = 200 B/l^2: beyond it they refuse, see
+    test_loads_beyond_the_solvers_range_are_refused_before_any_work)."""
     for loads, path in (((20.0, -0.35, 0.0, -1.0), -3.0578), ((8.0, -0.0035, 0.0, -0.01),
                                                                    -2.6509)):
         sol = el.solve_shooting(1.0, 1.0, el.ElasticaLoads(*loads))
         assert sol.tip_rotation == pytest.approx(path, abs=2e-4)
         assert el.stability_eigenvalue(sol) > 0
-    for P1, P2 in ((0.0, -300.0), (8 * math.pi**2 / 4, 1e-6 * math.pi**2 / 4)):
+    for P1, P2 in ((0.0, -el.LOAD_RANGE_MAX), (8 * math.pi**2 / 4, 1e-6 * math.pi**2 / 4)):
         sol = el.solve_shooting(1.0, 1.0, el.ElasticaLoads(P1=P1, P2=P2))
         closed = el.tip_force_closed_form(1.0, 1.0, P1, P2)
         assert sol.tip_rotation == pytest.approx(closed.tip_rotation, rel=1e-9)
@@ -397,3 +399,29 @@ def test_collocation_near_the_euler_load_tightens_its_tolerance():
     colloc = el.solve_collocation(1.0, 1.0, loads)
     assert colloc.tip_rotation == pytest.approx(4.0225903e-4, rel=1e-7)
     assert "tol 1e-13" in colloc.method
+
+
+def test_loads_beyond_the_solvers_range_are_refused_before_any_work():
+    """An outside audit: P1 = -1000 B/l^2 (pulling) with q2 = 500 B/l^3 did not return from
+    solve_shooting in 60 s (measured after: the loading path advances, each integration
+    slower as the load grows: 11 s at 200 B/l^2, 63 s at 400, minutes at 1000). Both solvers
+    now refuse a load beyond LOAD_RANGE_MAX (B/l^2, B/l^3 for q) at once, naming it and its
+    range in SI units for the rod; at the range's end they solve (the slow test above)."""
+    import time
+
+    from flutterfriction.errors import ParameterError
+
+    length, B = 2.0, 3.0  # unit B/l^2 = 0.75 N, B/l^3 = 0.375 N/m
+    cases = ((el.ElasticaLoads(-1000.0 * 0.75, 0.0, 0.0, 500.0 * 0.375), "P1", "150"),
+             (el.ElasticaLoads(0.0, 200.001 * 0.75, 0.0, 0.0), "P2", "150"),
+             (el.ElasticaLoads(0.0, 1.0, -201.0 * 0.375, 0.0), "q1", "75"),
+             (el.ElasticaLoads(0.0, 1.0, 0.0, -250.0 * 0.375), "q2", "75"))
+    for loads, key, bound in cases:
+        for solve in (el.solve_shooting, el.solve_collocation):
+            t = time.process_time()
+            with pytest.raises(ParameterError, match=rf"{key} must be within \+-200 B/l\^"
+                                                     rf"[23] = \+-{bound} N"):
+                solve(length, B, loads)
+            assert time.process_time() - t < 1.0  # before any work (~1 ms)
+    el.check_load_range(length, B, el.ElasticaLoads(-200 * 0.75, 200 * 0.75, 200 * 0.375,
+                                                    -200 * 0.375))  # the ends are in range

@@ -298,11 +298,12 @@ def solve_shooting(length: float, B: float, loads: ElasticaLoads, *, load_steps:
     Raises
     ------
     ParameterError
-        Bad input (before any work).
+        Bad input, before any work; also a load beyond :data:`LOAD_RANGE_MAX` B/l^2 (B/l^3
+        for ``q``; :func:`check_load_range`).
     ConvergenceError
         Newton fails or the branch folds (``d theta(0)/d theta(l)`` vanishes), and the search
         among all roots finds no stable equilibrium on the loads' side (or there is no side: no
-        transverse load past the Euler load; or loads above ``_SCAN_LIMIT`` B/l^2).
+        transverse load past the Euler load).
     """
     length, B = _check_rod(length, B)
     if not isinstance(loads, ElasticaLoads):
@@ -312,6 +313,7 @@ def solve_shooting(length: float, B: float, loads: ElasticaLoads, *, load_steps:
     rtol = check_positive("rtol", rtol)
     tol = check_positive("tol", tol, "rad")
     fP1, g1 = _dimensionless(length, B, loads)
+    check_load_range(length, B, loads)
     try:
         th, iterations = _follow_loading_path(length, B, loads, load_steps, rtol, tol,
                                               max_iter)
@@ -419,9 +421,27 @@ def _shooting_solution(length: float, B: float, loads: ElasticaLoads, th: float,
 #: ~1-4 s there, measured).
 _SCAN = np.linspace(-4 * math.pi, 4 * math.pi, 1441)
 _SCAN_LIMIT = 200.0
-#: Largest load [B/l^2, or B/l^3 per unit length] the elastica scene takes: the stable
-#: equilibrium's scan range (loads beyond failed after tens of seconds; an outside audit).
+#: Largest load [B/l^2, or B/l^3 per unit length] the solvers and the elastica scene take:
+#: the stable equilibrium's scan range. Beyond it the cost grows fast (a pulled rod with a
+#: transverse load, P1 = -2 q2 l: 11 s at 200 B/l^2, 21 s at 300, 63 s at 400, minutes at
+#: 1000, measured 2026-12-06; an outside audit's 1000 did not return in 60 s) and a lost
+#: loading path could not be recovered; the worst of nine load directions at 200 took 11 s.
 LOAD_RANGE_MAX = _SCAN_LIMIT
+
+
+def check_load_range(length: float, B: float, loads: ElasticaLoads) -> None:
+    """Refuse (:class:`ParameterError`, naming the load, its range in SI units and
+    :data:`LOAD_RANGE_MAX`) a load beyond ``LOAD_RANGE_MAX`` B/l^2 (``P1, P2``) or B/l^3
+    (``q1, q2``): outside the range the solvers are measured on."""
+    unit = B / length**2
+    for key, value, scale in (("P1", loads.P1, unit), ("P2", loads.P2, unit),
+                              ("q1", loads.q1, unit / length), ("q2", loads.q2, unit / length)):
+        if not abs(value) <= LOAD_RANGE_MAX * scale:
+            raise ParameterError(
+                f"{key} must be within +-{LOAD_RANGE_MAX:g} B/l^{2 if key[0] == 'P' else 3} "
+                f"= +-{LOAD_RANGE_MAX * scale:.6g} {'N' if key[0] == 'P' else 'N/m'} for "
+                f"this rod (the elastica solvers' range, analysis.elastica.LOAD_RANGE_MAX), "
+                f"got {value!r}")
 #: The loading path's last end rotation [rad] gives the side above this; below, the rod is in
 #: its linear range, where the side is the linear response's (and the path's rotation may be
 #: Newton's noise).
@@ -439,12 +459,7 @@ def _stable_root(length: float, B: float, loads: ElasticaLoads, fP: NDArray, g: 
     perfect column (no transverse load) past its Euler load (two mirror-image equilibria), and
     a still straight rod under transverse loads pushing opposite ways (the side is their
     projection on the buckling mode, not computed here)."""
-    scale = float(np.max(np.abs(np.r_[fP, g])))
-    if scale > _SCAN_LIMIT:
-        raise ConvergenceError(
-            f"{failure}; the loads ({scale:.3g} B/l^2) exceed the range searched for the "
-            f"stable equilibrium ({_SCAN_LIMIT:g} B/l^2, ~{_SCAN_LIMIT / (math.pi**2 / 4):.0f} "
-            "Euler loads)")
+    # (the loads are within _SCAN_LIMIT: solve_shooting's check_load_range)
     side = math.copysign(1.0, last) if abs(last) > _SIDE_FROM_PATH else None
     if side is None:
         # Still nearly straight: the side the transverse loads push the rod to (Newton's
@@ -517,6 +532,7 @@ def solve_collocation(length: float, B: float, loads: ElasticaLoads, *, load_ste
     check_integer("max_nodes", max_nodes, 1)
     tol = check_positive("tol", tol)
     fP1, g1 = _dimensionless(length, B, loads)
+    check_load_range(length, B, loads)
 
     def bc(za: NDArray, zb: NDArray, fP: NDArray) -> NDArray:
         return np.array([za[0], za[1], za[2], zb[3], zb[4] - fP[0], zb[5] - fP[1]])
@@ -843,7 +859,8 @@ def _cross(u: ArrayLike, v: ArrayLike) -> float:
     return float(u[0] * v[1] - u[1] * v[0])
 
 
-__all__ = ["ElasticaLoads", "ElasticaSolution", "TipForceElastica", "gauss_integral",
+__all__ = ["ElasticaLoads", "ElasticaSolution", "TipForceElastica", "check_load_range",
+           "gauss_integral",
            "internal_force", "linear_tip_deflection", "moment_of_loads_beyond",
            "perturbation_tip_deflection",
            "part_balances", "projections", "solve_collocation", "solve_shooting",

@@ -63,16 +63,8 @@ def _inputs(params: dict[str, Any]) -> tuple[Rod, el.ElasticaLoads, dict[str, An
     # 86 s here; P2 = 1e-300 N in the closed form, naming no key): at most _SCAN_LIMIT (the
     # shooting's own range for its stable equilibrium), |P2| at least 1e-30 B/l^2 (measured:
     # 1e-30 N on list 119 solves; 1e-100 N does not)
+    el.check_load_range(rod.length, rod.B, loads)
     unit = rod.B / rod.length**2
-    for key, value, scale in (("P1", loads.P1, unit), ("P2", loads.P2, unit),
-                              ("q1", loads.q1, unit / rod.length),
-                              ("q2", loads.q2, unit / rod.length)):
-        if not abs(value) <= el.LOAD_RANGE_MAX * scale:
-            raise ParameterError(
-                f"{key} must be within +-{el.LOAD_RANGE_MAX:g} B/l^{2 if key[0] == 'P' else 3} "
-                f"= +-{el.LOAD_RANGE_MAX * scale:.6g} {'N' if key[0] == 'P' else 'N/m'} for "
-                f"this rod (the elastica solver's range, analysis.elastica.LOAD_RANGE_MAX), got "
-                f"{value!r}")
     if not abs(loads.P2) >= P2_MIN_OVER_UNIT * unit:
         raise ParameterError(f"P2 must be nonzero and at least {P2_MIN_OVER_UNIT:g} B/l^2 = "
                              f"{P2_MIN_OVER_UNIT * unit:.3g} N in magnitude (the closed form's "
