@@ -299,5 +299,5 @@ def test_the_stress_section_names_the_areas_this_run_left_out(tmp_path):
                        stress_skipped=["rod: regimes along p", "rod: <slow>"])
     assert "1 cases: 1 correct" in text
     assert "Not run here: rod: regimes along p, rod: &lt;slow&gt;" in text
-    assert "--config stress=full" in text
+    assert "--config stress=full</code> runs every area" in text
     assert "Not run here" not in build_index(layout, _rows(), {}, stress=[case])

@@ -713,8 +713,8 @@ def _figure_check_section(checks: Mapping[str, list[Offence]]) -> str:
 
 def _stress_section(stress: list[Mapping[str, str]], skipped: tuple[str, ...] = ()) -> str:
     counts = {k: sum(r["outcome"] == k for r in stress) for k in ("correct", "refused", "WRONG")}
-    left_out = (f" Not run here: {html.escape(', '.join(skipped))} (they run with "
-                "<code>--config stress=full</code> and in the slow tests)." if skipped else "")
+    left_out = (f" Not run here: {html.escape(', '.join(skipped))} (<code>--config "
+                "stress=full</code> runs every area; the tests run each)." if skipped else "")
     out = ['<h2 id="stress">Stress tests of numerical stability</h2>',
            f'<p class="summary{" bad" if counts["WRONG"] else ""}">{len(stress)} cases: '
            f'{counts["correct"]} correct, {counts["refused"]} refused clearly, '

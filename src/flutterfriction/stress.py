@@ -775,8 +775,8 @@ def stress_markdown(results: list[StressResult], skipped: tuple[str, ...] = ()) 
              f"{sum(r.outcome == REFUSED for r in results)} refused clearly, "
              f"**{n_wrong} silent wrong answers**.", ""]
     if skipped:
-        lines += [f"Not run here: {', '.join(skipped)} (they run with `--config stress=full` "
-                  "and in the slow tests, `pytest -m slow tests/test_stress.py`).", ""]
+        lines += [f"Not run here: {', '.join(skipped)} (`--config stress=full` runs every area; "
+                  "tests/test_stress.py runs each, the slow ones under `-m slow`).", ""]
     lines += markdown_table(["area", "case", "tried", "expected", "got", "outcome"],
                             [[r.area, r.case, r.tried, r.expected, r.got, r.outcome]
                              for r in results])
