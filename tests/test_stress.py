@@ -1,5 +1,7 @@
 """The stress tests: no silent wrong answer anywhere, and the harness itself can fail."""
 
+from pathlib import Path
+
 import pytest
 
 from flutterfriction.errors import ConvergenceError
@@ -102,13 +104,14 @@ def test_the_workflow_leaves_out_only_the_slow_areas_unless_asked_for_all():
     assert skipped_areas("paper", "full") == skipped_areas("quick", "full") == ()
     with pytest.raises(ParameterError, match="stress must be one of"):
         skipped_areas("paper", "everything")
-    with open("workflow/schemas/config.schema.yaml", encoding="utf-8") as fh:
+    root = Path(__file__).resolve().parents[1]
+    with open(root / "workflow" / "schemas" / "config.schema.yaml", encoding="utf-8") as fh:
         schema = yaml.safe_load(fh)
     assert tuple(schema["properties"]["stress"]["enum"]) == STRESS_LEVELS
     from flutterfriction.config import TOP_LEVEL_KEYS
 
     assert set(schema["properties"]) == TOP_LEVEL_KEYS
-    with open("workflow/config.yaml", encoding="utf-8") as fh:
+    with open(root / "workflow" / "config.yaml", encoding="utf-8") as fh:
         assert yaml.safe_load(fh)["stress"] == STRESS_LEVELS[0]  # the default, shown
     with pytest.raises(ParameterError, match="unknown stress areas"):
         run_all(skip=("rod: regimes along q",))

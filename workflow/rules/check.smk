@@ -12,7 +12,7 @@ rule stress:
         "results/logs/stress.log",
     benchmark:
         "results/benchmarks/stress.tsv"
-    priority: 10  # ~6 s of CPU (~29 with stress: full): start it with the slow solvers
+    priority: 10  # ~5 s (~29 with stress: full): start it with the slow solvers
     conda:
         "../envs/flutterfriction.yaml"
     resources:

@@ -282,8 +282,10 @@ def compile_package_bytecode(root):
     (0.3 s for all of them; the paper run from clean 4 % faster, 3.4 CPU-s less: three pairs
     on 2026-12-06). Python reads a .pyc only while its source is unchanged, so an edited
     module is compiled from source as before until the next run writes it again. A tree
-    that cannot be written is left as it is (compileall reports, never raises, a failed
-    write). Called by onstart (not in a dry run)."""
+    that cannot be written is left as it is (compileall, quiet, never raises on a failed
+    write). It writes into src/flutterfriction's __pycache__, where numba's cache of the
+    rod's kernels already lives. Called by onstart: not in a dry or no-op run, nor in a
+    cluster job's own Snakemake (spawned without hooks)."""
     import compileall
 
     compileall.compile_dir(str(root), quiet=2)

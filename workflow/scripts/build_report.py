@@ -2,6 +2,7 @@
 showing any failure (the `check` rule then fails the run: Snakemake would delete the outputs
 of a failing job, and a reader needs the report most when something failed)."""
 
+import sys
 from pathlib import Path
 
 from flutterfriction.figure_offences import figure_problems, load_figure_checks
@@ -55,6 +56,9 @@ if bad:
 problems += figure_problems(figure_checks)
 errata = {e["id"]: e for e in reference.get("errata", [])}
 stress = read_json(snakemake.input.stress)  # {"skipped": [areas], "cases": [results]}
+if not (isinstance(stress, dict) and {"skipped", "cases"} <= set(stress)):
+    sys.exit(f"{snakemake.input.stress}: not the stress job's record ({{skipped, cases}}): "
+             "run the workflow again (its stress job rewrites it)")
 params = {name: d.get("params", {}) for name, d in data.items()}
 own = {name: scene_parameter_changes(recorded, snakemake.params.fidelity, name, p)
        for name, p in params.items()}

@@ -524,7 +524,9 @@ def solve_collocation(length: float, B: float, loads: ElasticaLoads, *, load_ste
     ``(y1, y2, theta, m, alpha1, alpha2) = (x/l, theta, M l/B, a l^2/B)`` in ``xi = s/l``:
     ``y' = t``, ``theta' = m``, ``m' = alpha . m_vec``, ``alpha' = -q l^3/B`` (eqs. 64, 83,
     80, 77), with ``y(0) = 0``, ``theta(0) = 0`` (eq. 96) and ``m(1) = 0``, ``alpha(1) = P
-    l^2/B`` (eq. 97). Continued in ``load_steps`` equal load steps from the straight rod."""
+    l^2/B`` (eq. 97). Continued in ``load_steps`` equal load steps from the straight rod.
+    Refuses (:class:`ParameterError`, before any work) bad input and a load beyond
+    :data:`LOAD_RANGE_MAX` B/l^2 (B/l^3 for ``q``; :func:`check_load_range`)."""
     length, B = _check_rod(length, B)
     if not isinstance(loads, ElasticaLoads):
         raise ParameterError(f"loads must be ElasticaLoads, got {type(loads).__name__}")

@@ -60,8 +60,8 @@ def _inputs(params: dict[str, Any]) -> tuple[Rod, el.ElasticaLoads, dict[str, An
             f"{abs(loads.P2 / loads.P1):.3g}")
     # The loads in units of B/l^2 (and B/l^3) within the range the scene's two methods are
     # measured to cover (an outside audit: q2 = 1e6 N/m failed after 23.5 s, 1000 N/m after
-    # 86 s here; P2 = 1e-300 N in the closed form, naming no key): at most _SCAN_LIMIT (the
-    # shooting's own range for its stable equilibrium), |P2| at least 1e-30 B/l^2 (measured:
+    # 86 s here; P2 = 1e-300 N in the closed form, naming no key): at most LOAD_RANGE_MAX (the
+    # solvers' own range, el.check_load_range), |P2| at least 1e-30 B/l^2 (measured:
     # 1e-30 N on list 119 solves; 1e-100 N does not)
     el.check_load_range(rod.length, rod.B, loads)
     unit = rod.B / rod.length**2
