@@ -60,3 +60,21 @@ def test_a_notebook_exports_offline_with_code_folded_and_figures_linked(tmp_path
     fold = page.index('<details class="code-fold"><summary>code</summary>')
     assert fold < page.index(">show<") < page.index("</details>", fold)  # the code, folded
     assert 'src="../figures/figA.png"' in page and '<img src="data:image/png' not in page
+
+
+def test_warming_the_exporter_leaves_the_next_export_unchanged(tmp_path):
+    """The notebook job warms the exporter up while its kernel starts: the page exported after
+    the warm-up is the page exported before it."""
+    pytest.importorskip("latex2mathml")
+    pytest.importorskip("nbconvert")
+    import nbformat
+
+    from flutterfriction.notebook_export import export_notebook, warm_exporter
+
+    nb = nbformat.v4.new_notebook()
+    nb.cells = [nbformat.v4.new_markdown_cell("# T\n\nEq. $\\beta = 1$."),
+                nbformat.v4.new_code_cell("x = 1", id="c2")]
+    nb.cells[0].id = "c1"
+    before = export_notebook(nb, [tmp_path])
+    warm_exporter()
+    assert export_notebook(nb, [tmp_path]) == before

@@ -132,6 +132,19 @@ def export_notebook(nb: Any, figure_dirs: Iterable[str | Path] = ("results/figur
     return notebook_html(offline_notebook(nb, figure_index(figure_dirs), figure_href))
 
 
+def warm_exporter() -> None:
+    """Export a two-cell notebook (markdown with math, code with output) and discard it: the
+    first export of a process imports nbconvert and compiles its templates and the
+    highlighter's patterns (0.92 s against 0.31 s for the next, measured), so that a job can
+    do it while something else runs (the notebook job: while its kernel starts)."""
+    import nbformat.v4 as v4
+
+    nb = v4.new_notebook(cells=[
+        v4.new_markdown_cell("warm-up: $x^2$"),
+        v4.new_code_cell("print(1)", outputs=[v4.new_output("stream", text="1\n")])])
+    export_notebook(nb, ())
+
+
 def fmt(x: Any, digits: int = 6) -> str:
     """A number in ``digits`` significant digits (text and other values as they are)."""
     if isinstance(x, bool) or not isinstance(x, (int, float)):

@@ -24,12 +24,13 @@ a budget is recorded (``CycleBranch.stopped_by``) and the callers check it.
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Callable
 from dataclasses import asdict, dataclass, field
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.integrate import solve_ivp
+from scipy.integrate import ODEintWarning, odeint
 
 from flutterfriction.analysis.damped import flutter_onset, polish_flutter_crossing
 from flutterfriction.analysis.rod_orbit import integrate_orbit
@@ -177,13 +178,24 @@ def variational_flow(model: NonlinearRod, y: NDArray, T: float, P: float,
     return VariationalFlow(y_T=y_T, Phi=Phi, S=S, f_T=model.rhs(0.0, y_T, P), orbit=orbit)
 
 
+#: Samples a period for :func:`tip_rotation_amplitude`.
+AMPLITUDE_SAMPLES = 256
+
+
 def tip_rotation_amplitude(model: NonlinearRod, orbit: Callable, T: float,
-                           samples: int = 256) -> float:
-    """``max |theta(l, t)|`` over one period [rad], from the orbit's interpolant: sampled, then
-    refined by the parabola through the largest sample and its neighbours (relative error
-    ~1e-7 at 256 samples instead of ~1e-4 for the sample alone)."""
+                           samples: int = AMPLITUDE_SAMPLES) -> float:
+    """``max |theta(l, t)|`` over one period [rad], from the orbit's interpolant ``orbit(t)``
+    (an array of times in, states (N, times) out): sampled, then refined by the parabola
+    through the largest sample and its neighbours (relative error ~1e-7 at 256 samples
+    instead of ~1e-4 for the sample alone)."""
     t = np.linspace(0.0, T, samples, endpoint=False)
-    theta = np.abs(np.array([orbit(tk)[model.n_dof - 1] for tk in t]))
+    return sampled_peak(np.abs(orbit(t)[model.n_dof - 1]))  # (N, samples): one call
+
+
+def sampled_peak(theta: NDArray) -> float:
+    """The peak of a periodic signal sampled at equal steps over one period: the largest
+    sample refined by the parabola through it and its neighbours."""
+    samples = len(theta)
     k = int(np.argmax(theta))
     a, b, c = theta[k - 1], theta[k], theta[(k + 1) % samples]
     curv = a - 2 * b + c
@@ -745,8 +757,9 @@ def cycle_on_finer_mesh(coarse: NonlinearRod, y: NDArray, T: float, P: float,
                         max_iterations: int = 20) -> CyclePoint:
     """The cycle at the same load ``P`` on a finer mesh, from a converged coarse cycle
     ``(y, T)``: unknowns the fine section state and the period; residual from the fine orbit
-    alone (LSODA: explicit methods pay for the finer mesh's stiffer Kelvin–Voigt modes, 43000
-    right-hand sides per period at 8 elements against 7500); Jacobian the coarse cycle's
+    alone (LSODA, scipy's odeint: explicit methods pay for the finer mesh's stiffer
+    Kelvin–Voigt modes, 43000 right-hand sides per period at 8 elements against 7500; the tip
+    rotation's amplitude from its :data:`AMPLITUDE_SAMPLES` outputs); Jacobian the coarse cycle's
     exact monodromy carried over by interpolation (the modes the coarse mesh lacks are the
     strongly damped ones, whose multipliers are ~0), improved by Broyden's rank-one updates.
     Converged when the scaled correction is below ``tol``; the Floquet data are then those of
@@ -758,19 +771,28 @@ def cycle_on_finer_mesh(coarse: NonlinearRod, y: NDArray, T: float, P: float,
     Phi = Pr @ coarse_flow.Phi @ R_s
     z = np.concatenate([Pr @ y, [T]])
 
+    f = fine.rhs_at(P)
+
     def jac(t, x):
         return fine.jacobians(x[:, None], P)[0][0]
 
     def residual(z):
+        # odeint: LSODA's own loop, outputs interpolated by it at the samples of the tip's
+        # amplitude and at the end (solve_ivp's LSODA returned to Python at each of ~2300
+        # steps a period and built a dense output at each: ~40% of this function's time)
         yy, TT = z[:N], z[N]
-        sol = solve_ivp(fine.rhs_at(P), (0.0, TT), yy, method="LSODA", jac=jac,
-                        rtol=rtol, atol=rtol * 1e-3, dense_output=True)
-        if not sol.success:
-            raise ConvergenceError(f"fine-mesh orbit failed at P = {P:g} N: {sol.message}")
-        y_T = sol.y[:, -1]
-        return np.concatenate([y_T - yy, [section_value(fine, yy)]]), y_T, sol
+        t = np.append(np.linspace(0.0, TT, AMPLITUDE_SAMPLES, endpoint=False), TT)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", ODEintWarning)  # reported below, as an error
+            Y, info = odeint(f, yy, t, Dfun=jac, tfirst=True, rtol=rtol, atol=rtol * 1e-3,
+                             mxstep=100_000, full_output=True)
+        if info["message"] != "Integration successful.":
+            raise ConvergenceError(f"fine-mesh orbit failed at P = {P:g} N: "
+                                   f"{info['message']}")
+        y_T = Y[-1]
+        return np.concatenate([y_T - yy, [section_value(fine, yy)]]), y_T, Y[:-1]
 
-    R, y_T, sol = residual(z)
+    R, y_T, samples = residual(z)
     J = np.zeros((N + 1, N + 1))
     J[:N, :N] = Phi - np.eye(N)
     J[:N, N] = fine.rhs(0.0, y_T, P)
@@ -790,10 +812,9 @@ def cycle_on_finer_mesh(coarse: NonlinearRod, y: NDArray, T: float, P: float,
                               A=float(tip_lateral(fine, yy)),
                               floquet=floquet(coarse, y, P, coarse_flow.Phi),
                               newton_iterations=it, first_correction=first,
-                              tip_rotation_amplitude=tip_rotation_amplitude(
-                                  fine, sol.sol, float(z[N])))
+                              tip_rotation_amplitude=sampled_peak(np.abs(samples[:, n - 1])))
         z = z + dz
-        R_new, y_T, sol = residual(z)
+        R_new, y_T, samples = residual(z)
         J += np.outer((R_new - R) - J @ dz, dz) / (dz @ dz)  # Broyden's good update
         R = R_new
     raise ConvergenceError(f"fine-mesh cycle at P = {P:g} N: no convergence in "
