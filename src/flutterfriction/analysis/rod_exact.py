@@ -59,16 +59,16 @@ def _with_derivative(fun: Callable, z, h):
 def _newton2(residual: Callable[[NDArray], NDArray], x0: NDArray, tol: float = 1e-14,
              max_iter: int = 60) -> NDArray:
     """Newton's method for two real equations, Jacobian by central differences, with step
-    halving when the residual does not decrease."""
+    halving when the residual does not decrease. ``residual`` is vectorised: rows of points
+    (k, 2) in, rows of residuals (k, 2) out (the Jacobian's four points in one call: the
+    arrays are short, so a call costs its overhead; 3x fewer calls than one a point)."""
     x = np.asarray(x0, dtype=float)
     r = residual(x)
     for _ in range(max_iter):
-        J = np.empty((2, 2))
-        for j in range(2):
-            h = 1e-6 * max(1.0, abs(x[j]))
-            e = np.zeros(2)
-            e[j] = h
-            J[:, j] = (residual(x + e) - residual(x - e)) / (2 * h)
+        h = 1e-6 * np.maximum(1.0, np.abs(x))
+        steps = np.array([[h[0], 0.0], [-h[0], 0.0], [0.0, h[1]], [0.0, -h[1]]])
+        R = residual(x + steps)
+        J = np.column_stack([(R[0] - R[1]) / (2 * h[0]), (R[2] - R[3]) / (2 * h[1])])
         try:
             dx = np.linalg.solve(J, -r)
         except np.linalg.LinAlgError as exc:
@@ -273,11 +273,11 @@ def _undamped_double_root(g: RodGroups, p0: float, mu0: float) -> tuple[float, f
     def G(p, mu):
         return _f(p, np.sqrt(mu + 0j), g, sigma0)
 
-    def residual(x):
-        p, mu = x
-        h = 1e-3 * max(1.0, abs(mu))
+    def residual(x):  # x: (2,) or rows (k, 2), as _newton2 calls it
+        p, mu = x[..., 0], x[..., 1]
+        h = 1e-3 * np.maximum(1.0, np.abs(mu))
         val, dval = _with_derivative(lambda m: G(p, m), mu + 0j, h)
-        return np.array([np.real(val), np.real(dval)])
+        return np.stack([np.real(val), np.real(dval)], axis=-1)
 
     p, mu = _newton2(residual, np.array([p0, mu0]))
     return float(p), float(mu)
@@ -292,9 +292,9 @@ def _damped_flutter(g: RodGroups, p0: float, W0: float) -> tuple[float, float]:
     sigma0 = _fixed_scale(p0, 1j * W0, g)
     delta = max(g.eta, g.gamma)
 
-    def residual(x):
-        v = _f(x[0], 1j * x[1], g, sigma0)
-        return np.array([np.real(v), np.imag(v) / delta])
+    def residual(x):  # x: (2,) or rows (k, 2), as _newton2 calls it
+        v = _f(x[..., 0], 1j * x[..., 1], g, sigma0)
+        return np.stack([np.real(v), np.imag(v) / delta], axis=-1)
 
     p, W = _newton2(residual, np.array([p0, abs(W0)]))
     return float(p), float(abs(W))
@@ -303,11 +303,11 @@ def _damped_flutter(g: RodGroups, p0: float, W0: float) -> tuple[float, float]:
 def _damped_divergence(g: RodGroups, p0: float, w0: float) -> tuple[float, float]:
     sigma0 = _fixed_scale(p0, w0, g)
 
-    def residual(x):
-        p, w = x
-        h = 1e-3 * max(1.0, abs(w))
+    def residual(x):  # x: (2,) or rows (k, 2), as _newton2 calls it
+        p, w = x[..., 0], x[..., 1]
+        h = 1e-3 * np.maximum(1.0, np.abs(w))
         val, dval = _with_derivative(lambda z: _f(p, z, g, sigma0), w + 0j, h)
-        return np.array([np.real(val), np.real(dval)])
+        return np.stack([np.real(val), np.real(dval)], axis=-1)
 
     p, w = _newton2(residual, np.array([p0, w0]))
     return float(p), float(w)
