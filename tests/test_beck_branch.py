@@ -120,12 +120,12 @@ def test_growth_rates_match_the_fe_twin_spectrum():
 
 def test_a_cycle_carried_to_the_same_mesh_is_the_same_cycle():
     """``cycle_on_finer_mesh`` (LSODA by odeint, the tip's rotation from its samples) given
-    the mesh the cycle was found on returns that cycle: the same period and lateral tip
-    amplitude, and the tip rotation of DOP853's dense orbit (independent integrator and
-    interpolant) to the integrators' tolerances (the finer meshes: the workflow's mesh checks,
-    against their references). At A = 10 cm,
-    where 1 - mu = 3e-3 (near the onset, 1 - mu ~ 1e-5 amplifies the coarse cycle's residual
-    into a 3e-4 change of amplitude, measured, in any solver)."""
+    the mesh the cycle was found on, and a period 1e-4 off, returns that cycle after Newton
+    steps: the same period and lateral tip amplitude, and the tip rotation of DOP853's dense
+    orbit (an independent integrator and interpolant), to the integrators' tolerances (the
+    finer meshes: the workflow's mesh checks, against their references). At A = 10 cm, where
+    1 - mu = 3e-3 (near the onset, 1 - mu ~ 1e-5 amplifies the coarse cycle's residual into a
+    3e-4 change of amplitude, measured, in any solver)."""
     from flutterfriction.analysis.rod_cycles import (
         cycle_on_finer_mesh,
         tip_rotation_amplitude,
@@ -137,9 +137,13 @@ def test_a_cycle_carried_to_the_same_mesh_is_the_same_cycle():
                      newton_tol=1e-7)
     coarse = NonlinearRod(ROD119, 2)
     y, T, P = np.asarray(b.states[0])[:-2], b.T[0], b.P[0]
-    same = cycle_on_finer_mesh(coarse, y, T, P, NonlinearRod(ROD119, 2))
-    assert same.T == pytest.approx(T, rel=1e-9)
-    assert same.A == pytest.approx(b.A[0], rel=1e-9)
+    same = cycle_on_finer_mesh(coarse, y, T * (1 + 1e-4), P, NonlinearRod(ROD119, 2))
+    assert same.newton_iterations > 1
+    assert same.T == pytest.approx(T, rel=1e-7)
+    assert same.A == pytest.approx(b.A[0], rel=1e-6)
     dense = variational_flow(coarse, y, T, P, rtol=1e-10, dense_output=True).orbit
     assert same.tip_rotation_amplitude == pytest.approx(
         tip_rotation_amplitude(coarse, dense, T), rel=1e-6)
+    # a tolerance outside the integrators' range is refused before any work, by name
+    with pytest.raises(ParameterError, match="rtol must be in"):
+        cycle_on_finer_mesh(coarse, y, T, P, NonlinearRod(ROD119, 2), rtol=1e-17)

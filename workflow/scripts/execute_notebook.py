@@ -21,8 +21,13 @@ client = NotebookClient(nb, timeout=600, kernel_name="python3", shutdown_kernel=
                         resources={"metadata": {"path": str(Path.cwd())}})
 client.km = client.create_kernel_manager()
 client.start_new_kernel()
-
-warm_exporter()
-client.execute()
+try:
+    warm_exporter()
+    client.execute()
+finally:
+    # execute() shuts its kernel down however it ends; a failure before it (the exporter's
+    # warm-up) would leave the kernel running, in a session of its own (an outside review)
+    if client.km is not None:
+        client._cleanup_kernel()
 figure_dirs = sorted({str(Path(f).parent) for f in snakemake.input.figures}) or ["results/figures"]
 write_text(snakemake.output[0], export_notebook(nb, figure_dirs, "../figures"))

@@ -33,7 +33,7 @@ from numpy.typing import NDArray
 from scipy.integrate import ODEintWarning, odeint
 
 from flutterfriction.analysis.damped import flutter_onset, polish_flutter_crossing
-from flutterfriction.analysis.rod_orbit import integrate_orbit
+from flutterfriction.analysis.rod_orbit import check_orbit_rtol, integrate_orbit
 from flutterfriction.errors import (
     ConvergenceError,
     ParameterError,
@@ -193,8 +193,9 @@ def tip_rotation_amplitude(model: NonlinearRod, orbit: Callable, T: float,
 
 
 def sampled_peak(theta: NDArray) -> float:
-    """The peak of a periodic signal sampled at equal steps over one period: the largest
-    sample refined by the parabola through it and its neighbours."""
+    """The maximum of a smooth periodic signal from equally spaced samples over one period
+    (the end point excluded): the largest sample refined by the parabola through it and its
+    neighbours."""
     samples = len(theta)
     k = int(np.argmax(theta))
     a, b, c = theta[k - 1], theta[k], theta[(k + 1) % samples]
@@ -241,7 +242,7 @@ class CyclePoint:
     floquet: Floquet
     newton_iterations: int
     first_correction: float = float("nan")  # scaled size of Newton's first correction
-    tip_rotation_amplitude: float = float("nan")  # [rad], when the orbit was kept (dense)
+    tip_rotation_amplitude: float = float("nan")  # [rad], when measured (dense orbit or samples)
     flow_jacobian: NDArray | None = field(default=None, repr=False)  # [Phi - I, f_T, S]
 
 
@@ -754,7 +755,7 @@ def cycle_branch(rod: Rod, n_elements: int = 4, A_first: float = 0.01, A_max: fl
 
 def cycle_on_finer_mesh(coarse: NonlinearRod, y: NDArray, T: float, P: float,
                         fine: NonlinearRod, rtol: float = 1e-10, tol: float = 1e-7,
-                        max_iterations: int = 20) -> CyclePoint:
+                        max_iterations: int = 40) -> CyclePoint:
     """The cycle at the same load ``P`` on a finer mesh, from a converged coarse cycle
     ``(y, T)``: unknowns the fine section state and the period; residual from the fine orbit
     alone (LSODA, scipy's odeint: explicit methods pay for the finer mesh's stiffer
@@ -763,7 +764,11 @@ def cycle_on_finer_mesh(coarse: NonlinearRod, y: NDArray, T: float, P: float,
     exact monodromy carried over by interpolation (the modes the coarse mesh lacks are the
     strongly damped ones, whose multipliers are ~0), improved by Broyden's rank-one updates.
     Converged when the scaled correction is below ``tol``; the Floquet data are then those of
-    the coarse monodromy (``floquet`` of the result: an estimate, not the fine mesh's)."""
+    the coarse monodromy (``floquet`` of the result: an estimate, not the fine mesh's).
+    At most ``max_iterations`` (measured: the paper's 4 -> 8 elements 6-7; the quick preset's
+    2 -> 3 elements 18, its periodicity defect wandering near 1 for ten iterations before
+    Broyden's updates take hold, too near the former bound of 20 to hold on every CPU)."""
+    rtol = check_orbit_rtol("rtol", rtol)  # (odeint's own refusal: "Illegal input")
     N, n = 2 * fine.n_dof, fine.n_dof
     Pr = prolongation(coarse, fine)
     R_s = np.linalg.pinv(Pr)
@@ -781,14 +786,24 @@ def cycle_on_finer_mesh(coarse: NonlinearRod, y: NDArray, T: float, P: float,
         # amplitude and at the end (solve_ivp's LSODA returned to Python at each of ~2300
         # steps a period and built a dense output at each: ~40% of this function's time)
         yy, TT = z[:N], z[N]
+        # a Newton step may try any period: only (T/2, 2T) of the coarse cycle's is integrated
+        # (as the pendulum's shooting does), never a runaway one
+        if not (0.5 * T < TT < 2.0 * T and np.all(np.isfinite(yy))):
+            raise ConvergenceError(f"fine-mesh cycle at P = {P:g} N: Newton left the coarse "
+                                   f"cycle (period {TT:.4g} s against {T:.4g} s, or a "
+                                   f"non-finite state)")
         t = np.append(np.linspace(0.0, TT, AMPLITUDE_SAMPLES, endpoint=False), TT)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", ODEintWarning)  # reported below, as an error
+            # (odeint's default bound, 500 steps between two outputs, is ~50x the ~9-20 steps
+            # the 2-8 element meshes take, measured: it ends a diverging orbit, not a slow one)
             Y, info = odeint(f, yy, t, Dfun=jac, tfirst=True, rtol=rtol, atol=rtol * 1e-3,
-                             mxstep=100_000, full_output=True)
-        if info["message"] != "Integration successful.":
+                             full_output=True)
+        if info["message"] != "Integration successful." or not np.all(np.isfinite(Y)):
+            # (odeint reports success for an orbit that turned NaN: checked here)
             raise ConvergenceError(f"fine-mesh orbit failed at P = {P:g} N: "
-                                   f"{info['message']}")
+                                   + ("the state became non-finite" if info["message"] ==
+                                      "Integration successful." else info["message"]))
         y_T = Y[-1]
         return np.concatenate([y_T - yy, [section_value(fine, yy)]]), y_T, Y[:-1]
 

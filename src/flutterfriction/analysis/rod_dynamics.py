@@ -26,6 +26,7 @@ from flutterfriction.analysis.rod_cycles import (
     _gradient,
     floquet,
     linearised_flutter_load,
+    sampled_peak,
     section_value,
     tip_lateral,
     variational_flow,
@@ -584,15 +585,6 @@ def tip_states(model: NonlinearRod, Y: NDArray, batch: int = 512) -> NDArray:
     return np.vstack(out)
 
 
-def _peak(g: NDArray) -> float:
-    """The maximum of a smooth periodic function from uniform samples ``g`` (one period, the
-    end point excluded): the parabola through the largest sample and its neighbours."""
-    k = int(np.argmax(g))
-    a, b, c = g[k - 1], g[k], g[(k + 1) % g.size]
-    curv = a - 2 * b + c
-    return float(b - (a - c) ** 2 / (8 * curv)) if curv < 0 else float(b)
-
-
 @dataclass
 class CycleMeasures:
     """What the scene reports of a converged cycle on one mesh."""
@@ -633,8 +625,9 @@ def cycle_measures(cycle: ShootingCycle, P: float, samples: int = 512,
     mus = None if fl is None else sorted(fl.nontrivial, key=lambda z: -abs(z))
     return CycleMeasures(
         n_elements=int(model.n_elements),
-        tip_amplitude_m=0.5 * (_peak(tips[:, 1]) + _peak(-tips[:, 1])), period_s=T,
-        tip_rotation_amplitude_rad=max(_peak(Y[n - 1]), _peak(-Y[n - 1])),
+        tip_amplitude_m=0.5 * (sampled_peak(tips[:, 1]) + sampled_peak(-tips[:, 1])),
+        period_s=T,
+        tip_rotation_amplitude_rad=max(sampled_peak(Y[n - 1]), sampled_peak(-Y[n - 1])),
         work_follower_J=W_P, work_dissipated_J=W_D, energy_balance_error=abs(W_P - W_D) / W_D,
         newton_corrections=[float(c) for c in cycle.corrections],
         integrations=int(cycle.integrations), n_rhs=int(n_rhs), wall_s=wall_s, cpu_s=cpu_s,
