@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import functools
 import math
 
 import numpy as np
@@ -31,6 +32,49 @@ def test_analytic_jacobian_vs_central_differences(p, state, load):
                            - p.equations_of_motion(x - h * e, P, 0.3 * p.load_unit)) / (2 * h)
                           for e in np.eye(4)])
     assert np.allclose(J, fd, rtol=1e-5, atol=1e-6 * np.abs(J).max())
+
+
+@functools.cache
+def _sympy_jacobian():
+    """The Jacobian of eq. (10) differentiated by sympy from the equations written out again
+    here (an independent derivation of the model's hand-written one)."""
+    import sympy as sp
+
+    names = "l1 l2 d h m1 m2 m3 k1 k2 c1 c2 P H"
+    params = sp.symbols(names)
+    l1, l2, d, h, m1, m2, m3, k1, k2, c1, c2, P, H = params
+    a1, a2, w1, w2 = sp.symbols("a1 a2 w1 w2")
+    s, c = sp.sin(a1 - a2), sp.cos(a1 - a2)
+    w = (m2 * l2 + m3 * h) * l1
+    I1 = m1 * d**2 + (m2 + m3) * l1**2
+    I2 = m2 * l2**2 + m3 * h**2
+    f1 = (-w * w2**2 * s - k1 * a1 - k2 * (a1 - a2) - c1 * w1 - c2 * (w1 - w2) + P * l1 * s
+          + H * l1 * sp.sin(a1))
+    f2 = w * w1**2 * s + k2 * (a1 - a2) - c2 * (w2 - w1) + H * l2 * sp.sin(a2)
+    # M(alpha) alpha'' = f solved by sympy itself, not by the model's closed inverse
+    M = sp.Matrix([[I1, w * c], [w * c, I2]])
+    acc = M.LUsolve(sp.Matrix([f1, f2]))
+    rhs = sp.Matrix([w1, w2, acc[0], acc[1]])
+    fn = sp.lambdify(((a1, a2, w1, w2), params), rhs.jacobian([a1, a2, w1, w2]), "numpy")
+    return lambda p, x, P, H: np.array(fn(tuple(x), (p.l1, p.l2, p.d, p.h, p.m1, p.m2, p.m3,
+                                                      p.k1, p.k2, p.c1, p.c2, P, H)), float)
+
+
+_VISCOSITY = st.one_of(st.just(0.0), st.floats(1e-6, 0.3))  # c / k [s]
+
+
+@settings(max_examples=60)
+@given(pendulums(), st.lists(st.floats(-3, 3), min_size=4, max_size=4), st.floats(-3, 3),
+       st.floats(-1, 1), _VISCOSITY, _VISCOSITY)
+def test_hand_jacobian_equals_sympys_derivative(p, state, load, dead, v1, v2):
+    """The hand-differentiated Jacobian against sympy's, over pendulums, states, loads of both
+    signs, dead loads and viscosities: the same to round-off (rtol 1e-9 of its largest entry:
+    two orders of evaluation of the same rational expressions)."""
+    p = p.with_(c1=v1 * p.k1, c2=v2 * p.k2)
+    P, H = load * p.load_unit, dead * p.load_unit
+    J = dy.jacobian(p, state, P, H=H)
+    S = _sympy_jacobian()(p, state, P, H)
+    assert np.allclose(J, S, rtol=1e-9, atol=1e-9 * np.abs(S).max())
 
 
 def test_small_motions_follow_the_linear_solution():

@@ -4,14 +4,14 @@ by shooting as the independent check.
 
 The right-hand side is :meth:`~flutterfriction.models.ziegler.ZieglerPendulum.equations_of_motion`
 (bound once per integration: :meth:`~flutterfriction.models.ziegler.ZieglerPendulum.motion_at`);
-its Jacobian is derived once with sympy from the same equations (analytic, exact) and compiled.
+its Jacobian is the same equations differentiated by hand (exact; the tests check it against
+sympy's derivative and central differences).
 """
 
 from __future__ import annotations
 
 import contextlib
 import contextvars
-import functools
 import math
 from collections.abc import Callable, Iterator
 from dataclasses import asdict, dataclass, replace
@@ -35,30 +35,6 @@ from flutterfriction.errors import (
 )
 from flutterfriction.models.ziegler import ZieglerPendulum, check_pendulum
 
-_PARAM_NAMES = "l1 l2 d h m1 m2 m3 k1 k2 c1 c2 P H"
-
-
-@functools.cache
-def _jacobian_function():
-    """Compiled d(state')/d(state) of eq. (10) with viscosity, as a function of (state, params).
-    (sympy, ~0.3 s to import, is imported only here.)"""
-    import sympy as sp
-
-    params = sp.symbols(_PARAM_NAMES)
-    l1, l2, d, h, m1, m2, m3, k1, k2, c1, c2, P, H = params
-    a1, a2, w1, w2 = sp.symbols("a1 a2 w1 w2")
-    s, c = sp.sin(a1 - a2), sp.cos(a1 - a2)
-    w = (m2 * l2 + m3 * h) * l1
-    I1 = m1 * d**2 + (m2 + m3) * l1**2
-    I2 = m2 * l2**2 + m3 * h**2
-    f1 = (-w * w2**2 * s - k1 * a1 - k2 * (a1 - a2) - c1 * w1 - c2 * (w1 - w2) + P * l1 * s
-          + H * l1 * sp.sin(a1))
-    f2 = w * w1**2 * s + k2 * (a1 - a2) - c2 * (w2 - w1) + H * l2 * sp.sin(a2)
-    det = I1 * I2 - (w * c) ** 2
-    rhs = sp.Matrix([w1, w2, (I2 * f1 - w * c * f2) / det, (I1 * f2 - w * c * f1) / det])
-    J = rhs.jacobian([a1, a2, w1, w2])
-    return sp.lambdify(((a1, a2, w1, w2), params), J, "numpy")
-
 
 def jacobian(pendulum: ZieglerPendulum, state: ArrayLike, P: float, H: float = 0.0) -> NDArray:
     """Analytic Jacobian of the nonlinear equations of motion (eq. 10) at ``state``."""
@@ -72,10 +48,9 @@ def jacobian_at(pendulum: ZieglerPendulum, P: float, H: float = 0.0
     implicit integrator's many calls (unchecked per call, as :meth:`ZieglerPendulum.motion_at`:
     the work-precision study times them)."""
     p = check_pendulum(pendulum)
-    params = (p.l1, p.l2, p.d, p.h, p.m1, p.m2, p.m3, p.k1, p.k2, p.c1, p.c2,
-              check_real("P", P), check_real("H", H))
-    fn = _jacobian_function()
-    return lambda t, x: np.array(fn(tuple(x), params), dtype=float)
+    fn = p._motion_jacobian(check_real("P", P), check_real("H", H))
+    array = np.array
+    return lambda t, x: array(fn(*x.tolist()))
 
 
 def _checked_start(P: float, H: float, state0: ArrayLike, name: str = "state0"

@@ -451,6 +451,43 @@ class ZieglerPendulum:
 
         return motion
 
+    def _motion_jacobian(self, P: float, H: float):
+        """``(a1, a2, w1, w2) -> d(state')/d(state)`` of :meth:`_motion` (eq. 10), 4 x 4 nested
+        lists, differentiated by hand term by term (the quotient rule on ``acc = N/det``); the
+        tests hold it against sympy's derivative of the same equations and central
+        differences. (sympy derived it at run time before: 0.7 s of imports and algebra per
+        process, for a 4 x 4 matrix.)"""
+        m1, m2, m3, l1, l2 = self.m1, self.m2, self.m3, self.l1, self.l2
+        k1, k2, c1, c2 = self.k1, self.k2, self.c1, self.c2
+        w = (m2 * l2 + m3 * self.h) * l1
+        I1 = m1 * self.d**2 + (m2 + m3) * l1**2
+        I2 = m2 * l2**2 + m3 * self.h**2
+        sin, cos = math.sin, math.cos
+
+        def jacobian(a1, a2, w1, w2):
+            s, c = sin(a1 - a2), cos(a1 - a2)
+            f1 = (-w * w2**2 * s - k1 * a1 - k2 * (a1 - a2)
+                  - c1 * w1 - c2 * (w1 - w2) + P * l1 * s + H * l1 * sin(a1))
+            f2 = (w * w1**2 * s + k2 * (a1 - a2) - c2 * (w2 - w1)
+                  + H * l2 * sin(a2))
+            det = I1 * I2 - (w * c) ** 2
+            acc1 = (I2 * f1 - w * c * f2) / det
+            acc2 = (I1 * f2 - w * c * f1) / det
+            # d f / d(a1, a2, w1, w2); s, c depend on a1 - a2 only
+            g1 = (P * l1 - w * w2**2) * c
+            g2 = w * w1**2 * c
+            df1 = (g1 - k1 - k2 + H * l1 * cos(a1), k2 - g1, -c1 - c2, c2 - 2 * w * w2 * s)
+            df2 = (g2 + k2, -g2 - k2 + H * l2 * cos(a2), 2 * w * w1 * s + c2, -c2)
+            dc = (-s, s, 0.0, 0.0)  # d cos(a1 - a2)
+            ddet = tuple(-2 * w * w * c * d for d in dc)
+            row1 = [(I2 * a - w * c * b - w * f2 * d - acc1 * e) / det
+                    for a, b, d, e in zip(df1, df2, dc, ddet, strict=True)]
+            row2 = [(I1 * b - w * c * a - w * f1 * d - acc2 * e) / det
+                    for a, b, d, e in zip(df1, df2, dc, ddet, strict=True)]
+            return [[0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 1.0], row1, row2]
+
+        return jacobian
+
 
 def check_pendulum(pendulum: object, name: str = "pendulum") -> ZieglerPendulum:
     """``pendulum`` if it is a :class:`ZieglerPendulum`, else a :class:`ParameterError` naming
