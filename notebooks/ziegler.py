@@ -31,7 +31,7 @@ from IPython.display import Image, Markdown, display
 from flutterfriction import ZieglerPendulum
 from flutterfriction.analysis.ziegler import critical_loads, regime, spectrum
 from flutterfriction.closed_forms import ziegler as cf
-from flutterfriction.plotting import chapter_list
+from flutterfriction.parameter_text import chapter_list
 from flutterfriction.reference import own_parameters_note, own_parameters_summary
 
 DATA, FIGS = Path("results/data"), Path("results/figures")
