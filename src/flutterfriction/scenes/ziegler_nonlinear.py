@@ -162,11 +162,11 @@ def _compute_cycle(params: dict[str, Any]) -> dict[str, Any]:
     shot = dy.shoot_periodic_orbit(p, P, lc)
     t_end = lc.transient_s + 3 * lc.period_s
     n = int(params.get("n_samples", 6000))
-    sol = dy.simulate(p, P, x0, t_end, t_eval=np.linspace(0, t_end, n))
+    t = np.linspace(0, t_end, n)
+    y = dy.sampled_motion(p, P, x0, t).T  # (only drawn: LSODA's samples, see its docstring)
     return {
         "P": P, "P_star_flu": P_star, "P_star_is_eq54": is_eq54, "limit_cycle": lc.as_dict(),
-        "t": sol.t.tolist(),
-        "alpha": sol.y[:2].tolist(), "alpha_dot": sol.y[2:].tolist(),
+        "t": t.tolist(), "alpha": y[:2].tolist(), "alpha_dot": y[2:].tolist(),
         "quantities": {
             "period": quantity(lc.period_s, shot.period_s, "Poincare section (DOP853)",
                                 "periodic-orbit shooting (Newton)", "s"),
@@ -210,8 +210,7 @@ def fig20(params: dict[str, Any]) -> dict[str, Any]:
     x0 = np.array([a0, a0, 0.0, 0.0])
     n = int(params.get("n_samples", 6001))
     t = np.linspace(0.0, T_nl, n)
-    sol = dy.simulate(p, P, x0, T_nl, t_eval=t)
-    acc_nl = dy.tip_acceleration(p, sol.y.T, P)
+    acc_nl = dy.tip_acceleration(p, dy.sampled_motion(p, P, x0, t), P)
     t_li = t[t <= T_li + 1e-12]
     lin = linear_response(p, P, 0.0, x0, t_li)
     M = p.mass_matrix()
@@ -241,14 +240,14 @@ def fig21(params: dict[str, Any]) -> dict[str, Any]:
     P, P_flu, P_div = _mid_flutter_load(p)
     v = check_real("plate_speed", params.get("plate_speed", 0.1))
     t = np.linspace(0.0, T, int(params.get("n_samples", 4001)))
-    sol = dy.simulate(p, P, [0.0, 0.0, w0, w0], T, t_eval=t)
-    C = p.positions(sol.y[0], sol.y[1])["C"]
+    y = dy.sampled_motion(p, P, [0.0, 0.0, w0, w0], t).T
+    C = p.positions(y[0], y[1])["C"]
     # The plate slides under the wheel along -e1 (the friction on the wheel, -P t, points to A):
     # in the plate's frame the wheel moves by +v t along e1.
     scratch = C + np.stack([v * t, np.zeros_like(t)], axis=-1)
     # the largest rotations reached: they let a reader judge how far the path swings
     # (C passes behind the clamp, x < 0, where alpha2 exceeds 90 degrees)
-    alpha_max = np.degrees(np.abs(sol.y[:2]).max(axis=1))
+    alpha_max = np.degrees(np.abs(y[:2]).max(axis=1))
     return {"P": P, "P_flu": P_flu, "P_div": P_div, "omega0": w0, "duration": T,
             "t": t.tolist(), "C": C.tolist(), "scratch": scratch.tolist(), "plate_speed": v,
             "alpha_max_deg": alpha_max.tolist()}
@@ -316,8 +315,8 @@ def _amplitude_compute(params: dict[str, Any], points: list[list[Any]]) -> list[
         s = spectrum(unit, P_flu)
         T0 = 2 * math.pi / float(np.abs(s[np.argmax(s.real)].imag))
         t_b = np.linspace(0.0, BELOW_PERIODS * T0, BELOW_PERIODS * BELOW_SAMPLES + 1)
-        sol = dy.simulate(unit, f * P_flu, [0.6, 0.6, 0.0, 0.0], t_b[-1], t_eval=t_b)
-        env = np.abs(sol.y[0, :-1]).reshape(-1, BELOW_SAMPLES).max(axis=1)
+        y = dy.sampled_motion(unit, f * P_flu, [0.6, 0.6, 0.0, 0.0], t_b)
+        env = np.abs(y[:-1, 0]).reshape(-1, BELOW_SAMPLES).max(axis=1)
         out.append({"decays": bool(np.all(np.diff(env[5:]) <= 1e-9) and env[-1] < 0.5 * env[0]),
                     "envelope_first": float(env[0]), "envelope_last": float(env[-1]),
                     "periods": BELOW_PERIODS})
