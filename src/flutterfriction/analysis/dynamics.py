@@ -198,6 +198,14 @@ def simulate(pendulum: ZieglerPendulum, P: float, state0: ArrayLike, t_end: floa
     return sol
 
 
+#: :func:`sampled_motion`'s bound on LSODA's steps between two outputs (at most one time unit
+#: apart): 45x the most the workflow's motions take (measured: 111 in a time unit, Fig. 21's
+#: start at 0.5 rad/s; 80-94 for Figs. 13, 20 and the decay test), so that a pendulum moving
+#: tens of times faster than its time unit (a load far above its flutter load) is still
+#: answered, while a motion no step size resolves ends in a ConvergenceError.
+_SAMPLED_MXSTEP = 5000
+
+
 def sampled_motion(pendulum: ZieglerPendulum, P: float, state0: ArrayLike, t: ArrayLike,
                    H: float = 0.0, rtol: float = 1e-11, atol: float = 1e-13) -> NDArray:
     """States of eq. (10) at the instants ``t`` [s] (increasing, from 0), shape ``(len(t), 4)``:
@@ -210,11 +218,11 @@ def sampled_motion(pendulum: ZieglerPendulum, P: float, state0: ArrayLike, t: Ar
     :func:`simulate` or :func:`limit_cycle`.
 
     Integrated in the pendulum's time unit (:func:`in_time_unit`; ``rtol``, ``atol`` apply
-    there, as in :func:`limit_cycle`), with an output at least every time unit (LSODA's
-    bound of 500 steps between two outputs is then ~10x what the pendulum takes; measured
-    at most 54), bounded by :data:`SIMULATE_MAX_TIME_UNITS` as :func:`simulate` is; a
-    failure or a non-finite state (which odeint reports as a success) raises
-    :class:`ConvergenceError`."""
+    there, as in :func:`limit_cycle`), with an output at least every time unit, so that
+    LSODA's bound on the steps between two outputs (``mxstep``, :data:`_SAMPLED_MXSTEP`)
+    bounds the work per time unit; bounded in time by :data:`SIMULATE_MAX_TIME_UNITS` as
+    :func:`simulate` is. A failure or a non-finite state (which odeint reports as a success)
+    raises :class:`ConvergenceError`."""
     check_pendulum(pendulum)
     P, H, x0 = _checked_start(P, H, state0)
     rtol, atol = _check_tolerances(rtol, atol)
@@ -232,7 +240,7 @@ def sampled_motion(pendulum: ZieglerPendulum, P: float, state0: ArrayLike, t: Ar
     with warnings.catch_warnings(), _overflow_refused():
         warnings.simplefilter("ignore", ODEintWarning)  # reported below, as an error
         Y, info = odeint(rhs, x0 * scale, grid, tfirst=True, rtol=rtol, atol=atol,
-                         full_output=True)
+                         mxstep=_SAMPLED_MXSTEP, full_output=True)
     if info["message"] != "Integration successful." or not np.all(np.isfinite(Y)):
         raise ConvergenceError("time integration failed: " + (
             "the state became non-finite" if info["message"] == "Integration successful."
