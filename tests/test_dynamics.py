@@ -89,14 +89,15 @@ def test_small_motions_follow_the_linear_solution():
 
 
 def test_sampled_motion_is_simulate_s_motion_at_least_as_accurately():
-    """LSODA's samples (odeint) against DOP853 at rtol 1e-13 over 40 s of §2.9's transient:
-    within 1e-8 (measured 5.3e-9; simulate at its defaults 1.7e-8), angles and velocities."""
+    """LSODA's samples (odeint) against DOP853 at rtol 1e-13 over 40 s of §2.9's transient,
+    from a start with velocities (scaled into the pendulum's time unit and back): within 1e-8
+    (measured 5.3e-9 from rest; simulate at its defaults 1.7e-8), angles and velocities."""
     P = 1.5 * damped_flutter_load(SEC29)
-    x0 = np.radians([0.1, 0.1, 0.0, 0.0])
+    x0 = np.array([0.002, -0.001, 0.05, 0.03])
     t = np.linspace(0.0, 40.0, 2001)
     ref = dy.simulate(SEC29, P, x0, 40.0, t_eval=t, rtol=1e-13, atol=1e-14).y.T
     y = dy.sampled_motion(SEC29, P, x0, t)
-    assert y.shape == (2001, 4) and np.all(y[0] == x0)
+    assert y.shape == (2001, 4) and np.allclose(y[0], x0, rtol=1e-15, atol=0)
     assert np.max(np.abs(y - ref)) < 1e-8
     assert np.max(np.abs(y[:, :2])) > 0.1  # (it grew to the cycle: a real comparison)
 
@@ -107,20 +108,20 @@ def test_sampled_motion_does_not_depend_on_the_unit_of_time():
     (integrated in tau either way, but the rescaled parameters differ in their last bits, which
     moves LSODA's steps: measured 1.1e-10 over these 20 s; a wrong scaling is O(1e-3))."""
     P = 1.5 * damped_flutter_load(SEC29)
-    x0 = np.array([0.002, 0.002, 0.0, 0.0])
+    x0 = np.array([0.002, 0.002, 0.04, -0.02])
     tau = dy.time_unit(SEC29)
     t = np.linspace(0.0, 20.0, 401)
     y = dy.sampled_motion(SEC29, P, x0, t)
-    u = dy.sampled_motion(dy.in_time_unit(SEC29), P, x0, t / tau)
+    u = dy.sampled_motion(dy.in_time_unit(SEC29), P, x0 * [1, 1, tau, tau], t / tau)
     assert np.allclose(u[:, :2], y[:, :2], rtol=0, atol=1e-9)
     assert np.allclose(u[:, 2:], y[:, 2:] * tau, rtol=0, atol=1e-9)
 
 
 @pytest.mark.parametrize("t, match", [
-    ([0.5, 1.0], "t must be at least two increasing instants from 0"),
-    ([0.0, 1.0, 0.5], "t must be at least two increasing instants"),
-    ([0.0], "t must be at least two"),
-    ([0.0, 1e9], r"to at most 1\.029e\+04 s"),
+    ([0.5, 1.0], r"t must be at least two increasing instants from 0 .*got t\[0\] = 0\.5"),
+    ([0.0, 1.0, 0.5], r"got t\[2\] = 0\.5 after t\[1\] = 1"),
+    ([0.0], r"t must be at least two .*got shape \(1,\)"),
+    ([0.0, 1e9], r"to at most 1\.029e\+04 s .*got t\[-1\] = 1e\+09 s"),
     ([0.0, float("nan")], "t must be finite"),
 ])
 def test_sampled_motion_refuses_bad_instants_by_name(t, match):
@@ -128,10 +129,37 @@ def test_sampled_motion_refuses_bad_instants_by_name(t, match):
         dy.sampled_motion(SEC29, 1.0, [0.1, 0.1, 0.0, 0.0], t)
 
 
-def test_sampled_motion_says_when_the_motion_leaves_the_doubles():
-    """A load far beyond the pendulum's scale: odeint would report its NaN as a success."""
-    with pytest.raises(ConvergenceError):
+def test_sampled_motion_says_when_lsoda_cannot_start():
+    """A load far beyond the pendulum's scale: LSODA refuses its first step ("Illegal input
+    detected (internal error)" in odeint's words), said in the pendulum's."""
+    with pytest.raises(ConvergenceError, match="LSODA refused its start"):
         dy.sampled_motion(SEC29, 1e150, [0.5, -0.5, 0.0, 0.0], [0.0, 1.0])
+
+
+def test_sampled_motion_says_when_the_state_turns_non_finite(monkeypatch):
+    """odeint reports a motion that turned NaN as a success: the samples are checked."""
+    original = ZieglerPendulum.motion_at
+
+    def turning_nan(self, P=0.0, H=0.0):
+        f = original(self, P, H)
+        return lambda t, x: f(t, x) if t < 3.0 else np.full(4, np.nan)
+
+    monkeypatch.setattr(ZieglerPendulum, "motion_at", turning_nan)
+    with pytest.raises(ConvergenceError, match="the state became non-finite"):
+        dy.sampled_motion(SEC29, 1.0, [0.1, 0.1, 0.0, 0.0], np.linspace(0.0, 1.0, 11))
+
+
+def test_sampled_motion_says_when_the_motion_outruns_its_step_bound():
+    """A pendulum moving far faster than its time unit (1e8 N on §2.9's): more than the step
+    bound within one time unit, said so (odeint's "Excess work done ... Dfun type")."""
+    with pytest.raises(ConvergenceError, match="more than 5000 steps within one time unit"):
+        dy.sampled_motion(SEC29, 1e8, [0.5, -0.5, 0.0, 0.0], [0.0, 1.0])
+
+
+def test_the_jacobian_refuses_a_state_beyond_the_double_range():
+    """An outside review: velocities of 1e200 rad/s raised Python's OverflowError."""
+    with pytest.raises(ParameterError, match="Jacobian of the equations of motion leaves"):
+        dy.jacobian(SEC29, [0.0, 0.0, 1e200, 0.0], 1.0)
 
 
 @pytest.fixture(scope="module")

@@ -38,9 +38,20 @@ from flutterfriction.models.ziegler import ZieglerPendulum, check_pendulum
 
 
 def jacobian(pendulum: ZieglerPendulum, state: ArrayLike, P: float, H: float = 0.0) -> NDArray:
-    """Analytic Jacobian of the nonlinear equations of motion (eq. 10) at ``state``."""
+    """Analytic Jacobian of the nonlinear equations of motion (eq. 10) at ``state``; a state or
+    load whose Jacobian leaves the double range is refused (:class:`ParameterError`), as
+    :meth:`~flutterfriction.models.ziegler.ZieglerPendulum.equations_of_motion` refuses it (an
+    outside review: velocities of 1e160 rad/s raised Python's OverflowError)."""
     P, H, x = _checked_start(P, H, state, "state")
-    return jacobian_at(pendulum, P, H)(0.0, x)
+    try:
+        with np.errstate(over="ignore", invalid="ignore"):
+            J = jacobian_at(pendulum, P, H)(0.0, x)
+    except OverflowError:
+        J = np.full((4, 4), np.inf)
+    if not np.all(np.isfinite(J)):
+        raise ParameterError(f"state, P = {P!r}, H = {H!r}: the Jacobian of the equations of "
+                             f"motion leaves the double range")
+    return J
 
 
 def jacobian_at(pendulum: ZieglerPendulum, P: float, H: float = 0.0
@@ -198,9 +209,10 @@ def simulate(pendulum: ZieglerPendulum, P: float, state0: ArrayLike, t_end: floa
     return sol
 
 
-#: :func:`sampled_motion`'s bound on LSODA's steps between two outputs (at most one time unit
-#: apart): 45x the most the workflow's motions take (measured: 111 in a time unit, Fig. 21's
-#: start at 0.5 rad/s; 80-94 for Figs. 13, 20 and the decay test), so that a pendulum moving
+#: :func:`sampled_motion`'s bound on LSODA's steps between two outputs, which are at most one
+#: time unit apart: ~45x the most the workflow's motions take in one time unit (measured with
+#: outputs one unit apart: 81-111 for Fig. 21's start at 0.5 rad/s, 80-100 for Figs. 13, 20
+#: and the decay test; between their own, denser samples 16-34), so that a pendulum moving
 #: tens of times faster than its time unit (a load far above its flutter load) is still
 #: answered, while a motion no step size resolves ends in a ConvergenceError.
 _SAMPLED_MXSTEP = 5000
@@ -209,9 +221,10 @@ _SAMPLED_MXSTEP = 5000
 def sampled_motion(pendulum: ZieglerPendulum, P: float, state0: ArrayLike, t: ArrayLike,
                    H: float = 0.0, rtol: float = 1e-11, atol: float = 1e-13) -> NDArray:
     """States of eq. (10) at the instants ``t`` [s] (increasing, from 0), shape ``(len(t), 4)``:
-    a motion that is only sampled (a figure's transient, a decay test), by LSODA in its own
-    Fortran loop (scipy's ``odeint``), ~5x cheaper than :func:`simulate`'s ``solve_ivp``, which
-    returns to Python at every step. The default tolerances make it the more accurate of the
+    a motion that is only sampled (a figure's transient, a decay test), by LSODA (scipy's
+    ``odeint``: Fortran steps, a C loop over the outputs, Python only for the right-hand
+    side), ~5x cheaper than :func:`simulate`'s ``solve_ivp``, which returns to Python at every
+    step. The default tolerances make it the more accurate of the
     two at their defaults (measured against DOP853 at rtol 1e-13 on the motions of Figs.
     13/14, 20 and 21: 5.3e-9, 1.3e-8, 4.1e-9 against simulate's 1.7e-8, 2.1e-8, 2.2e-8; at a
     fifth to a seventh of its time). No events: where the extrema or crossings matter,
@@ -229,10 +242,21 @@ def sampled_motion(pendulum: ZieglerPendulum, P: float, state0: ArrayLike, t: Ar
     t = np.atleast_1d(check_finite_reals("t", t))
     tau = time_unit(pendulum)
     limit = SIMULATE_MAX_TIME_UNITS * tau
-    if t.ndim != 1 or t.size < 2 or t[0] != 0.0 or np.any(np.diff(t) <= 0) or t[-1] > limit:
+    if t.ndim != 1 or t.size < 2:
+        wrong = f"shape {t.shape}"
+    elif t[0] != 0.0:
+        wrong = f"t[0] = {t[0]:g}"
+    elif np.any(np.diff(t) <= 0):
+        k = int(np.argmax(np.diff(t) <= 0)) + 1
+        wrong = f"t[{k}] = {t[k]:g} after t[{k - 1}] = {t[k - 1]:g}"
+    elif t[-1] > limit:
+        wrong = f"t[-1] = {t[-1]:g} s"
+    else:
+        wrong = ""
+    if wrong:
         raise ParameterError(f"t must be at least two increasing instants from 0 to at most "
                              f"{limit:.4g} s ({SIMULATE_MAX_TIME_UNITS:g} time units l2 "
-                             f"sqrt(m2/k2) of this pendulum), got {t.size} values")
+                             f"sqrt(m2/k2) of this pendulum), got {wrong}")
     s = t / tau
     grid = np.union1d(s, np.arange(0.0, s[-1], 1.0))  # an output at least every time unit
     scale = np.array([1.0, 1.0, tau, tau])
@@ -241,10 +265,16 @@ def sampled_motion(pendulum: ZieglerPendulum, P: float, state0: ArrayLike, t: Ar
         warnings.simplefilter("ignore", ODEintWarning)  # reported below, as an error
         Y, info = odeint(rhs, x0 * scale, grid, tfirst=True, rtol=rtol, atol=atol,
                          mxstep=_SAMPLED_MXSTEP, full_output=True)
-    if info["message"] != "Integration successful." or not np.all(np.isfinite(Y)):
-        raise ConvergenceError("time integration failed: " + (
-            "the state became non-finite" if info["message"] == "Integration successful."
-            else info["message"]))
+    message = info["message"]
+    if message != "Integration successful." or not np.all(np.isfinite(Y)):
+        # odeint's own words name its internals (a Dfun never given, an "internal error")
+        raise ConvergenceError("time integration (LSODA) failed: " + (
+            "the state became non-finite" if message == "Integration successful." else
+            f"more than {_SAMPLED_MXSTEP} steps within one time unit (a motion far faster "
+            f"than the pendulum's own)" if message.startswith("Excess work") else
+            "LSODA refused its start (eq. 10 beyond the double range there, or instants "
+            "closer than its first step can resolve)" if message.startswith("Illegal input")
+            else message))
     return Y[np.searchsorted(grid, s)] / scale
 
 

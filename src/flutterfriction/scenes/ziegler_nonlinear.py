@@ -20,7 +20,13 @@ from flutterfriction.analysis.ziegler import (
     spectrum,
 )
 from flutterfriction.closed_forms.ziegler_damped import eq54_flutter_gamma, viscosity_groups
-from flutterfriction.errors import ConvergenceError, ParameterError, check_positive, check_real
+from flutterfriction.errors import (
+    ConvergenceError,
+    ParameterError,
+    check_integer,
+    check_positive,
+    check_real,
+)
 from flutterfriction.models.ziegler import ZieglerPendulum
 from flutterfriction.scenes.common import median_wall_time, pendulum_of, quantity, take
 from flutterfriction.scenes.sweep import Sweep
@@ -142,6 +148,12 @@ def check_fig21(params: dict[str, Any]) -> None:
     _fig21_settings(params)
 
 
+def _n_samples(params: dict[str, Any], default: int) -> int:
+    """A drawn motion's number of samples, as the configuration's schema bounds it (at least
+    10: a motion is drawn from its samples)."""
+    return check_integer("n_samples", params.get("n_samples", default), 10, 10_000_000)
+
+
 def _cycle(params: dict[str, Any]) -> dict[str, Any]:
     """Figs. 13 and 14 show the same motion: computed once per process for the same
     parameters (the workflow solves both in one job; a deep copy each, as a scene changes its
@@ -161,7 +173,7 @@ def _compute_cycle(params: dict[str, Any]) -> dict[str, Any]:
     lc = dy.limit_cycle(p, P, x0, tol=float(params.get("tol", 1e-8)))
     shot = dy.shoot_periodic_orbit(p, P, lc)
     t_end = lc.transient_s + 3 * lc.period_s
-    n = int(params.get("n_samples", 6000))
+    n = _n_samples(params, 6000)
     t = np.linspace(0, t_end, n)
     y = dy.sampled_motion(p, P, x0, t).T  # (only drawn: LSODA's samples, see its docstring)
     return {
@@ -208,7 +220,7 @@ def fig20(params: dict[str, Any]) -> dict[str, Any]:
     p, a0, T_nl, T_li = _fig20_settings(params)
     P, P_flu, P_div = _mid_flutter_load(p)
     x0 = np.array([a0, a0, 0.0, 0.0])
-    n = int(params.get("n_samples", 6001))
+    n = _n_samples(params, 6001)
     t = np.linspace(0.0, T_nl, n)
     acc_nl = dy.tip_acceleration(p, dy.sampled_motion(p, P, x0, t), P)
     t_li = t[t <= T_li + 1e-12]
@@ -239,7 +251,7 @@ def fig21(params: dict[str, Any]) -> dict[str, Any]:
     p, T, w0 = _fig21_settings(params)
     P, P_flu, P_div = _mid_flutter_load(p)
     v = check_real("plate_speed", params.get("plate_speed", 0.1))
-    t = np.linspace(0.0, T, int(params.get("n_samples", 4001)))
+    t = np.linspace(0.0, T, _n_samples(params, 4001))
     y = dy.sampled_motion(p, P, [0.0, 0.0, w0, w0], t).T
     C = p.positions(y[0], y[1])["C"]
     # The plate slides under the wheel along -e1 (the friction on the wheel, -P t, points to A):
