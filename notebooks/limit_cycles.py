@@ -258,22 +258,7 @@ for k, v in bb["quantities"].items():
 # model's, its depth a mesh-dependent detail.
 
 # %%
-import matplotlib.pyplot as plt  # noqa: E402
-
-fig, axes = plt.subplots(1, len(bb["shapes"]), figsize=(3.2 * len(bb["shapes"]), 3.4),
-                         layout="constrained")
-for ax, sh in zip(np.atleast_1d(axes), bb["shapes"], strict=True):
-    for j, (x, z) in enumerate(sh["shapes"]):
-        ax.plot(np.array(z) * 1e3, np.array(x) * 1e3,
-                color=plt.cm.viridis(j / len(sh["shapes"])), lw=1)
-    ax.set_title(f"{sh['label']}\nP = {sh['P_N']:.3f} N, A = {sh['tip_amplitude_m'] * 1e3:.0f}"
-                 " mm", fontsize=8)
-    ax.set_xlabel("lateral position [mm]")
-    ax.set_aspect("equal")
-np.atleast_1d(axes)[0].set_ylabel("axial position [mm]")
-fig.suptitle("The rod over one period of the cycle (colour: time through the period)",
-             fontsize=9)
-plt.show()
+show("beck_branch_shapes", width=900)
 rot = np.array(bb["tip_rotation_amplitude_rad"])
 display(Markdown("Tip rotation amplitude at those cycles: " + ", ".join(
     f"{sh['P_N']:.3f} N: {rot[sh['index']]:.3f} rad" for sh in bb["shapes"]) + "."))

@@ -273,7 +273,14 @@ _ENTRIES = [
         "beck_branch:plot_beck_branch",
         "Beyond the chapter: the rod's whole branch of limit cycles, from the Hopf point "
         "through the 5.5 N cycle of Figs. 15–17 to 7 N: tip amplitude and period against the "
-        "load, stability from the Floquet multipliers, the onset normal form.")}, slow=True,
+        "load, stability from the Floquet multipliers, the onset normal form."),
+        "beck_branch_shapes": _fig(
+            "beck_branch:plot_beck_branch_shapes",
+            "Beyond the chapter: the rod over one period of cycles of that branch (the "
+            "amplitude's first maximum and the following minimum, the chapter's 5.5 N cycle, "
+            "the last), its centre line at twelve instants coloured by the time through the "
+            "period: the same swing at the amplitude's maximum and minimum, only smaller; past "
+            "the dip the rod curls and its tip sweeps backwards.")}, slow=True,
           check=branch.check_beck_branch),
     Scene("beck_work_precision", rod.beck_work_precision, "limit_cycles", {
         "beck_work_precision": _fig(

@@ -6,6 +6,7 @@ from typing import Any
 
 import matplotlib.pyplot as plt
 import numpy as np
+from matplotlib.collections import LineCollection
 from matplotlib.figure import Figure
 
 from flutterfriction.plotting import list119
@@ -67,4 +68,41 @@ def plot_beck_branch(data: dict[str, Any]) -> Figure:
     return fig
 
 
-PLOTS = {"beck_branch": plot_beck_branch}
+def plot_beck_branch_shapes(data: dict[str, Any]) -> Figure:
+    """The rod over one period of a few cycles of the branch (the amplitude's first maximum and
+    the following minimum, the chapter's cycle, the last): its centre line at equally spaced
+    instants, coloured by the time through the period; lateral against axial position."""
+    shapes = data["shapes"]
+    n = len(shapes)
+    fig, axes = plt.subplots(1, n, figsize=(2.6 * n + 1.0, 2.9), layout="constrained",
+                             sharey=True, squeeze=False)
+    # one scale for all panels, the whole swing in view (a curled rod reaches further sideways
+    # than it is long: data-limited shared axes cut its loops off)
+    lateral = max(abs(v) for sh in shapes for _, z in sh["shapes"] for v in z) * 1e3 * 1.05
+    axial = [min(min(x) for sh in shapes for x, _ in sh["shapes"]) * 1e3,
+             max(max(x) for sh in shapes for x, _ in sh["shapes"]) * 1e3]
+    pad = 0.05 * (axial[1] - axial[0])
+    lines = None
+    for ax, sh in zip(axes[0], shapes, strict=True):
+        m = len(sh["shapes"])
+        # one line per instant, coloured by t/T (a collection: the colour bar explains it)
+        lines = LineCollection([np.column_stack([np.array(z) * 1e3, np.array(x) * 1e3])
+                                for x, z in sh["shapes"]], cmap="viridis", lw=1,
+                               norm=plt.Normalize(0.0, 1.0))
+        lines.set_array(np.arange(m) / m)
+        ax.add_collection(lines)
+        ax.set_xlim(-lateral, lateral)
+        ax.set_ylim(axial[0] - pad, axial[1] + pad)
+        ax.set_title(f"{sh['label']}\nP = {sh['P_N']:.3f} N, A = "
+                     f"{sh['tip_amplitude_m'] * 1e3:.0f} mm", fontsize=8)
+        ax.set_xlabel("lateral position [mm]")
+        ax.set_aspect("equal", adjustable="box")
+    axes[0][0].set_ylabel("axial position from the clamp [mm]")
+    fig.colorbar(lines, ax=axes[0].tolist(), shrink=0.8,
+                 label="time through the period, t/T [-]")
+    fig.suptitle(f"Beck rod, {list119(data)}, {data['n_elements']} P2 elements: the rod over "
+                 "one period of cycles of the branch", fontsize=9)
+    return fig
+
+
+PLOTS = {"beck_branch": plot_beck_branch, "beck_branch_shapes": plot_beck_branch_shapes}

@@ -188,7 +188,8 @@ def beck_branch(params: dict[str, Any]) -> dict[str, Any]:
     mu = np.array(b.max_floquet_modulus)
     stable = bool(np.all(mu < 1.0))
 
-    picks["last"] = len(A) - 1
+    if len(A) - 1 not in picks.values():  # (the quick preset's branch ends at its 5.5 N cycle)
+        picks["last"] = len(A) - 1
     shapes = [{"label": label, "index": k, "P_N": float(P[k]),
                "tip_amplitude_m": float(A[k]), "period_s": float(T[k]),
                "shapes": cycle_shapes(model, states[k, :-2], T[k], P[k])}
