@@ -427,15 +427,20 @@ class ZieglerPendulum:
 
         return f
 
+    def _inertia(self) -> tuple[float, float, float]:
+        """``(w, I1, I2)`` of eq. (10)'s mass matrix ``[[I1, w c], [w c, I2]]``,
+        ``c = cos(alpha1 - alpha2)``."""
+        m2, m3, l1, l2 = self.m2, self.m3, self.l1, self.l2
+        return ((m2 * l2 + m3 * self.h) * l1, self.m1 * self.d**2 + (m2 + m3) * l1**2,
+                m2 * l2**2 + m3 * self.h**2)
+
     def _motion(self, P: float, H: float, sin, cos):
         """Eq. (10) solved for the accelerations: ``(a1, a2, w1, w2) -> (w1, w2, a1'', a2'')``
         with ``sin``, ``cos`` of math (floats) or numpy (arrays); the one definition of the
         equations of motion."""
-        m1, m2, m3, l1, l2 = self.m1, self.m2, self.m3, self.l1, self.l2
+        l1, l2 = self.l1, self.l2
         k1, k2, c1, c2 = self.k1, self.k2, self.c1, self.c2
-        w = (m2 * l2 + m3 * self.h) * l1
-        I1 = m1 * self.d**2 + (m2 + m3) * l1**2
-        I2 = m2 * l2**2 + m3 * self.h**2
+        w, I1, I2 = self._inertia()
 
         def motion(a1, a2, w1, w2):
             s, c = sin(a1 - a2), cos(a1 - a2)
@@ -457,22 +462,17 @@ class ZieglerPendulum:
         tests hold it against sympy's derivative of the same equations and central
         differences. (sympy derived it at run time before: ~0.35-0.47 CPU-s of imports and
         algebra per process, measured, for a 4 x 4 matrix.)"""
-        m1, m2, m3, l1, l2 = self.m1, self.m2, self.m3, self.l1, self.l2
+        l1, l2 = self.l1, self.l2
         k1, k2, c1, c2 = self.k1, self.k2, self.c1, self.c2
-        w = (m2 * l2 + m3 * self.h) * l1
-        I1 = m1 * self.d**2 + (m2 + m3) * l1**2
-        I2 = m2 * l2**2 + m3 * self.h**2
+        w, I1, I2 = self._inertia()
         sin, cos = math.sin, math.cos
+        motion = self._motion(P, H, sin, cos)  # the accelerations: the one definition
 
         def jacobian(a1, a2, w1, w2):
             s, c = sin(a1 - a2), cos(a1 - a2)
-            f1 = (-w * w2**2 * s - k1 * a1 - k2 * (a1 - a2)
-                  - c1 * w1 - c2 * (w1 - w2) + P * l1 * s + H * l1 * sin(a1))
-            f2 = (w * w1**2 * s + k2 * (a1 - a2) - c2 * (w2 - w1)
-                  + H * l2 * sin(a2))
+            _, _, acc1, acc2 = motion(a1, a2, w1, w2)
+            f1, f2 = I1 * acc1 + w * c * acc2, w * c * acc1 + I2 * acc2  # f = M(alpha) alpha''
             det = I1 * I2 - (w * c) ** 2
-            acc1 = (I2 * f1 - w * c * f2) / det
-            acc2 = (I1 * f2 - w * c * f1) / det
             # d f / d(a1, a2, w1, w2); s, c depend on a1 - a2 only
             g1 = (P * l1 - w * w2**2) * c
             g2 = w * w1**2 * c
